@@ -1,0 +1,17 @@
+#pragma once
+/// \file Error type thrown for setup problems: bad scenes or meshes, no EGL, GL < 4.3, shader errors.
+
+#include <stdexcept>
+#include <string>
+
+namespace glcollide {
+
+/// Thrown by setup code (loading, context creation, shader compilation, engine construction).
+/// The message names the file and the line or JSON pointer where that applies, and what is wrong.
+/// The step loop never throws; device-side problems are reported in the step statistics.
+class Error : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+} // namespace glcollide

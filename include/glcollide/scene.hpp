@@ -1,0 +1,95 @@
+#pragma once
+/// \file Scene description: what the engine simulates. Built by loadScene() from a JSON file or
+/// assembled in code. Units are SI: metres, kilograms, seconds, newtons.
+
+#include <glcollide/effects.hpp>
+
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace glcollide {
+
+/// Which rule produced a spring; informative (statistics, export), never used by the solver.
+enum class SpringKind : std::uint8_t { Edge, Structural, Shear, Bend };
+
+/// A spring between two nodes of one body (indices local to the body).
+struct Spring {
+    std::uint32_t a = 0;
+    std::uint32_t b = 0;
+    double restLength = 0.0; ///< m, > 0
+    double stiffness = 0.0;  ///< N/m, > 0
+    double damping = 0.0;    ///< N·s/m along the spring, >= 0
+    SpringKind kind = SpringKind::Edge;
+};
+
+/// One deformable object: nodes, surface triangles, optional tetrahedra, springs.
+/// All per-node vectors have the same length. Indices are local to the body.
+struct Body {
+    std::string name;
+    std::vector<glm::dvec3> positions;            ///< m, world space (transform already applied)
+    std::vector<glm::dvec3> velocities;           ///< m/s
+    std::vector<double> masses;                   ///< kg per node, > 0 (lumped)
+    std::vector<std::uint8_t> pinned;             ///< 1 = node never moves (infinite mass)
+    std::vector<std::array<std::uint32_t, 3>> faces; ///< surface triangles, counter-clockwise seen from outside
+    std::vector<std::array<std::uint32_t, 4>> tets;  ///< empty for surface bodies
+    std::vector<Spring> springs;
+};
+
+/// A horizontal plane y = height that nodes cannot go below.
+struct GroundPlane {
+    double height = 0.0;      ///< m
+    double restitution = 0.0; ///< 0..1: fraction of the normal speed kept on impact
+    double friction = 0.0;    ///< >= 0: Coulomb coefficient applied to the tangential velocity
+};
+
+/// Linear aerodynamic drag of faces moving relative to a constant wind.
+/// Per face: f = drag · area · ((wind − v_face)·n̂) n̂, shared equally by its three nodes.
+struct Wind {
+    glm::dvec3 velocity{0.0}; ///< m/s
+    double drag = 1.0;        ///< kg/(m²·s), >= 0
+};
+
+struct TimeSettings {
+    double dt = 1.0 / 60.0; ///< s per frame, > 0
+    /// Substeps per frame. 0 = automatic: the smallest count that keeps explicit integration
+    /// stable for the stiffest spring at its lightest node (see docs/integration.md).
+    int substeps = 0;
+    int frames = 240; ///< frames `glcollide run` simulates by default, > 0
+};
+
+struct Scene {
+    static constexpr int kFormatVersion = 1;
+
+    std::string name;
+    std::filesystem::path sourcePath; ///< empty for scenes built in code
+    EffectSet effects;
+    glm::dvec3 gravity{0.0, -9.81, 0.0}; ///< m/s², used when effects has Gravity
+    double damping = 0.0;                ///< 1/s, viscous damping coefficient (Damping)
+    Wind wind;                           ///< used when effects has Wind
+    GroundPlane ground;                  ///< used when effects has Ground
+    TimeSettings time;
+    std::vector<Body> bodies;
+};
+
+/// Loads a JSON scene (format in docs/scene-format.md). Mesh paths resolve relative to the
+/// scene file. Throws glcollide::Error naming the file and JSON pointer (or mesh file and line).
+Scene loadScene(const std::filesystem::path& path);
+
+/// Parses a scene from JSON text. `baseDir` resolves mesh paths; `sourceName` names the text
+/// in error messages.
+Scene parseScene(const std::string& jsonText, const std::filesystem::path& baseDir,
+                 const std::string& sourceName);
+
+/// The scene `glcollide run` simulates when given none: a cloth pinned at two corners.
+Scene defaultScene();
+
+/// Checks the invariants documented on Body/Scene (sizes match, indices in range, finite
+/// values, positive masses, rest lengths and stiffnesses). Throws glcollide::Error.
+void validateScene(const Scene& scene);
+
+} // namespace glcollide

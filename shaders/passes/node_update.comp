@@ -1,0 +1,56 @@
+#version 430 core
+// NodeUpdate — one symplectic Euler substep (v += h w f; x += h v), pinned nodes (w = 0) held,
+// optional ground plane with restitution and Coulomb friction on the velocity.
+// The NodeUpdate stage of the AABB-octree pipeline (seeds/002, Table 2).
+// GLC_FORCES: a force buffer exists. GLC_GROUND: the ground plane is on. Twin: cpu::nodeUpdate.
+#include "common/layout.glsl"
+#include "common/index.glsl"
+
+layout(local_size_x = GLC_WORKGROUP_SIZE) in;
+
+layout(std430, binding = GLC_BIND_NODE_POSITIONS) buffer NodePositionsBuf { vec4 g_positions[]; };
+layout(std430, binding = GLC_BIND_NODE_VELOCITIES) buffer NodeVelocitiesBuf { vec4 g_velocities[]; };
+#ifdef GLC_FORCES
+layout(std430, binding = GLC_BIND_NODE_FORCES) readonly buffer NodeForcesBuf { vec4 g_forces[]; };
+#endif
+
+uniform uint u_nodeCount;
+uniform float u_h; // s
+#ifdef GLC_GROUND
+uniform float u_groundHeight; // m
+uniform float u_restitution;
+uniform float u_friction;
+#endif
+
+void main() {
+    uint i = globalIndex();
+    if (i >= u_nodeCount) return;
+    vec4 p = g_positions[i];
+    float w = p.w;
+    if (w <= 0.0) {
+        g_velocities[i] = vec4(0.0);
+        return;
+    }
+    vec3 v = g_velocities[i].xyz;
+#ifdef GLC_FORCES
+    v += (u_h * w) * g_forces[i].xyz;
+#endif
+    vec3 x = p.xyz + u_h * v;
+#ifdef GLC_GROUND
+    if (x.y < u_groundHeight) {
+        x.y = u_groundHeight;
+        if (v.y < 0.0) {
+            float normalSpeed = -v.y;
+            v.y = u_restitution * normalSpeed;
+            float tangentialSpeed = length(v.xz);
+            if (tangentialSpeed > 0.0) {
+                // Coulomb: the normal impulse (1+e)|vn| bounds the tangential change.
+                float scale = max(0.0, 1.0 - u_friction * (1.0 + u_restitution) * normalSpeed / tangentialSpeed);
+                v.xz *= scale;
+            }
+        }
+    }
+#endif
+    g_positions[i] = vec4(x, w);
+    g_velocities[i] = vec4(v, 0.0);
+}

@@ -1,0 +1,35 @@
+#pragma once
+// Parameters of the dynamics passes, shared by the GPU passes (module passes) and their CPU
+// twins (module cpu) so both are driven by the same values. Units are SI.
+
+#include <glm/vec3.hpp>
+
+namespace glcollide {
+
+/// NodeForce: which terms are compiled in, and their values.
+struct NodeForceParams {
+    bool gravity = false;
+    bool damping = false;
+    bool wind = false;
+    glm::dvec3 gravityAcceleration{0.0, -9.81, 0.0}; ///< m/s²
+    double dampingCoefficient = 0.0;                 ///< 1/s: f = -c·m·v
+    glm::dvec3 windVelocity{0.0};                    ///< m/s
+    double windDrag = 0.0;                           ///< kg/(m²·s)
+};
+
+/// SpringUpdate: whether it adds to forces written by NodeForce or writes them itself.
+struct SpringUpdateParams {
+    bool accumulate = false;
+};
+
+/// NodeUpdate: one symplectic Euler substep of length h, with an optional ground plane.
+struct NodeUpdateParams {
+    double h = 0.0;         ///< s, substep length
+    bool forces = false;    ///< a force buffer exists (otherwise velocities stay constant)
+    bool ground = false;
+    double groundHeight = 0.0;
+    double restitution = 0.0;
+    double friction = 0.0;
+};
+
+} // namespace glcollide

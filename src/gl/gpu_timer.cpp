@@ -1,0 +1,51 @@
+#include "gl/gpu_timer.hpp"
+
+#include <epoxy/gl.h>
+
+namespace glcollide::gl {
+
+GpuTimer::GpuTimer(std::size_t sectionCount) : m_sectionCount(sectionCount) {}
+
+void GpuTimer::beginFrame() {
+    m_used = 0;
+    m_brackets.clear();
+}
+
+std::uint32_t GpuTimer::nextQuery() {
+    if (m_used == m_queries.size()) {
+        GLuint q = 0;
+        glGenQueries(1, &q);
+        m_queries.emplace_back(q);
+    }
+    return m_queries[m_used++].name();
+}
+
+void GpuTimer::begin(std::size_t section) {
+    const std::uint32_t q = nextQuery();
+    glQueryCounter(q, GL_TIMESTAMP);
+    m_brackets.push_back({section, q, 0});
+}
+
+void GpuTimer::end(std::size_t section) {
+    const std::uint32_t q = nextQuery();
+    glQueryCounter(q, GL_TIMESTAMP);
+    for (auto it = m_brackets.rbegin(); it != m_brackets.rend(); ++it)
+        if (it->section == section && it->end == 0) {
+            it->end = q;
+            return;
+        }
+}
+
+std::vector<double> GpuTimer::resolveMilliseconds() {
+    std::vector<double> ms(m_sectionCount, 0.0);
+    for (const Bracket& b : m_brackets) {
+        if (b.end == 0) continue;
+        GLuint64 t0 = 0, t1 = 0;
+        glGetQueryObjectui64v(b.start, GL_QUERY_RESULT, &t0);
+        glGetQueryObjectui64v(b.end, GL_QUERY_RESULT, &t1);
+        if (t1 > t0) ms[b.section] += static_cast<double>(t1 - t0) * 1e-6;
+    }
+    return ms;
+}
+
+} // namespace glcollide::gl

@@ -1,0 +1,55 @@
+#include "gl/handles.hpp"
+
+#include "gl/debug_output.hpp"
+
+#include <glcollide/error.hpp>
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+
+namespace glcollide::gl {
+
+void deleteBuffer(GLname name) { glDeleteBuffers(1, &name); }
+void deleteProgram(GLname name) { glDeleteProgram(name); }
+void deleteQuery(GLname name) { glDeleteQueries(1, &name); }
+
+Buffer::Buffer(std::string_view label, std::size_t bytes, const void* data)
+    : m_bytes(bytes), m_label(label) {
+    GLuint name = 0;
+    glGenBuffers(1, &name);
+    m_handle = Handle<deleteBuffer>(name);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, name);
+    // A zero-sized SSBO cannot be bound; keep a small placeholder so passes stay valid.
+    const std::size_t allocated = std::max<std::size_t>(bytes, 16);
+    glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(allocated), bytes ? data : nullptr,
+                 GL_DYNAMIC_COPY);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    if (glGetError() == GL_OUT_OF_MEMORY)
+        throw Error("GL out of memory allocating buffer '" + m_label + "' of " +
+                    std::to_string(bytes) + " bytes");
+    labelObject(GL_BUFFER, name, "glcollide/" + m_label);
+}
+
+void Buffer::upload(std::size_t offset, std::size_t bytes, const void* data) {
+    if (bytes == 0) return;
+    glBindBuffer(GL_COPY_WRITE_BUFFER, name());
+    glBufferSubData(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(offset),
+                    static_cast<GLsizeiptr>(bytes), data);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+}
+
+void Buffer::download(std::size_t offset, std::size_t bytes, void* out) const {
+    if (bytes == 0) return;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glBindBuffer(GL_COPY_READ_BUFFER, name());
+    glGetBufferSubData(GL_COPY_READ_BUFFER, static_cast<GLintptr>(offset),
+                       static_cast<GLsizeiptr>(bytes), out);
+    glBindBuffer(GL_COPY_READ_BUFFER, 0);
+}
+
+void Buffer::bindStorage(std::uint32_t binding) const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, name());
+}
+
+} // namespace glcollide::gl

@@ -1,0 +1,36 @@
+#pragma once
+// C++ view of shaders/common/layout.glsl: the one declaration of the SSBO structs and bindings,
+// included inside a namespace with glm aliases so the same text compiles as C++.
+
+#include <glm/vec4.hpp>
+
+#include <cstddef>
+#include <cstdint>
+
+namespace glcollide::gpu {
+
+using uint = std::uint32_t;
+using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+
+#include "../../shaders/common/layout.glsl"
+
+// std430: structs of 4-byte scalars have 4-byte alignment; we keep every struct a multiple of
+// 16 bytes so arrays of them can be bound with glBindBufferRange at 16-byte-aligned offsets.
+static_assert(sizeof(vec4) == 16);
+static_assert(sizeof(GpuSpring) == 32);
+static_assert(offsetof(GpuSpring, nodeA) == 0);
+static_assert(offsetof(GpuSpring, nodeB) == 4);
+static_assert(offsetof(GpuSpring, restLength) == 8);
+static_assert(offsetof(GpuSpring, stiffness) == 12);
+static_assert(offsetof(GpuSpring, damping) == 16);
+static_assert(offsetof(GpuSpring, object) == 20);
+static_assert(sizeof(GpuObject) == 32);
+static_assert(offsetof(GpuObject, firstNode) == 0);
+static_assert(offsetof(GpuObject, nodeCount) == 4);
+static_assert(offsetof(GpuObject, firstFace) == 8);
+static_assert(offsetof(GpuObject, faceCount) == 12);
+static_assert(offsetof(GpuObject, firstSpring) == 16);
+static_assert(offsetof(GpuObject, springCount) == 20);
+
+} // namespace glcollide::gpu

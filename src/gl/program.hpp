@@ -1,0 +1,48 @@
+#pragma once
+// Compute programs built from the shaders embedded at build time.
+
+#include "gl/handles.hpp"
+
+#include <glm/vec3.hpp>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace glcollide::gl {
+
+/// Names of all embedded shaders (stems of shaders/passes/*.comp).
+std::vector<std::string> embeddedShaderNames();
+
+/// The expanded source of an embedded shader with `defines` ("NAME" or "NAME VALUE") inserted
+/// after #version. Throws Error for an unknown name.
+std::string shaderSource(std::string_view name, const std::vector<std::string>& defines = {});
+
+/// Rewrites a driver's compile log so "S:L(C)" (Mesa) and "S(L)" (NVIDIA) locations, where S is
+/// the GLSL source-string number of a #line marker, read "<file>:L".
+std::string mapShaderLog(const std::string& log, std::string_view shaderName);
+
+/// A linked compute program. Compile and link errors throw Error with the mapped log.
+class ComputeProgram {
+public:
+    ComputeProgram() = default;
+    ComputeProgram(std::string_view shaderName, const std::vector<std::string>& defines = {});
+
+    [[nodiscard]] GLname name() const { return m_handle.name(); }
+    [[nodiscard]] const std::string& shaderName() const { return m_shaderName; }
+    void use() const;
+    /// Uniform setters on this program (glProgramUniform*). An unknown or optimised-away
+    /// uniform is ignored, as GL does for location -1.
+    void set(const char* uniform, float value) const;
+    void set(const char* uniform, std::uint32_t value) const;
+    void set(const char* uniform, const glm::dvec3& value) const;
+    /// glDispatchCompute with enough groups of `groupSize` to cover `invocations` (x only; more
+    /// than 65535 groups spill into y, and the shader folds y back into its index).
+    void dispatch1D(std::uint32_t invocations, std::uint32_t groupSize) const;
+
+private:
+    Handle<deleteProgram> m_handle;
+    std::string m_shaderName;
+};
+
+} // namespace glcollide::gl

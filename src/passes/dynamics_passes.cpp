@@ -1,0 +1,83 @@
+#include "passes/dynamics_passes.hpp"
+
+#include "gl/layout.hpp"
+
+#include <epoxy/gl.h>
+
+namespace glcollide::passes {
+namespace {
+
+std::vector<std::string> nodeForceDefines(const NodeForceParams& c) {
+    std::vector<std::string> d;
+    if (c.gravity) d.emplace_back("GLC_GRAVITY");
+    if (c.damping) d.emplace_back("GLC_DAMPING");
+    if (c.wind) d.emplace_back("GLC_WIND");
+    return d;
+}
+
+std::vector<std::string> nodeUpdateDefines(const NodeUpdateParams& c) {
+    std::vector<std::string> d;
+    if (c.forces) d.emplace_back("GLC_FORCES");
+    if (c.ground) d.emplace_back("GLC_GROUND");
+    return d;
+}
+
+void finish(const gl::ComputeProgram& program, std::uint32_t nodeCount) {
+    program.use();
+    program.set("u_nodeCount", nodeCount);
+    program.dispatch1D(nodeCount, GLC_WORKGROUP_SIZE);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+} // namespace
+
+NodeForcePass::NodeForcePass(const NodeForceParams& config)
+    : m_config(config), m_program("node_force", nodeForceDefines(config)) {}
+
+void NodeForcePass::dispatch(const DeviceBuffers& b, const NodeForceParams& params) const {
+    bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
+    bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
+    bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
+    if (m_config.wind) {
+        bindRequired(b.faces, GLC_BIND_FACES, kName, "faces");
+        bindRequired(b.nodeFaceOffsets, GLC_BIND_NODE_FACE_OFFSETS, kName, "nodeFaceOffsets");
+        bindRequired(b.nodeFaceList, GLC_BIND_NODE_FACE_LIST, kName, "nodeFaceList");
+        m_program.set("u_windVelocity", params.windVelocity);
+        m_program.set("u_windDrag", static_cast<float>(params.windDrag));
+    }
+    m_program.set("u_gravity", params.gravityAcceleration);
+    m_program.set("u_damping", static_cast<float>(params.dampingCoefficient));
+    finish(m_program, b.nodeCount);
+}
+
+SpringUpdatePass::SpringUpdatePass(const SpringUpdateParams& config)
+    : m_program("spring_update", config.accumulate ? std::vector<std::string>{"GLC_ACCUMULATE"}
+                                                   : std::vector<std::string>{}) {}
+
+void SpringUpdatePass::dispatch(const DeviceBuffers& b) const {
+    bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
+    bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
+    bindRequired(b.springs, GLC_BIND_SPRINGS, kName, "springs");
+    bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
+    bindRequired(b.nodeSpringOffsets, GLC_BIND_NODE_SPRING_OFFSETS, kName, "nodeSpringOffsets");
+    bindRequired(b.nodeSpringList, GLC_BIND_NODE_SPRING_LIST, kName, "nodeSpringList");
+    finish(m_program, b.nodeCount);
+}
+
+NodeUpdatePass::NodeUpdatePass(const NodeUpdateParams& config)
+    : m_config(config), m_program("node_update", nodeUpdateDefines(config)) {}
+
+void NodeUpdatePass::dispatch(const DeviceBuffers& b, const NodeUpdateParams& params) const {
+    bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
+    bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
+    if (m_config.forces) bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
+    m_program.set("u_h", static_cast<float>(params.h));
+    if (m_config.ground) {
+        m_program.set("u_groundHeight", static_cast<float>(params.groundHeight));
+        m_program.set("u_restitution", static_cast<float>(params.restitution));
+        m_program.set("u_friction", static_cast<float>(params.friction));
+    }
+    finish(m_program, b.nodeCount);
+}
+
+} // namespace glcollide::passes

@@ -1,0 +1,45 @@
+#pragma once
+// The mass-spring half of the paper's pipeline: NodeForce, SpringUpdate, NodeUpdate. Each pass
+// owns its program, compiled with the defines its configuration needs; dispatch() binds its
+// buffers, sets its uniforms, dispatches one invocation per node and issues the storage barrier
+// the next pass needs.
+
+#include "core/dynamics_params.hpp"
+#include "gl/program.hpp"
+#include "passes/device_buffers.hpp"
+
+namespace glcollide::passes {
+
+class NodeForcePass {
+public:
+    static constexpr const char* kName = "NodeForce";
+    explicit NodeForcePass(const NodeForceParams& config);
+    void dispatch(const DeviceBuffers& buffers, const NodeForceParams& params) const;
+
+private:
+    NodeForceParams m_config;
+    gl::ComputeProgram m_program;
+};
+
+class SpringUpdatePass {
+public:
+    static constexpr const char* kName = "SpringUpdate";
+    explicit SpringUpdatePass(const SpringUpdateParams& config);
+    void dispatch(const DeviceBuffers& buffers) const;
+
+private:
+    gl::ComputeProgram m_program;
+};
+
+class NodeUpdatePass {
+public:
+    static constexpr const char* kName = "NodeUpdate";
+    explicit NodeUpdatePass(const NodeUpdateParams& config);
+    void dispatch(const DeviceBuffers& buffers, const NodeUpdateParams& params) const;
+
+private:
+    NodeUpdateParams m_config;
+    gl::ComputeProgram m_program;
+};
+
+} // namespace glcollide::passes

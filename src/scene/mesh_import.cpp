@@ -1,0 +1,96 @@
+// Surface mesh import through assimp (OBJ, PLY, glTF, GLB).
+#include "scene/scene_detail.hpp"
+
+#include <glcollide/error.hpp>
+
+#include <assimp/Importer.hpp>
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <cmath>
+#include <map>
+#include <tuple>
+
+namespace glcollide::detail {
+namespace {
+
+void appendNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent,
+                std::vector<glm::dvec3>& positions, std::vector<Face>& faces, const std::string& file) {
+    const aiMatrix4x4 world = parent * node.mTransformation;
+    for (unsigned m = 0; m < node.mNumMeshes; ++m) {
+        const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
+        const auto offset = static_cast<std::uint32_t>(positions.size());
+        for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+            const aiVector3D p = world * mesh.mVertices[v];
+            positions.emplace_back(p.x, p.y, p.z);
+        }
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+            const aiFace& face = mesh.mFaces[f];
+            if (face.mNumIndices != 3) continue; // points and lines carry no surface
+            Face out{};
+            for (unsigned k = 0; k < 3; ++k) {
+                if (face.mIndices[k] >= mesh.mNumVertices)
+                    throw Error(file + ": mesh '" + mesh.mName.C_Str() + "' face " + std::to_string(f) +
+                                " uses vertex " + std::to_string(face.mIndices[k]) + " of " +
+                                std::to_string(mesh.mNumVertices));
+                out[k] = offset + face.mIndices[k];
+            }
+            faces.push_back(out);
+        }
+    }
+    for (unsigned c = 0; c < node.mNumChildren; ++c)
+        appendNode(scene, *node.mChildren[c], world, positions, faces, file);
+}
+
+} // namespace
+
+SurfaceMesh importSurfaceMesh(const std::filesystem::path& path) {
+    const std::string file = path.string();
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) throw Error(file + ": cannot open file");
+
+    Assimp::Importer importer;
+    // Simulation meshes need one node per position: drop every attribute that makes assimp split
+    // vertices at seams (normals, UVs, tangents, colours).
+    importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
+                                aiComponent_NORMALS | aiComponent_TEXCOORDS |
+                                    aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
+                                    aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
+                                    aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS |
+                                    aiComponent_MATERIALS);
+    const aiScene* scene = importer.ReadFile(
+        file, aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+    if (scene == nullptr) throw Error(file + ": cannot import mesh: " + importer.GetErrorString());
+    if (scene->mRootNode == nullptr || scene->mNumMeshes == 0) throw Error(file + ": the file contains no mesh");
+
+    std::vector<glm::dvec3> raw;
+    std::vector<Face> rawFaces;
+    appendNode(*scene, *scene->mRootNode, aiMatrix4x4(), raw, rawFaces, file);
+    for (std::size_t v = 0; v < raw.size(); ++v)
+        if (!std::isfinite(raw[v].x) || !std::isfinite(raw[v].y) || !std::isfinite(raw[v].z))
+            throw Error(file + ": vertex " + std::to_string(v) + " has a non-finite coordinate");
+
+    // assimp's JoinIdenticalVertices compares whole vertices per mesh; weld again on position
+    // alone and across meshes so seams and mesh boundaries do not cut the cloth apart.
+    SurfaceMesh out;
+    std::map<std::tuple<double, double, double>, std::uint32_t> welded;
+    std::vector<std::uint32_t> remap(raw.size());
+    for (std::size_t v = 0; v < raw.size(); ++v) {
+        // +0.0 and -0.0 compare equal; normalise so the map treats them as one key.
+        const auto key = std::make_tuple(raw[v].x + 0.0, raw[v].y + 0.0, raw[v].z + 0.0);
+        auto [it, inserted] = welded.emplace(key, static_cast<std::uint32_t>(out.positions.size()));
+        if (inserted) out.positions.push_back(raw[v]);
+        remap[v] = it->second;
+    }
+    for (const Face& f : rawFaces) {
+        const Face g{remap[f[0]], remap[f[1]], remap[f[2]]};
+        // A triangle that welding collapsed to an edge has no area and no orientation.
+        if (g[0] == g[1] || g[1] == g[2] || g[0] == g[2]) continue;
+        out.faces.push_back(g);
+    }
+    if (out.faces.empty()) throw Error(file + ": the mesh has no triangles");
+    return out;
+}
+
+} // namespace glcollide::detail

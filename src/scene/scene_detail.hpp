@@ -1,0 +1,102 @@
+#pragma once
+/// \file Internals of the scene module: mesh readers, generators, springs, boundary extraction and
+/// mass lumping. Not part of the public API; the unit tests use it directly.
+
+#include <glcollide/scene.hpp>
+
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace glcollide::detail {
+
+using Face = std::array<std::uint32_t, 3>;
+using Tet = std::array<std::uint32_t, 4>;
+
+/// A triangle surface as imported: positions in the file's units (metres assumed).
+struct SurfaceMesh {
+    std::vector<glm::dvec3> positions;
+    std::vector<Face> faces;
+};
+
+/// A tetrahedral mesh as read: every tet has positive volume after reading (see orientTets).
+struct TetMesh {
+    std::vector<glm::dvec3> positions;
+    std::vector<Tet> tets;
+    /// 1-based source line of each tet (for error messages); may be empty for generated meshes.
+    std::vector<std::size_t> tetLines;
+};
+
+// ---- readers (each throws glcollide::Error naming the file, and the line where there is one) ----
+
+/// OBJ, PLY, glTF or GLB through assimp: all meshes of the file merged, node transforms applied,
+/// exactly equal positions welded, point and line primitives ignored.
+SurfaceMesh importSurfaceMesh(const std::filesystem::path& path);
+
+/// Gmsh MSH 4.1 or 2.2 ASCII: 4-node tetrahedra (type 4); other element types and unknown
+/// sections (IPC's `$Surface` included) are skipped. Node tags may be sparse.
+TetMesh readGmsh(const std::filesystem::path& path);
+
+/// TetGen `.node` + `.ele` (same stem; any `.face` is ignored). 0- or 1-based indices, inferred
+/// from the first point index.
+TetMesh readTetGen(const std::filesystem::path& nodePath);
+
+// ---- tet topology (tet_surface.cpp) ----
+
+/// 6 × signed volume of (a, b, c, d): det(b − a, c − a, d − a). m³.
+double tetDet(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& d);
+
+/// Makes every tet positively oriented by swapping its last two nodes where its volume is
+/// negative. Throws for a repeated node, an index out of range or a degenerate (flat) tet,
+/// naming `file` and the tet's line from mesh.tetLines when available.
+void orientTets(TetMesh& mesh, const std::string& file);
+
+/// The triangles used by exactly one tet, wound counter-clockwise seen from outside (tets must
+/// be positively oriented). Order: by tet, then by face. Throws if a triangle is shared by more
+/// than two tets (non-manifold), naming `what`.
+std::vector<Face> boundaryFaces(const std::vector<Tet>& tets, const std::string& what);
+
+// ---- springs (springs.cpp); rest length, stiffness and damping are filled in later ----
+
+/// One spring per unique edge of the triangles, sorted by (min index, max index).
+std::vector<Spring> surfaceEdgeSprings(const std::vector<Face>& faces, SpringKind kind);
+/// One spring per unique edge of the tets, sorted by (min index, max index).
+std::vector<Spring> tetEdgeSprings(const std::vector<Tet>& tets);
+/// Across every interior edge (shared by exactly two triangles) a spring between the two opposite
+/// vertices; pairs that are already an edge, or already produced, are skipped.
+std::vector<Spring> surfaceBendSprings(const std::vector<Face>& faces);
+/// restLength = current distance between the ends, for every spring of the body.
+void setRestLengths(Body& body);
+
+// ---- generators (generators.cpp): geometry and springs with their kinds, local frame ----
+
+/// `nx` × `ny` nodes spanning `width` × `height` m in the local XY plane, centred at the origin.
+/// Node (i, j) has index j·nx + i; row j = 0 is the top (y = +height/2), i = 0 the left (x < 0).
+/// Faces face +Z. Springs: Structural, Shear (both diagonals) and, if `withBend`, Bend (two
+/// nodes apart along rows and columns).
+Body generateCloth(double width, double height, int nx, int ny, bool withShear, bool withBend);
+
+/// A box of `size` m centred at the origin, `cells` cubes per axis, each split into 6 tets along
+/// its main diagonal (the Freudenthal split, conforming between neighbour cells). Springs: unique
+/// tet edges; faces: the boundary.
+Body generateTetBox(const glm::dvec3& size, const std::array<int, 3>& cells);
+
+/// An icosphere of `radius` m with `subdivisions` midpoint refinements, plus one centre node
+/// (the last index). Tets: centre + each surface triangle. Springs: surface edges and radial
+/// edges. Faces: the icosphere surface, outward.
+Body generateSphere(double radius, int subdivisions);
+
+// ---- mass (mass.cpp) ----
+
+/// Lumped measure per node: area/3 of each triangle (when `tets` is empty) or volume/4 of each
+/// tet, in m² or m³. Throws if a node receives nothing or the total is zero, naming `what`.
+std::vector<double> lumpedMeasure(const std::vector<glm::dvec3>& positions,
+                                  const std::vector<Face>& faces, const std::vector<Tet>& tets,
+                                  const std::string& what);
+
+} // namespace glcollide::detail
