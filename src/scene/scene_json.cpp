@@ -1,0 +1,515 @@
+// JSON scene reader: loadScene, parseScene, defaultScene. Format: docs/scene-format.md.
+#include "scene/scene_detail.hpp"
+
+#include <glcollide/error.hpp>
+#include <glcollide/scene.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+namespace glcollide {
+namespace {
+
+using json = nlohmann::json;
+using Ptr = json::json_pointer;
+
+/// Where the text came from, so every error can name the file and the JSON pointer.
+struct Ctx {
+    std::string source;
+    std::filesystem::path baseDir;
+
+    [[noreturn]] void fail(const Ptr& p, const std::string& message) const {
+        const std::string where = p.empty() ? std::string("(root)") : p.to_string();
+        throw Error(source + ": " + where + ": " + message);
+    }
+};
+
+std::string shown(const json& j) {
+    std::string s = j.dump();
+    if (s.size() > 60) s = s.substr(0, 57) + "...";
+    return s;
+}
+
+std::string joinKeys(std::initializer_list<const char*> keys) {
+    std::string out;
+    for (const char* k : keys) out += (out.empty() ? "" : ", ") + std::string(k);
+    return out;
+}
+
+void checkObject(const Ctx& c, const json& j, const Ptr& p, std::initializer_list<const char*> allowed) {
+    if (!j.is_object()) c.fail(p, "expected an object, got " + shown(j));
+    for (const auto& item : j.items()) {
+        const bool known = std::any_of(allowed.begin(), allowed.end(),
+                                       [&](const char* k) { return item.key() == k; });
+        if (!known)
+            c.fail(p / item.key(), "unknown key '" + item.key() + "'; allowed keys here: " + joinKeys(allowed));
+    }
+}
+
+const json* find(const json& obj, const char* key) {
+    auto it = obj.find(key);
+    return it == obj.end() ? nullptr : &*it;
+}
+
+const json& require(const Ctx& c, const json& obj, const Ptr& p, const char* key) {
+    const json* j = find(obj, key);
+    if (j == nullptr) c.fail(p / key, "required key is missing");
+    return *j;
+}
+
+double number(const Ctx& c, const json& j, const Ptr& p, const char* expected = "a number") {
+    if (!j.is_number()) c.fail(p, std::string("expected ") + expected + ", got " + shown(j));
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) c.fail(p, std::string("expected ") + expected + ", got " + shown(j));
+    return v;
+}
+
+double positive(const Ctx& c, const json& j, const Ptr& p) {
+    const double v = number(c, j, p, "a positive number");
+    if (!(v > 0.0)) c.fail(p, "expected a positive number, got " + shown(j));
+    return v;
+}
+
+double nonNegative(const Ctx& c, const json& j, const Ptr& p) {
+    const double v = number(c, j, p, "a number >= 0");
+    if (!(v >= 0.0)) c.fail(p, "expected a number >= 0, got " + shown(j));
+    return v;
+}
+
+int integer(const Ctx& c, const json& j, const Ptr& p, long long min, long long max) {
+    const std::string expected = "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
+    if (!j.is_number_integer()) c.fail(p, "expected " + expected + ", got " + shown(j));
+    // Unsigned JSON integers above INT64_MAX would wrap in get<long long>(): reject them first.
+    if (j.is_number_unsigned() && j.get<std::uint64_t>() > static_cast<std::uint64_t>(max))
+        c.fail(p, "expected " + expected + ", got " + shown(j));
+    const long long v = j.get<long long>();
+    if (v < min || v > max) c.fail(p, "expected " + expected + ", got " + shown(j));
+    return static_cast<int>(v);
+}
+
+std::vector<double> numbers(const Ctx& c, const json& j, const Ptr& p, std::size_t n) {
+    if (!j.is_array() || j.size() != n)
+        c.fail(p, "expected an array of " + std::to_string(n) + " numbers, got " + shown(j));
+    std::vector<double> out;
+    for (std::size_t i = 0; i < n; ++i) out.push_back(number(c, j[i], p / i));
+    return out;
+}
+
+glm::dvec3 vec3(const Ctx& c, const json& j, const Ptr& p) {
+    const auto v = numbers(c, j, p, 3);
+    return {v[0], v[1], v[2]};
+}
+
+std::string string(const Ctx& c, const json& j, const Ptr& p) {
+    if (!j.is_string()) c.fail(p, "expected a string, got " + shown(j));
+    return j.get<std::string>();
+}
+
+// ---- top level ----
+
+TimeSettings parseTime(const Ctx& c, const json& j, const Ptr& p) {
+    checkObject(c, j, p, {"dt", "substeps", "frames"});
+    TimeSettings t;
+    if (const json* v = find(j, "dt")) t.dt = positive(c, *v, p / "dt");
+    if (const json* v = find(j, "substeps")) {
+        if (v->is_string()) {
+            if (v->get<std::string>() != "auto")
+                c.fail(p / "substeps", "expected \"auto\" or a positive integer, got " + shown(*v));
+            t.substeps = 0;
+        } else {
+            if (!v->is_number_integer() || v->get<long long>() < 1)
+                c.fail(p / "substeps", "expected \"auto\" or a positive integer, got " + shown(*v));
+            t.substeps = integer(c, *v, p / "substeps", 1, 1000000);
+        }
+    }
+    if (const json* v = find(j, "frames")) t.frames = integer(c, *v, p / "frames", 1, 100000000);
+    return t;
+}
+
+EffectSet parseEffects(const Ctx& c, const json& j, const Ptr& p) {
+    if (!j.is_array()) c.fail(p, "expected an array of effect names, got " + shown(j));
+    EffectSet set;
+    for (std::size_t i = 0; i < j.size(); ++i) {
+        const std::string name = string(c, j[i], p / i);
+        const auto e = parseEffect(name);
+        if (!e) {
+            std::string known;
+            for (Effect k : kAllEffects) known += (known.empty() ? "" : ", ") + std::string(effectName(k));
+            c.fail(p / i, "unknown effect '" + name + "'; known effects: " + known);
+        }
+        if (set.has(*e)) c.fail(p / i, "effect '" + name + "' is listed twice");
+        set.insert(*e);
+    }
+    return set;
+}
+
+// ---- objects ----
+
+enum class Shape { Cloth, Surface, Volume };
+
+/// Spring parameters as written; which ones are allowed depends on the shape.
+struct SpringParams {
+    double stiffness = 0.0;
+    double damping = 0.0;
+    double shear = 0.0;
+    double bend = 0.0;
+};
+
+SpringParams parseSprings(const Ctx& c, const json& j, const Ptr& p, Shape shape) {
+    switch (shape) {
+    case Shape::Cloth: checkObject(c, j, p, {"stiffness", "damping", "shear_stiffness", "bend_stiffness"}); break;
+    case Shape::Surface: checkObject(c, j, p, {"stiffness", "damping", "bend_stiffness"}); break;
+    case Shape::Volume: checkObject(c, j, p, {"stiffness", "damping"}); break;
+    }
+    SpringParams s;
+    s.stiffness = positive(c, require(c, j, p, "stiffness"), p / "stiffness");
+    if (const json* v = find(j, "damping")) s.damping = nonNegative(c, *v, p / "damping");
+    // Cloth defaults follow the usual stiffness ordering: shear as stiff as structural, bending
+    // an order of magnitude softer. Meshes get bending only when asked for.
+    s.shear = s.stiffness;
+    s.bend = shape == Shape::Cloth ? s.stiffness / 10.0 : 0.0;
+    if (const json* v = find(j, "shear_stiffness")) s.shear = nonNegative(c, *v, p / "shear_stiffness");
+    if (const json* v = find(j, "bend_stiffness")) s.bend = nonNegative(c, *v, p / "bend_stiffness");
+    return s;
+}
+
+std::string lowerExtension(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    return ext;
+}
+
+Shape meshShape(const Ctx& c, const std::string& file, const Ptr& p) {
+    const std::string ext = lowerExtension(file);
+    if (ext == ".obj" || ext == ".ply" || ext == ".gltf" || ext == ".glb") return Shape::Surface;
+    if (ext == ".msh" || ext == ".node") return Shape::Volume;
+    c.fail(p, "unsupported mesh file '" + file +
+                  "'; supported: .obj .ply .gltf .glb (surface), .msh (Gmsh tets), .node (TetGen tets, .ele beside it)");
+}
+
+Shape generatorShape(const Ctx& c, const json& g, const Ptr& p) {
+    if (!g.is_object()) c.fail(p, "expected an object, got " + shown(g));
+    const std::string type = string(c, require(c, g, p, "type"), p / "type");
+    if (type == "cloth") return Shape::Cloth;
+    if (type == "tet_box" || type == "sphere") return Shape::Volume;
+    c.fail(p / "type", "unknown generator '" + type + "'; known generators: cloth, tet_box, sphere");
+}
+
+Body generate(const Ctx& c, const json& g, const Ptr& p, const SpringParams& springs) {
+    const std::string type = g["type"].get<std::string>();
+    if (type == "cloth") {
+        checkObject(c, g, p, {"type", "size", "resolution"});
+        const Ptr ps = p / "size", pr = p / "resolution";
+        const json& size = require(c, g, p, "size");
+        const json& res = require(c, g, p, "resolution");
+        if (!size.is_array() || size.size() != 2) c.fail(ps, "expected [width, height] in m, got " + shown(size));
+        if (!res.is_array() || res.size() != 2) c.fail(pr, "expected [nx, ny] node counts, got " + shown(res));
+        const double w = positive(c, size[0], ps / 0), h = positive(c, size[1], ps / 1);
+        const int nx = integer(c, res[0], pr / 0, 2, 4096), ny = integer(c, res[1], pr / 1, 2, 4096);
+        return detail::generateCloth(w, h, nx, ny, springs.shear > 0.0, springs.bend > 0.0);
+    }
+    if (type == "tet_box") {
+        checkObject(c, g, p, {"type", "size", "resolution"});
+        const Ptr ps = p / "size", pr = p / "resolution";
+        const json& size = require(c, g, p, "size");
+        const json& res = require(c, g, p, "resolution");
+        if (!size.is_array() || size.size() != 3) c.fail(ps, "expected [x, y, z] in m, got " + shown(size));
+        if (!res.is_array() || res.size() != 3) c.fail(pr, "expected [cx, cy, cz] cell counts, got " + shown(res));
+        glm::dvec3 s;
+        std::array<int, 3> cells{};
+        for (std::size_t i = 0; i < 3; ++i) {
+            s[static_cast<glm::length_t>(i)] = positive(c, size[i], ps / i);
+            cells[i] = integer(c, res[i], pr / i, 1, 512);
+        }
+        return detail::generateTetBox(s, cells);
+    }
+    checkObject(c, g, p, {"type", "radius", "subdivisions"});
+    const double radius = positive(c, require(c, g, p, "radius"), p / "radius");
+    int subdivisions = 2;
+    // 7 subdivisions is already 164k faces; beyond that the node count explodes (×4 per level).
+    if (const json* v = find(g, "subdivisions")) subdivisions = integer(c, *v, p / "subdivisions", 0, 7);
+    return detail::generateSphere(radius, subdivisions);
+}
+
+Body loadMesh(const Ctx& c, const std::string& file, const Ptr& p, Shape shape) {
+    std::filesystem::path path(file);
+    if (path.is_relative()) path = c.baseDir / path;
+    Body body;
+    try {
+        if (shape == Shape::Surface) {
+            detail::SurfaceMesh m = detail::importSurfaceMesh(path);
+            body.positions = std::move(m.positions);
+            body.faces = std::move(m.faces);
+        } else {
+            detail::TetMesh m = lowerExtension(path) == ".msh" ? detail::readGmsh(path) : detail::readTetGen(path);
+            body.positions = std::move(m.positions);
+            body.tets = std::move(m.tets);
+            body.faces = detail::boundaryFaces(body.tets, path.string());
+            body.springs = detail::tetEdgeSprings(body.tets);
+        }
+    } catch (const Error& e) {
+        c.fail(p, e.what());
+    }
+    return body;
+}
+
+glm::dvec3 rotateAxis(const glm::dvec3& v, int axis, double radians) {
+    const double cs = std::cos(radians), sn = std::sin(radians);
+    switch (axis) {
+    case 0: return {v.x, cs * v.y - sn * v.z, sn * v.y + cs * v.z};
+    case 1: return {cs * v.x + sn * v.z, v.y, -sn * v.x + cs * v.z};
+    default: return {cs * v.x - sn * v.y, sn * v.x + cs * v.y, v.z};
+    }
+}
+
+void applyTransform(const Ctx& c, const json& j, const Ptr& p, Body& body) {
+    checkObject(c, j, p, {"translate", "rotate_deg", "scale"});
+    glm::dvec3 translate(0.0), rotate(0.0), scale(1.0);
+    if (const json* v = find(j, "translate")) translate = vec3(c, *v, p / "translate");
+    if (const json* v = find(j, "rotate_deg")) rotate = vec3(c, *v, p / "rotate_deg");
+    if (const json* v = find(j, "scale")) {
+        // Positive scales only: a mirror would turn every face and tet inside out.
+        if (v->is_array()) {
+            for (std::size_t i = 0; i < v->size() && i < 3; ++i) positive(c, (*v)[i], p / "scale" / i);
+            scale = vec3(c, *v, p / "scale");
+        } else {
+            scale = glm::dvec3(positive(c, *v, p / "scale"));
+        }
+    }
+    const double toRad = std::numbers::pi / 180.0;
+    for (glm::dvec3& x : body.positions) {
+        glm::dvec3 y = x * scale;
+        for (int axis = 0; axis < 3; ++axis) y = rotateAxis(y, axis, rotate[axis] * toRad);
+        x = y + translate;
+    }
+}
+
+void applyPinned(const Ctx& c, const json& j, const Ptr& p, Body& body) {
+    const std::size_t n = body.positions.size();
+    if (j.is_array()) {
+        for (std::size_t i = 0; i < j.size(); ++i)
+            body.pinned[static_cast<std::size_t>(integer(c, j[i], p / i, 0, static_cast<long long>(n) - 1))] = 1;
+        return;
+    }
+    if (!j.is_object()) c.fail(p, "expected an array of node indices or {\"inside\": {...}}, got " + shown(j));
+    checkObject(c, j, p, {"inside"});
+    const Ptr pi = p / "inside";
+    const json& box = require(c, j, p, "inside");
+    checkObject(c, box, pi, {"min", "max"});
+    const glm::dvec3 lo = vec3(c, require(c, box, pi, "min"), pi / "min");
+    const glm::dvec3 hi = vec3(c, require(c, box, pi, "max"), pi / "max");
+    if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z) c.fail(pi, "min must not exceed max on any axis");
+    std::size_t count = 0;
+    for (std::size_t v = 0; v < n; ++v) {
+        const glm::dvec3& x = body.positions[v];
+        if (x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z) {
+            body.pinned[v] = 1;
+            ++count;
+        }
+    }
+    // An empty box is almost always a box written for the untransformed mesh.
+    if (count == 0) c.fail(pi, "the box contains no node (it is in world space, after the transform)");
+}
+
+Body parseObject(const Ctx& c, const json& j, const Ptr& p, const EffectSet& effects, std::size_t index) {
+    checkObject(c, j, p,
+                {"name", "mesh", "generator", "transform", "velocity", "angular_velocity", "mass", "density",
+                 "springs", "pinned"});
+    const json* mesh = find(j, "mesh");
+    const json* gen = find(j, "generator");
+    if ((mesh == nullptr) == (gen == nullptr)) c.fail(p, "give exactly one of 'mesh' and 'generator'");
+
+    const Shape shape = mesh != nullptr ? meshShape(c, string(c, *mesh, p / "mesh"), p / "mesh")
+                                        : generatorShape(c, *gen, p / "generator");
+    SpringParams sp;
+    const json* springs = find(j, "springs");
+    if (effects.has(Effect::Springs)) {
+        if (springs == nullptr) c.fail(p / "springs", "required because 'springs' is in /effects");
+        sp = parseSprings(c, *springs, p / "springs", shape);
+    } else if (springs != nullptr) {
+        c.fail(p / "springs", "given but 'springs' is not in /effects (remove it or add the effect)");
+    }
+
+    Body body = mesh != nullptr ? loadMesh(c, mesh->get<std::string>(), p / "mesh", shape)
+                                : generate(c, *gen, p / "generator", sp);
+    body.name = "object " + std::to_string(index);
+    if (const json* v = find(j, "name")) body.name = string(c, *v, p / "name");
+    if (const json* v = find(j, "transform")) applyTransform(c, *v, p / "transform", body);
+
+    if (!effects.has(Effect::Springs)) {
+        body.springs.clear();
+    } else {
+        if (shape == Shape::Surface) {
+            body.springs = detail::surfaceEdgeSprings(body.faces, SpringKind::Edge);
+            if (sp.bend > 0.0) {
+                auto bend = detail::surfaceBendSprings(body.faces);
+                body.springs.insert(body.springs.end(), bend.begin(), bend.end());
+            }
+        }
+        for (Spring& s : body.springs) {
+            s.stiffness = s.kind == SpringKind::Shear ? sp.shear : s.kind == SpringKind::Bend ? sp.bend : sp.stiffness;
+            s.damping = sp.damping;
+        }
+        detail::setRestLengths(body);
+        for (std::size_t s = 0; s < body.springs.size(); ++s)
+            if (!(body.springs[s].restLength > 0.0))
+                c.fail(p, "spring " + std::to_string(s) + " joins nodes " + std::to_string(body.springs[s].a) +
+                              " and " + std::to_string(body.springs[s].b) +
+                              ", which are at the same position (zero rest length)");
+    }
+
+    // Mass: lumped area (surfaces) or volume (tets), scaled to the total or by the density.
+    const json* mass = find(j, "mass");
+    const json* density = find(j, "density");
+    if ((mass == nullptr) == (density == nullptr))
+        c.fail(p, "give exactly one of 'mass' (total kg) and 'density' (kg/m^3 for volumes, kg/m^2 for surfaces)");
+    std::vector<double> lump;
+    try {
+        const std::string what = mesh != nullptr ? mesh->get<std::string>() : "generator '" + (*gen)["type"].get<std::string>() + "'";
+        lump = detail::lumpedMeasure(body.positions, body.faces, body.tets, what);
+    } catch (const Error& e) {
+        c.fail(mesh != nullptr ? p / "mesh" : p / "generator", e.what());
+    }
+    double factor = 0.0;
+    if (mass != nullptr) {
+        const double total = positive(c, *mass, p / "mass");
+        double measure = 0.0;
+        for (double l : lump) measure += l;
+        factor = total / measure;
+    } else {
+        factor = positive(c, *density, p / "density");
+    }
+    body.masses.resize(lump.size());
+    for (std::size_t v = 0; v < lump.size(); ++v) body.masses[v] = lump[v] * factor;
+
+    body.velocities.assign(body.positions.size(), glm::dvec3(0.0));
+    body.pinned.assign(body.positions.size(), 0);
+    glm::dvec3 velocity(0.0), omega(0.0);
+    if (const json* v = find(j, "velocity")) velocity = vec3(c, *v, p / "velocity");
+    if (const json* v = find(j, "angular_velocity")) omega = vec3(c, *v, p / "angular_velocity");
+    glm::dvec3 centre(0.0);
+    double total = 0.0;
+    for (std::size_t v = 0; v < body.positions.size(); ++v) {
+        centre += body.masses[v] * body.positions[v];
+        total += body.masses[v];
+    }
+    centre /= total;
+    for (std::size_t v = 0; v < body.positions.size(); ++v)
+        body.velocities[v] = velocity + glm::cross(omega, body.positions[v] - centre);
+    if (const json* v = find(j, "pinned")) applyPinned(c, *v, p / "pinned", body);
+    return body;
+}
+
+Scene parseRoot(const Ctx& c, const json& root) {
+    const Ptr p;
+    checkObject(c, root, p,
+                {"format_version", "name", "effects", "time", "gravity", "damping", "wind", "ground", "objects"});
+    const json& version = require(c, root, p, "format_version");
+    if (!version.is_number_integer() || version.get<long long>() != Scene::kFormatVersion)
+        c.fail(p / "format_version", "unsupported format version " + shown(version) + "; supported versions: " +
+                                         std::to_string(Scene::kFormatVersion));
+    Scene scene;
+    scene.effects = parseEffects(c, require(c, root, p, "effects"), p / "effects");
+    if (const json* v = find(root, "name")) scene.name = string(c, *v, p / "name");
+    if (const json* v = find(root, "time")) scene.time = parseTime(c, *v, p / "time");
+
+    // A setting whose effect is off would silently do nothing: refuse it.
+    const auto gated = [&](const char* key, Effect e) -> const json* {
+        const json* v = find(root, key);
+        if (v != nullptr && !scene.effects.has(e))
+            c.fail(p / key, std::string("given but '") + std::string(effectName(e)) +
+                                "' is not in /effects (remove it or add the effect)");
+        return v;
+    };
+    if (const json* v = gated("gravity", Effect::Gravity)) scene.gravity = vec3(c, *v, p / "gravity");
+    if (const json* v = gated("damping", Effect::Damping)) scene.damping = nonNegative(c, *v, p / "damping");
+    if (const json* v = gated("wind", Effect::Wind)) {
+        const Ptr pw = p / "wind";
+        checkObject(c, *v, pw, {"velocity", "drag"});
+        if (const json* w = find(*v, "velocity")) scene.wind.velocity = vec3(c, *w, pw / "velocity");
+        if (const json* w = find(*v, "drag")) scene.wind.drag = nonNegative(c, *w, pw / "drag");
+    }
+    if (const json* v = gated("ground", Effect::Ground)) {
+        const Ptr pg = p / "ground";
+        checkObject(c, *v, pg, {"height", "restitution", "friction"});
+        if (const json* w = find(*v, "height")) scene.ground.height = number(c, *w, pg / "height");
+        if (const json* w = find(*v, "restitution")) {
+            scene.ground.restitution = number(c, *w, pg / "restitution", "a number in [0, 1]");
+            if (scene.ground.restitution < 0.0 || scene.ground.restitution > 1.0)
+                c.fail(pg / "restitution", "expected a number in [0, 1], got " + shown(*w));
+        }
+        if (const json* w = find(*v, "friction")) scene.ground.friction = nonNegative(c, *w, pg / "friction");
+    }
+
+    const json& objects = require(c, root, p, "objects");
+    if (!objects.is_array() || objects.empty()) c.fail(p / "objects", "expected a non-empty array of objects");
+    for (std::size_t i = 0; i < objects.size(); ++i)
+        scene.bodies.push_back(parseObject(c, objects[i], p / "objects" / i, scene.effects, i));
+    return scene;
+}
+
+// Kept identical to scenes/hanging_cloth.json (a unit test compares them).
+constexpr const char* kDefaultScene = R"json({
+  // The scene `glcollide run` simulates when given none (see defaultScene()).
+  "format_version": 1,
+  "name": "hanging cloth",
+  "effects": ["gravity", "springs", "damping"],
+  "time": {"dt": 0.016666666666666666, "substeps": "auto", "frames": 240},
+  "gravity": [0, -9.81, 0],
+  "damping": 0.05,
+  "objects": [
+    {
+      "name": "cloth",
+      "generator": {"type": "cloth", "size": [1, 1], "resolution": [32, 32]},
+      "transform": {"translate": [0, 1.5, 0]},
+      "mass": 0.3,
+      "springs": {"stiffness": 500, "damping": 0.5, "shear_stiffness": 200, "bend_stiffness": 20},
+      "pinned": [0, 31]
+    }
+  ]
+}
+)json";
+
+} // namespace
+
+Scene parseScene(const std::string& jsonText, const std::filesystem::path& baseDir, const std::string& sourceName) {
+    const Ctx c{sourceName, baseDir};
+    json root;
+    try {
+        root = json::parse(jsonText, nullptr, true, true);
+    } catch (const json::parse_error& e) {
+        throw Error(sourceName + ": invalid JSON: " + e.what());
+    }
+    Scene scene = parseRoot(c, root);
+    if (scene.name.empty()) scene.name = std::filesystem::path(sourceName).stem().string();
+    try {
+        validateScene(scene);
+    } catch (const Error& e) {
+        // validateScene names the scene; make sure the file is named even before sourcePath is set.
+        throw Error(sourceName + ": " + e.what());
+    }
+    return scene;
+}
+
+Scene loadScene(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path.string() + ": cannot open scene file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    Scene scene = parseScene(text.str(), path.parent_path(), path.string());
+    scene.sourcePath = path;
+    return scene;
+}
+
+Scene defaultScene() { return parseScene(kDefaultScene, {}, "default scene"); }
+
+} // namespace glcollide

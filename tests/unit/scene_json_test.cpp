@@ -1,0 +1,334 @@
+// JSON scene reader: parameters, transforms, masses, springs, errors with file and pointer.
+#include <glcollide/error.hpp>
+#include <glcollide/scene.hpp>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <filesystem>
+#include <string>
+
+using namespace glcollide;
+using ::testing::HasSubstr;
+
+namespace {
+
+const std::string kSource = GLCOLLIDE_SOURCE_DIR;
+const std::string kData = GLCOLLIDE_TEST_DATA_DIR;
+
+Scene parse(const std::string& text) { return parseScene(text, kData + "/mesh", "test.json"); }
+
+std::string errorOf(const std::string& text) {
+    try {
+        parse(text);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+/// A one-object scene; `object` is spliced into the objects array, `extra` into the root.
+std::string scene(const std::string& object, const std::string& extra = "",
+                  const std::string& effects = R"(["gravity", "springs"])") {
+    return R"({"format_version": 1, "effects": )" + effects + (extra.empty() ? "" : ", " + extra) +
+           R"(, "objects": [)" + object + "]}";
+}
+
+const std::string kCloth = R"({"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5]},
+                              "mass": 0.6, "springs": {"stiffness": 100}})";
+
+double totalMass(const Body& b) {
+    double m = 0.0;
+    for (double x : b.masses) m += x;
+    return m;
+}
+
+} // namespace
+
+TEST(SceneJson, DefaultSceneEqualsHangingClothJson) {
+    const Scene def = defaultScene();
+    const Scene file = loadScene(kSource + "/scenes/hanging_cloth.json");
+    EXPECT_EQ(def.name, file.name);
+    EXPECT_EQ(def.effects, file.effects);
+    EXPECT_EQ(def.effects, (EffectSet{Effect::Gravity, Effect::Springs, Effect::Damping}));
+    EXPECT_EQ(def.time.dt, file.time.dt);
+    EXPECT_EQ(def.time.substeps, 0);
+    EXPECT_EQ(def.time.frames, 240);
+    EXPECT_EQ(def.gravity, file.gravity);
+    EXPECT_EQ(def.damping, file.damping);
+    ASSERT_EQ(def.bodies.size(), 1u);
+    ASSERT_EQ(file.bodies.size(), 1u);
+    const Body& a = def.bodies[0];
+    const Body& b = file.bodies[0];
+    EXPECT_EQ(a.positions.size(), 32u * 32u);
+    EXPECT_EQ(a.positions, b.positions);
+    EXPECT_EQ(a.masses, b.masses);
+    EXPECT_EQ(a.pinned, b.pinned);
+    EXPECT_EQ(a.springs.size(), b.springs.size());
+    EXPECT_EQ(a.faces, b.faces);
+    // Pinned at the two top corners; hanging vertically (in the XY plane).
+    EXPECT_EQ(a.pinned[0], 1);
+    EXPECT_EQ(a.pinned[31], 1);
+    EXPECT_EQ(a.positions[0].y, 2.0);
+    EXPECT_EQ(a.positions.back().y, 1.0);
+    EXPECT_TRUE(def.sourcePath.empty());
+    EXPECT_EQ(file.sourcePath, std::filesystem::path(kSource + "/scenes/hanging_cloth.json"));
+}
+
+TEST(SceneJson, EveryShippedSceneLoads) {
+    int count = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(kSource + "/scenes")) {
+        if (entry.path().extension() != ".json") continue;
+        ++count;
+        EXPECT_NO_THROW({
+            const Scene s = loadScene(entry.path());
+            EXPECT_FALSE(s.bodies.empty());
+        }) << entry.path();
+    }
+    EXPECT_GE(count, 5);
+}
+
+TEST(SceneJson, ShippedScenesHaveWhatTheyPromise) {
+    const Scene ball = loadScene(kSource + "/scenes/falling_tet_body.json");
+    EXPECT_EQ(ball.bodies[0].positions.size(), 1760u);
+    EXPECT_EQ(ball.bodies[0].faces.size(), 2474u);
+    EXPECT_TRUE(ball.effects.has(Effect::Ground));
+    const Scene button = loadScene(kSource + "/scenes/button_cloth.json");
+    const Body& cloth = button.bodies[0];
+    EXPECT_EQ(cloth.positions.size(), 392u);
+    std::size_t pinned = 0;
+    for (auto p : cloth.pinned) pinned += p;
+    EXPECT_EQ(pinned, 20u); // the OBJ has 20 vertices at y = 0 (its top edge)
+    const Scene flag = loadScene(kSource + "/scenes/windy_flag.json");
+    pinned = 0;
+    for (auto p : flag.bodies[0].pinned) pinned += p;
+    EXPECT_EQ(pinned, 20u); // the left column of a 30 x 20 grid
+    EXPECT_EQ(flag.wind.velocity, glm::dvec3(6, 0, 1.5));
+}
+
+TEST(SceneJson, ClothMassSpringsAndDefaults) {
+    const Scene s = parse(scene(kCloth));
+    const Body& b = s.bodies[0];
+    EXPECT_EQ(b.name, "object 0");
+    EXPECT_EQ(s.name, "test");
+    EXPECT_EQ(b.positions.size(), 20u);
+    // Sum of 20 lumps rescaled to the total: a few ulp.
+    EXPECT_NEAR(totalMass(b), 0.6, 1e-14);
+    // Interior nodes carry 6 triangles' thirds, corners fewer: lumping, not equal shares.
+    EXPECT_GT(b.masses[5], b.masses[0]);
+    std::size_t structural = 0, shear = 0, bend = 0;
+    for (const Spring& sp : b.springs) {
+        EXPECT_DOUBLE_EQ(sp.restLength, glm::length(b.positions[sp.a] - b.positions[sp.b]));
+        switch (sp.kind) {
+        case SpringKind::Structural: ++structural; EXPECT_EQ(sp.stiffness, 100.0); break;
+        case SpringKind::Shear: ++shear; EXPECT_EQ(sp.stiffness, 100.0); break;
+        case SpringKind::Bend: ++bend; EXPECT_EQ(sp.stiffness, 10.0); break;
+        default: ADD_FAILURE();
+        }
+        EXPECT_EQ(sp.damping, 0.0);
+    }
+    EXPECT_EQ(structural, 3u * 5u + 4u * 4u);
+    EXPECT_EQ(shear, 2u * 3u * 4u);
+    EXPECT_EQ(bend, 2u * 5u + 4u * 3u);
+    EXPECT_EQ(s.time.dt, 1.0 / 60.0);
+    EXPECT_EQ(s.gravity, glm::dvec3(0, -9.81, 0));
+
+    const Scene noBend = parse(scene(R"({"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5]},
+        "density": 0.2, "springs": {"stiffness": 100, "damping": 2, "shear_stiffness": 0, "bend_stiffness": 0}})"));
+    EXPECT_EQ(noBend.bodies[0].springs.size(), structural);
+    EXPECT_EQ(noBend.bodies[0].springs[0].damping, 2.0);
+    // density 0.2 kg/m² on 1 × 2 m.
+    EXPECT_NEAR(totalMass(noBend.bodies[0]), 0.4, 1e-14);
+}
+
+TEST(SceneJson, TransformScaleRotateTranslate) {
+    const Scene s = parse(scene(R"({"generator": {"type": "cloth", "size": [2, 2], "resolution": [2, 2]},
+        "transform": {"translate": [1, 2, 3], "rotate_deg": [90, 0, 0], "scale": 2},
+        "mass": 1, "springs": {"stiffness": 1}})"));
+    const Body& b = s.bodies[0];
+    // Node 0 is local (-1, 1, 0): scaled (-2, 2, 0), rotated 90° about X to (-2, 0, 2), moved.
+    // cos(pi/2) is 6e-17 in double, so the rotated zero is off by ~1e-16.
+    EXPECT_NEAR(b.positions[0].x, -1.0, 1e-12);
+    EXPECT_NEAR(b.positions[0].y, 2.0, 1e-12);
+    EXPECT_NEAR(b.positions[0].z, 5.0, 1e-12);
+    // Rest lengths are measured after scaling: the structural edges are 4 m long.
+    EXPECT_NEAR(b.springs[0].restLength, 4.0, 1e-12);
+
+    const Scene z = parse(scene(R"({"generator": {"type": "cloth", "size": [2, 2], "resolution": [2, 2]},
+        "transform": {"rotate_deg": [0, 0, 90], "scale": [1, 3, 1]}, "mass": 1, "springs": {"stiffness": 1}})"));
+    // (-1, 1, 0) → scale (-1, 3, 0) → 90° about Z: (-3, -1, 0).
+    EXPECT_NEAR(z.bodies[0].positions[0].x, -3.0, 1e-12);
+    EXPECT_NEAR(z.bodies[0].positions[0].y, -1.0, 1e-12);
+}
+
+TEST(SceneJson, VelocityAndAngularVelocity) {
+    const Scene s = parse(scene(R"({"generator": {"type": "tet_box", "size": [1, 1, 1], "resolution": [2, 2, 2]},
+        "transform": {"translate": [5, 0, 0]}, "velocity": [1, 0, 0], "angular_velocity": [0, 0, 2],
+        "mass": 1, "springs": {"stiffness": 1}})"));
+    const Body& b = s.bodies[0];
+    for (std::size_t v = 0; v < b.positions.size(); ++v) {
+        const glm::dvec3 r = b.positions[v] - glm::dvec3(5, 0, 0); // the box is symmetric: centre of mass at the translation
+        const glm::dvec3 want = glm::dvec3(1, 0, 0) + glm::cross(glm::dvec3(0, 0, 2), r);
+        EXPECT_NEAR(glm::length(b.velocities[v] - want), 0.0, 1e-12);
+    }
+}
+
+TEST(SceneJson, TetMeshSceneFromFile) {
+    const Scene s = loadScene(kData + "/scene/two_tets.json");
+    const Body& b = s.bodies[0];
+    EXPECT_EQ(b.name, "two tets");
+    EXPECT_EQ(b.positions.size(), 5u);
+    EXPECT_EQ(b.tets.size(), 2u);
+    EXPECT_EQ(b.faces.size(), 6u);
+    EXPECT_EQ(b.springs.size(), 9u); // 6 + 6 tet edges, 3 shared
+    // Volume 0.5 m³ at 1000 kg/m³; volumes of integer-coordinate tets are exact to an ulp.
+    EXPECT_NEAR(totalMass(b), 500.0, 1e-10);
+    EXPECT_EQ(b.pinned, (std::vector<std::uint8_t>{0, 0, 0, 0, 1}));
+    for (const Spring& sp : b.springs) {
+        EXPECT_EQ(sp.kind, SpringKind::Edge);
+        EXPECT_EQ(sp.stiffness, 100.0);
+        EXPECT_EQ(sp.damping, 0.1);
+    }
+}
+
+TEST(SceneJson, SurfaceMeshEdgeAndBendSprings) {
+    const Scene s = parse(scene(R"({"mesh": "seam_square.obj", "mass": 2,
+        "springs": {"stiffness": 10, "bend_stiffness": 1}})"));
+    const Body& b = s.bodies[0];
+    EXPECT_EQ(b.positions.size(), 4u);
+    ASSERT_EQ(b.springs.size(), 6u); // 5 edges + 1 bend across the diagonal
+    EXPECT_EQ(b.springs.back().kind, SpringKind::Bend);
+    EXPECT_EQ(b.springs.back().stiffness, 1.0);
+    EXPECT_NEAR(b.springs.back().restLength, std::sqrt(2.0), 1e-15);
+    EXPECT_NEAR(totalMass(b), 2.0, 1e-14);
+    const Scene noBend = parse(scene(R"({"mesh": "seam_square.obj", "mass": 2, "springs": {"stiffness": 10}})"));
+    EXPECT_EQ(noBend.bodies[0].springs.size(), 5u);
+}
+
+TEST(SceneJson, PinnedBox) {
+    const Scene s = parse(scene(R"({"generator": {"type": "cloth", "size": [1, 1], "resolution": [3, 3]},
+        "mass": 1, "springs": {"stiffness": 1}, "pinned": {"inside": {"min": [-1, 0.4, -1], "max": [1, 1, 1]}}})"));
+    EXPECT_EQ(s.bodies[0].pinned, (std::vector<std::uint8_t>{1, 1, 1, 0, 0, 0, 0, 0, 0}));
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 1], "resolution": [3, 3]},
+        "mass": 1, "springs": {"stiffness": 1}, "pinned": {"inside": {"min": [5, 5, 5], "max": [6, 6, 6]}}})")),
+                HasSubstr("test.json: /objects/0/pinned/inside: the box contains no node"));
+}
+
+TEST(SceneJson, SettingsAndEffects) {
+    const Scene s = parse(scene(kCloth,
+                                R"("name": "x", "time": {"dt": 0.01, "substeps": 7, "frames": 3},
+        "gravity": [0, -1, 0], "damping": 0.5, "wind": {"velocity": [1, 2, 3], "drag": 0.5},
+        "ground": {"height": -1, "restitution": 0.5, "friction": 0.25})",
+                                R"(["gravity", "springs", "damping", "wind", "ground", "collisions", "self_collisions"])"));
+    EXPECT_EQ(s.name, "x");
+    EXPECT_EQ(s.time.dt, 0.01);
+    EXPECT_EQ(s.time.substeps, 7);
+    EXPECT_EQ(s.time.frames, 3);
+    EXPECT_EQ(s.gravity, glm::dvec3(0, -1, 0));
+    EXPECT_EQ(s.damping, 0.5);
+    EXPECT_EQ(s.wind.velocity, glm::dvec3(1, 2, 3));
+    EXPECT_EQ(s.wind.drag, 0.5);
+    EXPECT_EQ(s.ground.height, -1.0);
+    EXPECT_EQ(s.ground.restitution, 0.5);
+    EXPECT_EQ(s.ground.friction, 0.25);
+    EXPECT_TRUE(s.effects.has(Effect::Collisions));
+    EXPECT_TRUE(s.effects.has(Effect::SelfCollisions));
+    // Effects listed without their key use the documented defaults.
+    const Scene d = parse(scene(kCloth, "", R"(["springs", "wind", "ground"])"));
+    EXPECT_EQ(d.wind.velocity, glm::dvec3(0));
+    EXPECT_EQ(d.wind.drag, 1.0);
+    EXPECT_EQ(d.ground.height, 0.0);
+}
+
+TEST(SceneJson, UnknownKeysAreErrors) {
+    EXPECT_THAT(errorOf(scene(kCloth, R"("gravty": [0, 0, 0])")),
+                HasSubstr("test.json: /gravty: unknown key 'gravty'; allowed keys here: format_version, name, effects"));
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5]},
+        "masss": 0.6, "springs": {"stiffness": 100}})")),
+                HasSubstr("test.json: /objects/0/masss: unknown key 'masss'"));
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5]},
+        "mass": 0.6, "springs": {"stifness": 100}})")),
+                HasSubstr("test.json: /objects/0/springs/stifness: unknown key 'stifness'"));
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 2], "resolutoin": [4, 5]},
+        "mass": 0.6, "springs": {"stiffness": 100}})")),
+                HasSubstr("/objects/0/generator/resolutoin: unknown key"));
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5]},
+        "transform": {"rotate": [0, 0, 0]}, "mass": 0.6, "springs": {"stiffness": 100}})")),
+                HasSubstr("/objects/0/transform/rotate: unknown key 'rotate'; allowed keys here: translate, rotate_deg, scale"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("time": {"dt": 0.01, "step": 2})")), HasSubstr("/time/step: unknown key"));
+    // Keys that belong to other body kinds are unknown too.
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "tet_box", "size": [1, 1, 1], "resolution": [1, 1, 1]},
+        "mass": 1, "springs": {"stiffness": 1, "bend_stiffness": 1}})")),
+                HasSubstr("/objects/0/springs/bend_stiffness: unknown key"));
+}
+
+TEST(SceneJson, ValueErrorsNameFileAndPointer) {
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5]},
+        "mass": 0.6, "springs": {"stiffness": -3}})")),
+                HasSubstr("test.json: /objects/0/springs/stiffness: expected a positive number, got -3"));
+    EXPECT_THAT(errorOf(R"({"format_version": 2, "effects": [], "objects": []})"),
+                HasSubstr("test.json: /format_version: unsupported format version 2; supported versions: 1"));
+    EXPECT_THAT(errorOf(R"({"effects": [], "objects": []})"), HasSubstr("/format_version: required key is missing"));
+    EXPECT_THAT(errorOf(scene(kCloth, "", R"(["gravity", "sprigs"])")),
+                HasSubstr("/effects/1: unknown effect 'sprigs'; known effects: gravity, springs, damping, wind, ground, "
+                          "collisions, self_collisions"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("wind": {"velocity": [1, 0, 0]})")),
+                HasSubstr("test.json: /wind: given but 'wind' is not in /effects"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("damping": 0.1)")), HasSubstr("/damping: given but 'damping'"));
+    EXPECT_THAT(errorOf(scene(kCloth, "", R"(["gravity"])")), HasSubstr("/objects/0/springs: given but 'springs'"));
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 1], "resolution": [2, 2]}, "mass": 1})")),
+                HasSubstr("/objects/0/springs: required because 'springs' is in /effects"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("time": {"substeps": "fast"})")),
+                HasSubstr("/time/substeps: expected \"auto\" or a positive integer, got \"fast\""));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("time": {"dt": 0})")), HasSubstr("/time/dt: expected a positive number, got 0"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("ground": {"restitution": 1.5})", R"(["springs", "ground"])")),
+                HasSubstr("/ground/restitution: expected a number in [0, 1], got 1.5"));
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 1], "resolution": [2, 2]},
+        "mass": 1, "springs": {"stiffness": 1}, "pinned": [0, 4]})")),
+                HasSubstr("/objects/0/pinned/1: expected an integer in [0, 3], got 4"));
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 1], "resolution": [2, 2]},
+        "mass": 1, "density": 1, "springs": {"stiffness": 1}})")),
+                HasSubstr("/objects/0: give exactly one of 'mass'"));
+    EXPECT_THAT(errorOf(scene(R"({"mass": 1, "springs": {"stiffness": 1}})")),
+                HasSubstr("/objects/0: give exactly one of 'mesh' and 'generator'"));
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 1], "resolution": [1, 2]},
+        "mass": 1, "springs": {"stiffness": 1}})")),
+                HasSubstr("/objects/0/generator/resolution/0: expected an integer in [2, 4096], got 1"));
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "donut"}, "mass": 1, "springs": {"stiffness": 1}})")),
+                HasSubstr("/objects/0/generator/type: unknown generator 'donut'; known generators: cloth, tet_box, sphere"));
+    EXPECT_THAT(errorOf(scene(R"({"mesh": "x.stl", "mass": 1, "springs": {"stiffness": 1}})")),
+                HasSubstr("/objects/0/mesh: unsupported mesh file 'x.stl'"));
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "sphere", "radius": 1}, "mass": 1,
+        "transform": {"scale": [1, -1, 1]}, "springs": {"stiffness": 1}})")),
+                HasSubstr("/objects/0/transform/scale/1: expected a positive number, got -1"));
+    EXPECT_THAT(errorOf(R"({"format_version": 1, "effects": [], "objects": []})"),
+                HasSubstr("/objects: expected a non-empty array"));
+    EXPECT_THAT(errorOf("{\"format_version\": 1,\n \"effects\": [}"), HasSubstr("test.json: invalid JSON: "));
+    EXPECT_THAT(errorOf("{\"format_version\": 1,\n \"effects\": [}"), HasSubstr("line 2"));
+}
+
+TEST(SceneJson, CommentsAreAllowed) {
+    EXPECT_NO_THROW(parse("// leading comment\n" + scene(kCloth) + "\n/* trailing */"));
+}
+
+TEST(SceneJson, MeshErrorsNameSceneAndMesh) {
+    try {
+        loadScene(kData + "/scene/missing_mesh.json");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), HasSubstr("missing_mesh.json: /objects/0/mesh: "));
+        EXPECT_THAT(e.what(), HasSubstr("no_such_mesh.msh: cannot open file"));
+    }
+    EXPECT_THAT(errorOf(scene(R"({"mesh": "bad_tag_v41.msh", "mass": 1, "springs": {"stiffness": 1}})")),
+                HasSubstr("/objects/0/mesh: " + kData + "/mesh/bad_tag_v41.msh:29: node tag 77"));
+    EXPECT_THAT(errorOf(scene(R"({"mesh": "isolated_node_v22.msh", "mass": 1, "springs": {"stiffness": 1}})")),
+                HasSubstr("/objects/0/mesh: isolated_node_v22.msh: vertex 5 belongs to no tetrahedron"));
+    try {
+        loadScene(kData + "/scene/nope.json");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), HasSubstr("nope.json: cannot open scene file"));
+    }
+}
