@@ -40,7 +40,7 @@ std::vector<std::string> readLines(const fs::path& path) {
 
 void expandInto(const fs::path& root, const std::string& name, Expansion& out,
                 std::set<std::string>& included, bool isMain) {
-    static const std::regex includeRe(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
+    static const std::regex includeRe(R"(^\s*#\s*include\s+"([^"]+)\"\s*(//.*)?$)");
     const int fileNumber = static_cast<int>(out.files.size());
     out.files.push_back(name);
     const std::vector<std::string> lines = readLines(root / name);

@@ -4,9 +4,9 @@
 // per node; wind gathers the node's faces through a CSR list, so no atomics are needed.
 // Compiled with any of GLC_GRAVITY, GLC_DAMPING, GLC_WIND. CPU twin: cpu::nodeForce.
 #include "common/layout.glsl"
-#include "common/index.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
+#include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
 layout(std430, binding = GLC_BIND_NODE_VELOCITIES) readonly buffer NodeVelocitiesBuf { vec4 g_velocities[]; };

@@ -4,9 +4,9 @@
 // The NodeUpdate stage of the AABB-octree pipeline (seeds/002, Table 2).
 // GLC_FORCES: a force buffer exists. GLC_GROUND: the ground plane is on. Twin: cpu::nodeUpdate.
 #include "common/layout.glsl"
-#include "common/index.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
+#include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) buffer NodePositionsBuf { vec4 g_positions[]; };
 layout(std430, binding = GLC_BIND_NODE_VELOCITIES) buffer NodeVelocitiesBuf { vec4 g_velocities[]; };

@@ -5,9 +5,9 @@
 // and needs no float atomics (GL 4.3 has none). Each spring is evaluated once per end.
 // GLC_ACCUMULATE: add to the forces NodeForce wrote; otherwise write them. Twin: cpu::springUpdate.
 #include "common/layout.glsl"
-#include "common/index.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
+#include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
 layout(std430, binding = GLC_BIND_NODE_VELOCITIES) readonly buffer NodeVelocitiesBuf { vec4 g_velocities[]; };

@@ -1,0 +1,168 @@
+// The one-declaration rule of DESIGN.md, checked against the driver: every SSBO block of every
+// embedded shader sits at the binding layout.glsl names, and the offsets and strides the driver
+// reports for the shared structs equal the C++ offsetof/sizeof of src/gl/layout.hpp.
+
+#include <glcollide/error.hpp>
+
+#include "gl/layout.hpp"
+#include "support/gl_test_environment.hpp"
+#include "gl/program.hpp"
+#include "passes/dynamics_passes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <epoxy/gl.h>
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace glcollide {
+namespace {
+
+const std::map<std::string, GLint> kExpectedBindings = {
+    {"NodePositionsBuf", GLC_BIND_NODE_POSITIONS},
+    {"NodeVelocitiesBuf", GLC_BIND_NODE_VELOCITIES},
+    {"SpringsBuf", GLC_BIND_SPRINGS},
+    {"NodeForcesBuf", GLC_BIND_NODE_FORCES},
+    {"FacesBuf", GLC_BIND_FACES},
+    {"ObjectsBuf", GLC_BIND_OBJECTS},
+    {"NodeSpringOffsetsBuf", GLC_BIND_NODE_SPRING_OFFSETS},
+    {"NodeSpringListBuf", GLC_BIND_NODE_SPRING_LIST},
+    {"NodeFaceOffsetsBuf", GLC_BIND_NODE_FACE_OFFSETS},
+    {"NodeFaceListBuf", GLC_BIND_NODE_FACE_LIST},
+};
+
+GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {
+    const GLuint index = glGetProgramResourceIndex(program, interface, name);
+    EXPECT_NE(index, GL_INVALID_INDEX) << name;
+    if (index == GL_INVALID_INDEX) return -1;
+    GLint value = -1;
+    glGetProgramResourceiv(program, interface, index, 1, &property, 1, nullptr, &value);
+    return value;
+}
+
+// Every variant the engine can compile, so every block of every shader is seen.
+std::vector<gl::ComputeProgram> allPrograms() {
+    std::vector<gl::ComputeProgram> p;
+    p.emplace_back("node_force", std::vector<std::string>{"GLC_GRAVITY", "GLC_DAMPING", "GLC_WIND"});
+    p.emplace_back("spring_update", std::vector<std::string>{"GLC_ACCUMULATE"});
+    p.emplace_back("node_update", std::vector<std::string>{"GLC_FORCES", "GLC_GROUND"});
+    return p;
+}
+
+TEST(LayoutGl, EveryBlockOfEveryShaderUsesTheSharedBinding) {
+    int blocksSeen = 0;
+    for (const gl::ComputeProgram& program : allPrograms()) {
+        GLint count = 0;
+        glGetProgramInterfaceiv(program.name(), GL_SHADER_STORAGE_BLOCK, GL_ACTIVE_RESOURCES, &count);
+        for (GLint i = 0; i < count; ++i) {
+            char name[128] = {};
+            glGetProgramResourceName(program.name(), GL_SHADER_STORAGE_BLOCK, static_cast<GLuint>(i),
+                                     sizeof name, nullptr, name);
+            const GLenum property = GL_BUFFER_BINDING;
+            GLint binding = -1;
+            glGetProgramResourceiv(program.name(), GL_SHADER_STORAGE_BLOCK, static_cast<GLuint>(i), 1,
+                                   &property, 1, nullptr, &binding);
+            ASSERT_TRUE(kExpectedBindings.count(name)) << program.shaderName() << ": unknown block " << name;
+            EXPECT_EQ(binding, kExpectedBindings.at(name)) << program.shaderName() << ": " << name;
+            ++blocksSeen;
+        }
+    }
+    EXPECT_GE(blocksSeen, 14); // 6 + 6 + 3 blocks in the three full variants
+}
+
+TEST(LayoutGl, NodeArraysHaveVec4StrideForDrawing) {
+    for (const gl::ComputeProgram& program : allPrograms()) {
+        for (const char* var : {"g_positions[0]", "g_velocities[0]", "g_forces[0]"}) {
+            const GLuint index = glGetProgramResourceIndex(program.name(), GL_BUFFER_VARIABLE, var);
+            if (index == GL_INVALID_INDEX) continue; // not every shader declares every array
+            const GLenum props[] = {GL_OFFSET, GL_ARRAY_STRIDE}; // an array of vec4, not of structs
+            GLint values[2] = {-1, -1};
+            glGetProgramResourceiv(program.name(), GL_BUFFER_VARIABLE, index, 2, props, 2, nullptr, values);
+            EXPECT_EQ(values[0], 0) << program.shaderName() << " " << var;
+            EXPECT_EQ(values[1], static_cast<GLint>(sizeof(gpu::vec4))) << program.shaderName() << " " << var;
+        }
+    }
+}
+
+TEST(LayoutGl, SpringStructMatchesCpp) {
+    gl::ComputeProgram program("spring_update");
+    const GLuint p = program.name();
+    EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, "g_springs[0].nodeA", GL_TOP_LEVEL_ARRAY_STRIDE),
+              static_cast<GLint>(sizeof(gpu::GpuSpring)));
+    const std::pair<const char*, std::size_t> members[] = {
+        {"g_springs[0].nodeA", offsetof(gpu::GpuSpring, nodeA)},
+        {"g_springs[0].nodeB", offsetof(gpu::GpuSpring, nodeB)},
+        {"g_springs[0].restLength", offsetof(gpu::GpuSpring, restLength)},
+        {"g_springs[0].stiffness", offsetof(gpu::GpuSpring, stiffness)},
+        {"g_springs[0].damping", offsetof(gpu::GpuSpring, damping)},
+        {"g_springs[0].object", offsetof(gpu::GpuSpring, object)},
+        {"g_springs[0].pad0", offsetof(gpu::GpuSpring, pad0)},
+        {"g_springs[0].pad1", offsetof(gpu::GpuSpring, pad1)},
+    };
+    for (const auto& [name, offset] : members)
+        EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset)) << name;
+}
+
+// GpuObject is not used by a dynamics pass yet; a probe shader built from the same layout.glsl
+// text checks it, so the C++ mirror cannot drift before a pass adopts it.
+TEST(LayoutGl, ObjectStructMatchesCpp) {
+    std::ifstream in(std::string(GLCOLLIDE_SOURCE_DIR) + "/shaders/common/layout.glsl");
+    ASSERT_TRUE(in);
+    std::stringstream layout;
+    layout << in.rdbuf();
+    const std::string source = "#version 430 core\n" + layout.str() +
+        "layout(local_size_x = 1) in;\n"
+        "layout(std430, binding = GLC_BIND_OBJECTS) buffer ObjectsBuf { GpuObject g_objects[]; };\n"
+        "void main() { GpuObject o = g_objects[0]; g_objects[1] = o; }\n";
+    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+    const char* text = source.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    ASSERT_TRUE(ok);
+    const GLuint p = glCreateProgram();
+    glAttachShader(p, shader);
+    glLinkProgram(p);
+    glDeleteShader(shader);
+    EXPECT_EQ(resourceProperty(p, GL_SHADER_STORAGE_BLOCK, "ObjectsBuf", GL_BUFFER_BINDING), GLC_BIND_OBJECTS);
+    EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, "g_objects[0].firstNode", GL_TOP_LEVEL_ARRAY_STRIDE),
+              static_cast<GLint>(sizeof(gpu::GpuObject)));
+    const std::pair<const char*, std::size_t> members[] = {
+        {"g_objects[0].firstNode", offsetof(gpu::GpuObject, firstNode)},
+        {"g_objects[0].nodeCount", offsetof(gpu::GpuObject, nodeCount)},
+        {"g_objects[0].firstFace", offsetof(gpu::GpuObject, firstFace)},
+        {"g_objects[0].faceCount", offsetof(gpu::GpuObject, faceCount)},
+        {"g_objects[0].firstSpring", offsetof(gpu::GpuObject, firstSpring)},
+        {"g_objects[0].springCount", offsetof(gpu::GpuObject, springCount)},
+    };
+    for (const auto& [name, offset] : members)
+        EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset)) << name;
+    glDeleteProgram(p);
+}
+
+TEST(LayoutGl, CompileErrorsNameTheFileAndLine) {
+    // Defining u_friction as a macro turns its declaration into a syntax error on a known line of
+    // node_update.comp; the mapped log must name that file and line, not "0:<n>".
+    std::ifstream in(std::string(GLCOLLIDE_SOURCE_DIR) + "/shaders/passes/node_update.comp");
+    std::string line;
+    int lineNumber = 0, declaration = 0;
+    while (std::getline(in, line) && declaration == 0) {
+        ++lineNumber;
+        if (line.find("uniform float u_friction;") != std::string::npos) declaration = lineNumber;
+    }
+    ASSERT_GT(declaration, 0);
+    test::ExpectGlErrors expected; // Mesa also reports the compile error through KHR_debug
+    try {
+        gl::ComputeProgram program("node_update", {"GLC_GROUND", "u_friction 1.0 +"});
+        FAIL() << "compiling broken GLSL succeeded";
+    } catch (const Error& e) {
+        const std::string where = "shaders/passes/node_update.comp:" + std::to_string(declaration);
+        EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
+    }
+}
+
+} // namespace
+} // namespace glcollide
