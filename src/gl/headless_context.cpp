@@ -5,6 +5,7 @@
 
 #include <epoxy/egl.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <mutex>

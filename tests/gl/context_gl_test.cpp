@@ -127,6 +127,63 @@ TEST(HeadlessContext, DestroyingANonCurrentContextKeepsTheCurrentOne) {
     EXPECT_NE(glGetString(GL_VERSION), nullptr);
 }
 
+// The software device's EGLDisplay as a host would open it (nullptr without one).
+EGLDisplay softwareDeviceDisplay() {
+    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") &&
+        !epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base"))
+        return EGL_NO_DISPLAY;
+    for (const EglDeviceInfo& d : HeadlessContext::listDevices()) {
+        if (!d.software) continue;
+        std::vector<EGLDeviceEXT> handles(static_cast<std::size_t>(d.index) + 1);
+        EGLint count = 0;
+        if (!eglQueryDevicesEXT(static_cast<EGLint>(handles.size()), handles.data(), &count) || count <= d.index)
+            return EGL_NO_DISPLAY;
+        return eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, handles[static_cast<std::size_t>(d.index)], nullptr);
+    }
+    return EGL_NO_DISPLAY;
+}
+
+bool displayInitialised(EGLDisplay display) {
+    const bool initialised = eglQueryString(display, EGL_VERSION) != nullptr;
+    eglGetError();
+    return initialised;
+}
+
+TEST(HeadlessContext, TerminatesOnlyDisplaysItInitialised) {
+    const EGLDisplay display = softwareDeviceDisplay();
+    if (display == EGL_NO_DISPLAY) GTEST_SKIP() << "no EGL software device";
+    // When the environment's context lives on the same display, it is not ours to terminate.
+    const bool sharedWithEnvironment = displayInitialised(display);
+    HeadlessContextOptions options;
+    options.device = "software";
+
+    // Ours: terminated with the last HeadlessContext using it.
+    std::make_unique<HeadlessContext>(options).reset();
+    EXPECT_EQ(displayInitialised(display), sharedWithEnvironment);
+
+    // A host's: initialised before us, so it must survive our context.
+    if (!sharedWithEnvironment) {
+        EGLint major = 0, minor = 0;
+        ASSERT_TRUE(eglInitialize(display, &major, &minor));
+        std::make_unique<HeadlessContext>(options).reset();
+        EXPECT_TRUE(displayInitialised(display));
+        eglTerminate(display);
+    }
+    restoreTestContext();
+}
+
+TEST(HeadlessContext, MoveAssignmentReleasesTheOldContext) {
+    HeadlessContextOptions options;
+    options.device = "software";
+    HeadlessContext a(options);
+    HeadlessContext b(options);
+    a = std::move(b); // destroys a's context; b's (current) survives in a
+    EXPECT_NE(eglGetCurrentContext(), EGL_NO_CONTEXT);
+    a.makeCurrent();
+    EXPECT_NE(glGetString(GL_VERSION), nullptr);
+    restoreTestContext();
+}
+
 TEST(HeadlessContext, PbufferFallbackGivesGl43) {
     HeadlessContextOptions options;
     options.forcePbuffer = true;
