@@ -262,6 +262,20 @@ HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) : m_impl
                     caps.extensions + "\"; check __EGL_VENDOR_LIBRARY_FILENAMES / __EGL_VENDOR_LIBRARY_DIRS). " +
                     egl::kInstallHint);
 
+    // If every candidate fails, the caller's current context (a host's, or another
+    // HeadlessContext) must still be current afterwards: failed attempts release it.
+    eglBindAPI(EGL_OPENGL_API);
+    const EGLDisplay previousDisplay = eglGetCurrentDisplay();
+    const EGLContext previousContext = eglGetCurrentContext();
+    const EGLSurface previousDraw = eglGetCurrentSurface(EGL_DRAW);
+    const EGLSurface previousRead = eglGetCurrentSurface(EGL_READ);
+    const auto restorePrevious = [&] {
+        if (previousContext != EGL_NO_CONTEXT && eglGetCurrentContext() != previousContext) {
+            eglBindAPI(EGL_OPENGL_API);
+            eglMakeCurrent(previousDisplay, previousDraw, previousRead, previousContext);
+        }
+    };
+
     const std::vector<egl::Device> devices = egl::enumerateDevices(caps);
     std::vector<EglDeviceInfo> infos;
     for (const egl::Device& d : devices) infos.push_back(d.info);
@@ -308,6 +322,7 @@ HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) : m_impl
         m_impl->description = name;
         return;
     }
+    restorePrevious();
     throw Error("cannot create an OpenGL 4.3 core context for EGL device selector \"" + selector.toString() +
                 "\"; tried:" + attempts + "\n" + egl::describeDevices(infos) + ". " + egl::kInstallHint);
 }

@@ -217,6 +217,25 @@ TEST(HeadlessContext, MissingDeviceIndexIsAnErrorListingDevices) {
     EXPECT_NE(glGetString(GL_VERSION), nullptr);
 }
 
+TEST(HeadlessContext, RequireGpuOnSoftwareFailsAndKeepsTheCurrentContext) {
+    if (!glTestContext().glInfo().isSoftware) GTEST_SKIP() << "a GPU is present";
+    const EGLContext envContext = eglGetCurrentContext();
+    HeadlessContextOptions options;
+    options.device = "auto";
+    options.requireGpu = true;
+    try {
+        HeadlessContext gpu(options);
+        ADD_FAILURE() << "requireGpu succeeded on " << gpu.glInfo().renderer;
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        std::printf("message: %s\n", message.c_str());
+        EXPECT_TRUE(message.find("GPU") != std::string::npos) << message;
+    }
+    // The failed attempt made its own context current and released it; ours is back.
+    EXPECT_EQ(eglGetCurrentContext(), envContext);
+    EXPECT_NE(glGetString(GL_VERSION), nullptr);
+}
+
 TEST(HeadlessContext, MissingCudaOrdinalIsAnError) {
     HeadlessContextOptions options;
     options.device = "cuda:4096";
