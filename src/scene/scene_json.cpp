@@ -484,8 +484,22 @@ constexpr const char* kDefaultScene = R"json({
 Scene parseScene(const std::string& jsonText, const std::filesystem::path& baseDir, const std::string& sourceName) {
     const Ctx c{sourceName, baseDir};
     json root;
+    // nlohmann keeps the last of two equal keys without a word; a duplicated key is as likely a
+    // mistake as a typo, so it is an error too.
+    std::vector<std::vector<std::string>> keys;
+    const json::parser_callback_t noDuplicates = [&](int, json::parse_event_t event, json& parsed) {
+        if (event == json::parse_event_t::object_start) keys.emplace_back();
+        if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+        if (event == json::parse_event_t::key && !keys.empty()) {
+            const std::string key = parsed.get<std::string>();
+            if (std::find(keys.back().begin(), keys.back().end(), key) != keys.back().end())
+                throw Error(sourceName + ": duplicate key '" + key + "' in one object (only one is allowed)");
+            keys.back().push_back(key);
+        }
+        return true;
+    };
     try {
-        root = json::parse(jsonText, nullptr, true, true);
+        root = json::parse(jsonText, noDuplicates, true, true);
     } catch (const json::parse_error& e) {
         throw Error(sourceName + ": invalid JSON: " + e.what());
     }

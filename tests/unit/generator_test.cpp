@@ -31,7 +31,9 @@ double tetVolumeSum(const Body& b, bool requirePositive) {
     double v = 0.0;
     for (const Tet& t : b.tets) {
         const double d = tetDet(b.positions[t[0]], b.positions[t[1]], b.positions[t[2]], b.positions[t[3]]) / 6.0;
-        if (requirePositive) EXPECT_GT(d, 0.0);
+        if (requirePositive) {
+            EXPECT_GT(d, 0.0);
+        }
         v += d;
     }
     return v;

@@ -89,7 +89,7 @@ struct IpcMesh {
 class GmshIpcMeshes : public ::testing::TestWithParam<IpcMesh> {};
 
 // Counts from external/ipc-sim-meshes/README.md.
-INSTANTIATE_TEST_SUITE_P(All, GmshIpcMeshes,
+INSTANTIATE_TEST_SUITE_P(GmshIpc, GmshIpcMeshes,
                          ::testing::Values(IpcMesh{"tet.msh", 4, 1, 4}, IpcMesh{"tet-pyramid.msh", 4, 1, 4},
                                            IpcMesh{"tet-perp-edges.msh", 4, 1, 4}, IpcMesh{"cube.msh", 8, 6, 12},
                                            IpcMesh{"erleben/spike.msh", 5, 2, 6},

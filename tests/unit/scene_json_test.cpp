@@ -309,6 +309,14 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
     EXPECT_THAT(errorOf("{\"format_version\": 1,\n \"effects\": [}"), HasSubstr("line 2"));
 }
 
+TEST(SceneJson, DuplicateKeysAreErrors) {
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5]},
+        "mass": 0.6, "mass": 0.7, "springs": {"stiffness": 100}})")),
+                HasSubstr("test.json: duplicate key 'mass'"));
+    // The same key in two different objects is fine.
+    EXPECT_NO_THROW(parse(scene(kCloth + ", " + kCloth)));
+}
+
 TEST(SceneJson, CommentsAreAllowed) {
     EXPECT_NO_THROW(parse("// leading comment\n" + scene(kCloth) + "\n/* trailing */"));
 }
