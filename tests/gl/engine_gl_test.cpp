@@ -1,0 +1,98 @@
+// The engine composes its passes and buffers from the scene's effects, and allocates nothing
+// for an effect a scene does not list.
+
+#include <glcollide/engine.hpp>
+#include <glcollide/error.hpp>
+#include <glcollide/scene.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace glcollide {
+namespace {
+
+using Names = std::vector<std::string>;
+
+Scene sceneWith(const std::string& effects, const std::string& extra = "") {
+    const std::string json = R"({"format_version": 1, "name": "t", "effects": )" + effects + "," + extra + R"(
+      "objects": [{"name": "cloth", "generator": {"type": "cloth", "size": [1, 1], "resolution": [4, 4]},
+                   "mass": 0.1)" + std::string(effects.find("springs") != std::string::npos ? R"(, "springs": {"stiffness": 10})" : "") + "}]}";
+    return parseScene(json, ".", "engine test");
+}
+
+struct Case {
+    const char* effects;
+    const char* extra;
+    Names passes;
+    Names buffers;
+};
+
+TEST(EngineGl, PassesAndBuffersFollowTheEffects) {
+    const Case cases[] = {
+        {R"([])", "", {"NodeUpdate"}, {"positions", "velocities", "faces"}},
+        {R"(["gravity"])", "", {"NodeForce", "NodeUpdate"}, {"positions", "velocities", "faces", "forces"}},
+        {R"(["springs"])", "", {"SpringUpdate", "NodeUpdate"},
+         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList"}},
+        {R"(["gravity", "springs", "damping"])", R"("damping": 0.1,)", {"NodeForce", "SpringUpdate", "NodeUpdate"},
+         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList"}},
+        {R"(["ground"])", "", {"NodeUpdate"}, {"positions", "velocities", "faces"}},
+        {R"(["wind", "springs"])", R"("wind": {"velocity": [1, 0, 0], "drag": 1},)", {"NodeForce", "SpringUpdate", "NodeUpdate"},
+         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList",
+          "nodeFaceOffsets", "nodeFaceList"}},
+    };
+    for (const Case& c : cases) {
+        Engine engine(sceneWith(c.effects, c.extra));
+        EXPECT_EQ(engine.pipeline(), c.passes) << c.effects;
+        EXPECT_EQ(engine.allocatedBuffers(), c.buffers) << c.effects;
+        engine.step(); // every composition runs
+        EXPECT_EQ(engine.lastStep().passes.size(), c.passes.size());
+    }
+}
+
+TEST(EngineGl, EveryShippedSceneComposesAndSteps) {
+    const std::filesystem::path dir = std::filesystem::path(GLCOLLIDE_SOURCE_DIR) / "scenes";
+    int scenes = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        if (entry.path().extension() != ".json") continue;
+        Engine engine(loadScene(entry.path()));
+        engine.step();
+        for (const glm::dvec3& x : engine.readPositions())
+            ASSERT_TRUE(std::isfinite(x.x + x.y + x.z)) << entry.path();
+        ++scenes;
+    }
+    EXPECT_GE(scenes, 3);
+}
+
+TEST(EngineGl, CollisionEffectsAreRejectedClearly) {
+    try {
+        Engine engine(sceneWith(R"(["collisions", "springs"])"));
+        FAIL() << "collisions are not implemented and must not be silently ignored";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("collisions"), std::string::npos) << e.what();
+    }
+}
+
+TEST(EngineGl, ExplicitSubstepsBelowTheLimitWarn) {
+    Scene scene = sceneWith(R"(["springs"])");
+    scene.bodies[0].springs[0].stiffness = 1e7;
+    scene.time.substeps = 1;
+    Engine engine(scene);
+    EXPECT_GT(engine.substepInfo().stableSubsteps, 1);
+    ASSERT_EQ(engine.warnings().size(), 1u);
+    EXPECT_NE(engine.warnings()[0].find("stability limit"), std::string::npos);
+}
+
+TEST(EngineGl, TimingsArePerPass) {
+    Engine engine(sceneWith(R"(["gravity", "springs"])"));
+    engine.step();
+    const StepStats& s = engine.lastStep();
+    ASSERT_EQ(s.passes.size(), 3u);
+    for (const PassTiming& p : s.passes) EXPECT_GE(p.gpuMilliseconds, 0.0) << p.name;
+    EXPECT_GT(s.passes[1].gpuMilliseconds, 0.0) << "timestamp pairs measure SpringUpdate";
+    EXPECT_EQ(s.frame, 1u);
+}
+
+} // namespace
+} // namespace glcollide
