@@ -6,6 +6,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <glm/common.hpp>
+
 #include <string>
 
 using namespace glcollide;
@@ -57,6 +59,17 @@ TEST(MeshImport, BinaryPly) {
     const SurfaceMesh s = importSurfaceMesh(kExternal + "ipc-toolkit-tests-data/thick-cloth/t0.ply");
     EXPECT_EQ(s.positions.size(), 233u);
     EXPECT_EQ(s.faces.size(), 404u);
+}
+
+TEST(MeshImport, GltfNodeTransformsAndMergedInstances) {
+    // One triangle (0,0,0) (1,0,0) (0,1,0) instanced by two nodes, the second moved by +1 in x:
+    // the instances share the position (1,0,0), which the weld joins.
+    const SurfaceMesh m = importSurfaceMesh(kData + "two_instances.gltf");
+    ASSERT_EQ(m.faces.size(), 2u);
+    EXPECT_EQ(m.positions.size(), 5u);
+    glm::dvec3 hi(-1e9);
+    for (const auto& p : m.positions) hi = glm::max(hi, p);
+    EXPECT_EQ(hi, glm::dvec3(2, 1, 0));
 }
 
 TEST(MeshImport, BrokenFilesNameTheFile) {
