@@ -43,6 +43,12 @@ std::string eglErrorName(EGLint code) {
 
 std::string lastEglError() { return eglErrorName(eglGetError()); }
 
+// eglCreateContext's EGL_BAD_MATCH usually means the driver's GL is older than the 4.3 we ask for.
+std::string contextCreationError() {
+    const EGLint code = eglGetError();
+    return eglErrorName(code) + (code == EGL_BAD_MATCH ? " (the driver offers no OpenGL 4.3 core context)" : "");
+}
+
 // EGL displays are process-wide singletons per (platform, native display) and eglTerminate is not
 // reference-counted, so two HeadlessContexts on the same display must not terminate it under each
 // other. This registry counts only displays *we* initialised; a display someone else (a host)
@@ -174,7 +180,7 @@ struct HeadlessContext::Impl {
         } else {
             context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs.data());
             if (context == EGL_NO_CONTEXT) {
-                failures = "eglCreateContext(EGL_NO_CONFIG_KHR, GL 4.3 core) failed: " + lastEglError() + "; ";
+                failures = "eglCreateContext(EGL_NO_CONFIG_KHR, GL 4.3 core) failed: " + contextCreationError() + "; ";
             } else if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
                 // Advertising surfaceless does not guarantee it works (google/filament#8145):
                 // EGL_BAD_MATCH here means "use a pbuffer".
@@ -196,7 +202,7 @@ struct HeadlessContext::Impl {
             return failures + "no EGL config with EGL_OPENGL_BIT and EGL_PBUFFER_BIT (" + lastEglError() + ")";
         context = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs.data());
         if (context == EGL_NO_CONTEXT)
-            return failures + "eglCreateContext(pbuffer config, GL 4.3 core) failed: " + lastEglError();
+            return failures + "eglCreateContext(pbuffer config, GL 4.3 core) failed: " + contextCreationError();
         const EGLint pbufferAttribs[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
         surface = eglCreatePbufferSurface(display, config, pbufferAttribs);
         if (surface == EGL_NO_SURFACE) {

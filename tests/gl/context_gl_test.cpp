@@ -367,7 +367,8 @@ TEST(HeadlessContext, ChildWithWorkingEglCreatesAContext) {
     const ChildResult child = runSelfAsChild("NoEglChild.DISABLED_CreateContext", {});
     SCOPED_TRACE(child.output);
     ASSERT_TRUE(child.exited) << "signal " << child.signal;
-    EXPECT_EQ(child.exitCode, 0);
+    // Not the exit code: under LeakSanitizer, Mesa's own leaks make it non-zero.
+    EXPECT_NE(child.output.find("[  PASSED  ] 1 test"), std::string::npos);
     EXPECT_NE(child.output.find("GLCOLLIDE_CHILD_CREATED: "), std::string::npos);
 }
 
