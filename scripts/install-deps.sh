@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs what a fresh Debian 12 machine lacks to build and test glcollide, Mesa's EGL and
+# llvmpipe included (the GL tests run on it when there is no GPU). Needs root (or sudo).
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config git
+  libepoxy-dev libegl-dev libglm-dev nlohmann-json3-dev libcli11-dev libassimp-dev
+  libgtest-dev libgmock-dev libbenchmark-dev glslang-tools
+  libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 libopengl0
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO=sudo
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,32 @@
+#pragma once
+// The subcommands of the glcollide CLI. Each returns the process exit code; setup errors are
+// thrown as glcollide::Error and turned into one line on stderr by main().
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace glcollide::app {
+
+struct RunOptions {
+    std::string scenePath;          ///< empty: the built-in default scene
+    std::optional<int> frames;      ///< overrides the scene's /time/frames
+    std::string exportDir;          ///< empty: no export
+    int exportEvery = 1;
+    std::string exportFormat = "obj";
+    std::string statsPath;          ///< empty: no statistics file
+    std::string device;             ///< EGL device selector; empty: env or auto
+    bool quiet = false;             ///< no progress on stderr
+    bool gpuTiming = true;
+};
+
+int runCommand(const RunOptions& options);
+
+struct InfoOptions {
+    std::string device;
+    bool json = false;
+};
+
+int infoCommand(const InfoOptions& options);
+
+} // namespace glcollide::app

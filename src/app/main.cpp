@@ -1,0 +1,52 @@
+// glcollide — the command-line tool: a thin layer over the engine (DESIGN.md, module app).
+
+#include "app/commands.hpp"
+
+#include <glcollide/error.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+    CLI::App cli{"glcollide: collision and mass-spring simulation in OpenGL 4.3 compute shaders"};
+    cli.require_subcommand(1);
+
+    glcollide::app::RunOptions run;
+    CLI::App* runCmd = cli.add_subcommand("run", "Simulate a scene headless (the built-in default scene when none is given)");
+    runCmd->add_option("scene", run.scenePath, "Scene file (JSON, see docs/scene-format.md)");
+    runCmd->add_option("--frames", run.frames, "Frames to simulate (default: the scene's /time/frames)");
+    runCmd->add_option("--export", run.exportDir, "Write each exported frame's meshes into this folder");
+    runCmd->add_option("--every", run.exportEvery, "Export every K-th frame (with --export)")->default_val(1);
+    runCmd->add_option("--format", run.exportFormat, "Export format: obj or ply")->default_val("obj");
+    runCmd->add_option("--stats", run.statsPath, "Write per-frame statistics (JSON) to this file");
+    runCmd->add_option("--device", run.device, "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
+    runCmd->add_flag("--quiet", run.quiet, "No progress on stderr");
+    bool noTiming = false;
+    runCmd->add_flag("--no-gpu-timing", noTiming, "Do not time passes (no wait for the GPU each frame)");
+
+    glcollide::app::InfoOptions info;
+    CLI::App* infoCmd = cli.add_subcommand("info", "Print the EGL device, GL vendor, renderer, version and compute limits");
+    infoCmd->add_option("--device", info.device, "EGL device: auto, software, <index> or cuda:<n>");
+    infoCmd->add_flag("--json", info.json, "Print JSON");
+
+    try {
+        cli.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return cli.exit(e);
+    }
+    try {
+        if (runCmd->parsed()) {
+            run.gpuTiming = !noTiming;
+            return glcollide::app::runCommand(run);
+        }
+        if (infoCmd->parsed()) return glcollide::app::infoCommand(info);
+    } catch (const glcollide::Error& e) {
+        std::cerr << "glcollide: error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "glcollide: internal error: " << e.what() << "\n";
+        return 2;
+    }
+    return 0;
+}

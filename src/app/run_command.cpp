@@ -1,0 +1,138 @@
+#include "app/commands.hpp"
+#include "app/mesh_export.hpp"
+#include "app/progress.hpp"
+
+#include <glcollide/engine.hpp>
+#include <glcollide/error.hpp>
+#include <glcollide/headless_context.hpp>
+#include <glcollide/scene.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace glcollide::app {
+namespace {
+
+nlohmann::json frameRecord(const Engine& engine) {
+    const StepStats& s = engine.lastStep();
+    const EnergyReport e = engine.energy();
+    nlohmann::json gpu = nlohmann::json::object();
+    for (const PassTiming& p : s.passes) gpu[p.name] = p.gpuMilliseconds;
+    return {{"frame", s.frame},
+            {"time_s", s.time},
+            {"wall_ms", s.wallMilliseconds},
+            {"kinetic_energy_J", e.kinetic},
+            {"potential_energy_J", e.potential},
+            {"total_energy_J", e.total()},
+            {"gpu_ms", gpu}};
+}
+
+bool allFinite(const std::vector<glm::dvec3>& positions, std::size_t& firstBad) {
+    for (std::size_t i = 0; i < positions.size(); ++i)
+        if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z)) {
+            firstBad = i;
+            return false;
+        }
+    return true;
+}
+
+void printSummary(const HeadlessContext& context, const Engine& engine, std::uint64_t frames) {
+    const Scene& scene = engine.scene();
+    const SubstepInfo& sub = engine.substepInfo();
+    std::cout << "scene: " << scene.name << (scene.sourcePath.empty() ? " (built-in default)" : " (" + scene.sourcePath.string() + ")") << "\n"
+              << "device: " << context.deviceDescription() << " | " << context.glInfo().renderer << "\n"
+              << "bodies: " << scene.bodies.size() << "  nodes: " << engine.nodeCount()
+              << "  springs: " << engine.springCount() << "  faces: " << engine.faceCount() << "\n";
+    std::cout << "effects:";
+    for (Effect e : scene.effects.list()) std::cout << ' ' << effectName(e);
+    std::cout << "\npipeline (per substep):";
+    for (const std::string& p : engine.pipeline()) std::cout << ' ' << p;
+    std::cout << "\nbuffers:";
+    for (const std::string& b : engine.allocatedBuffers()) std::cout << ' ' << b;
+    std::cout << " (" << engine.allocatedBytes() << " bytes)\n"
+              << "time: " << frames << " frames of " << scene.time.dt << " s, " << sub.substeps
+              << " substeps each (" << (sub.automatic ? "auto" : "fixed") << "; stability needs "
+              << sub.stableSubsteps << ")\n";
+}
+
+} // namespace
+
+int runCommand(const RunOptions& options) {
+    Scene scene = options.scenePath.empty() ? defaultScene() : loadScene(options.scenePath);
+    if (options.frames) {
+        if (*options.frames <= 0) throw Error("--frames must be positive");
+        scene.time.frames = *options.frames;
+    }
+    if (options.exportEvery <= 0) throw Error("--every must be positive");
+    const MeshFormat format = parseMeshFormat(options.exportFormat);
+    if (!options.exportDir.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(options.exportDir, ec);
+        if (ec) throw Error(options.exportDir + ": cannot create export directory: " + ec.message());
+    }
+
+    HeadlessContext context({options.device});
+    Engine engine(scene, {options.gpuTiming});
+    const auto frames = static_cast<std::uint64_t>(scene.time.frames);
+    printSummary(context, engine, frames);
+    for (const std::string& w : engine.warnings()) std::cerr << "glcollide: warning: " << w << "\n";
+
+    const std::vector<std::uint32_t> firstNodes = engine.bodyFirstNodes();
+    auto exportFrame = [&](std::uint64_t frame) {
+        const auto path = std::filesystem::path(options.exportDir) / frameFileName(frame, format);
+        writeFrameMesh(path, format, engine.scene(), firstNodes, engine.readPositions());
+    };
+    if (!options.exportDir.empty()) exportFrame(0);
+
+    nlohmann::json stats;
+    nlohmann::json frameList = nlohmann::json::array();
+    Progress progress("glcollide run", frames, !options.quiet);
+    double wallTotal = 0.0;
+    for (std::uint64_t f = 1; f <= frames; ++f) {
+        engine.step();
+        wallTotal += engine.lastStep().wallMilliseconds;
+        if (!options.statsPath.empty()) frameList.push_back(frameRecord(engine));
+        if (!options.exportDir.empty() && f % static_cast<std::uint64_t>(options.exportEvery) == 0) exportFrame(f);
+        progress.update(f);
+    }
+    progress.finish();
+
+    const std::vector<glm::dvec3> finalPositions = engine.readPositions();
+    std::size_t bad = 0;
+    const bool finite = allFinite(finalPositions, bad);
+    if (!options.statsPath.empty()) {
+        stats["scene"] = scene.name;
+        stats["scene_file"] = scene.sourcePath.string();
+        stats["device"] = context.deviceDescription();
+        stats["gl_renderer"] = context.glInfo().renderer;
+        stats["gl_version"] = context.glInfo().version;
+        stats["nodes"] = engine.nodeCount();
+        stats["springs"] = engine.springCount();
+        stats["faces"] = engine.faceCount();
+        stats["pipeline"] = engine.pipeline();
+        stats["buffers"] = engine.allocatedBuffers();
+        stats["dt_s"] = scene.time.dt;
+        stats["substeps"] = engine.substepInfo().substeps;
+        stats["stable_substeps"] = engine.substepInfo().stableSubsteps;
+        stats["finite"] = finite;
+        stats["frames"] = frameList;
+        std::ofstream out(options.statsPath);
+        if (!out) throw Error(options.statsPath + ": cannot open for writing");
+        out << stats.dump(1) << "\n";
+        if (!out) throw Error(options.statsPath + ": write failed");
+    }
+    std::cout << "simulated " << frames << " frames in " << wallTotal << " ms ("
+              << (frames ? wallTotal / static_cast<double>(frames) : 0.0) << " ms/frame)\n";
+    if (!finite) {
+        std::cerr << "glcollide: error: the state became non-finite (first at node " << bad
+                  << "); lower /time/dt or use automatic substeps\n";
+        return 3;
+    }
+    return 0;
+}
+
+} // namespace glcollide::app

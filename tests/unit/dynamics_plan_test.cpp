@@ -1,0 +1,148 @@
+// GL-free checks of the engine's composition rule, the stability rule, the flattening of scenes
+// and the mapping of driver compile logs to real file names.
+
+#include "cpu/dynamics_twin.hpp"
+#include "cpu/flat_model.hpp"
+#include "cpu/stability.hpp"
+#include "engine/pipeline_plan.hpp"
+#include "gl/program.hpp"
+
+#include <glcollide/error.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace glcollide {
+namespace {
+
+Scene twoNodeScene(double k, double c, double m) {
+    Scene scene;
+    Body body;
+    body.positions = {{0, 0, 0}, {0, -1, 0}};
+    body.velocities = {glm::dvec3(0), glm::dvec3(0)};
+    body.masses = {m, m};
+    body.pinned = {1, 0};
+    body.springs = {{0, 1, 1.0, k, c, SpringKind::Edge}};
+    scene.bodies.push_back(body);
+    return scene;
+}
+
+TEST(PipelinePlan, PassesFollowEffects) {
+    Scene scene = twoNodeScene(10, 0, 1);
+    EXPECT_EQ(engine::planPipeline(scene).passes(), std::vector<std::string>{"NodeUpdate"});
+    scene.effects = {Effect::Gravity, Effect::Springs};
+    auto plan = engine::planPipeline(scene);
+    EXPECT_EQ(plan.passes(), (std::vector<std::string>{"NodeForce", "SpringUpdate", "NodeUpdate"}));
+    EXPECT_TRUE(plan.springUpdateParams.accumulate) << "SpringUpdate adds to NodeForce's output";
+    scene.effects = {Effect::Springs};
+    plan = engine::planPipeline(scene);
+    EXPECT_FALSE(plan.springUpdateParams.accumulate) << "without NodeForce, SpringUpdate writes";
+    EXPECT_TRUE(plan.nodeUpdateParams.forces);
+    scene.effects = {Effect::Ground};
+    plan = engine::planPipeline(scene);
+    EXPECT_FALSE(plan.nodeUpdateParams.forces);
+    EXPECT_TRUE(plan.nodeUpdateParams.ground);
+    EXPECT_EQ(plan.buffers(), (std::vector<std::string>{"positions", "velocities", "faces"}));
+}
+
+TEST(PipelinePlan, EmptySceneRunsNothing) {
+    Scene scene;
+    scene.effects = {Effect::Gravity};
+    EXPECT_TRUE(engine::planPipeline(scene).passes().empty());
+    EXPECT_TRUE(engine::planPipeline(scene).buffers().empty());
+}
+
+TEST(PipelinePlan, CollisionEffectsAreRejected) {
+    Scene scene = twoNodeScene(10, 0, 1);
+    scene.effects = {Effect::SelfCollisions};
+    EXPECT_THROW(engine::planPipeline(scene), Error);
+}
+
+TEST(Stability, SingleSpringLimitIsTheBoundOnTwoOverOmega) {
+    // One free node on one spring: ω² = k/m exactly; the Gershgorin bound used is 2k/m, so the
+    // rule gives h = safety · 2/√(2k/m).
+    const double k = 400, m = 0.25;
+    const cpu::FlatModel model = cpu::flatten(twoNodeScene(k, 0, m));
+    const cpu::StabilityLimit limit = cpu::stableSubstep(model, true, {}, 1.0);
+    EXPECT_DOUBLE_EQ(limit.maxSubstep, 2.0 / std::sqrt(2.0 * k / m));
+    EXPECT_EQ(limit.node, 1u);
+    EXPECT_LE(limit.maxSubstep, 2.0 / std::sqrt(k / m)) << "never looser than the exact limit";
+}
+
+TEST(Stability, DampingShrinksTheStepToTheJuryBound) {
+    const double k = 400, c = 3, m = 0.25;
+    const cpu::FlatModel model = cpu::flatten(twoNodeScene(k, c, m));
+    const cpu::StabilityLimit limit = cpu::stableSubstep(model, true, {}, 1.0);
+    const double h = limit.maxSubstep, w2 = limit.omega * limit.omega, g = limit.gamma;
+    EXPECT_NEAR(h * h * w2 + 2 * h * g, 4.0, 1e-12) << "h solves h²ω² + 2hγ = 4";
+    EXPECT_LT(h, 2.0 / limit.omega);
+}
+
+TEST(Stability, ExplicitEulerOnTheTwinIsStableAtTheLimitAndUnstableAboveTheExactOne) {
+    // The CPU twin integrates one spring: at the rule's step it stays bounded; at 1.05× the exact
+    // limit 2/ω it grows, showing the rule is not vacuous.
+    const double k = 400, m = 0.25;
+    const cpu::FlatModel model = cpu::flatten(twoNodeScene(k, 0, m));
+    auto run = [&](double h) {
+        cpu::NodeState s{model.positions, model.velocities, {}, model.inverseMasses};
+        s.positions[1].y -= 0.1;
+        double amplitude = 0;
+        for (int i = 0; i < 2000; ++i) {
+            cpu::springUpdate({false}, model.springs, model.nodeSprings, s);
+            cpu::nodeUpdate({h, true}, s);
+            amplitude = std::max(amplitude, std::abs(s.positions[1].y + 1.0));
+        }
+        return amplitude;
+    };
+    EXPECT_LT(run(cpu::stableSubstep(model, true, {}).maxSubstep), 0.2);
+    EXPECT_GT(run(1.05 * 2.0 / std::sqrt(k / m)), 1e3);
+}
+
+TEST(Stability, SubstepCount) {
+    cpu::StabilityLimit limit;
+    limit.maxSubstep = std::numeric_limits<double>::infinity();
+    EXPECT_EQ(cpu::substepsFor(0.01, limit), 1);
+    limit.maxSubstep = 0.003;
+    EXPECT_EQ(cpu::substepsFor(0.01, limit), 4);
+    limit.maxSubstep = 1e-12;
+    EXPECT_GT(cpu::substepsFor(0.01, limit), cpu::kMaxSubsteps);
+}
+
+TEST(FlatModel, ConcatenatesBodiesAndSortsAdjacency) {
+    Scene scene = twoNodeScene(10, 0, 1);
+    scene.bodies.push_back(scene.bodies[0]);
+    scene.bodies[1].faces = {{0, 1, 1}};
+    const cpu::FlatModel m = cpu::flatten(scene);
+    ASSERT_EQ(m.nodeCount(), 4u);
+    EXPECT_EQ(m.springs[1].a, 2u);
+    EXPECT_EQ(m.springs[1].b, 3u);
+    EXPECT_EQ(m.inverseMasses[0], 0.0) << "pinned";
+    EXPECT_EQ(m.inverseMasses[1], 1.0);
+    EXPECT_EQ(m.faceIndices, (std::vector<std::uint32_t>{2, 3, 3}));
+    EXPECT_EQ(m.nodeSprings.offsets, (std::vector<std::uint32_t>{0, 1, 2, 3, 4}));
+    EXPECT_EQ(m.nodeFaces.offsets, (std::vector<std::uint32_t>{0, 0, 0, 1, 3}));
+    for (std::size_t i = 0; i < m.nodeCount(); ++i)
+        for (std::uint32_t k = m.nodeSprings.offsets[i] + 1; k < m.nodeSprings.offsets[i + 1]; ++k)
+            EXPECT_LT(m.nodeSprings.items[k - 1], m.nodeSprings.items[k]);
+}
+
+TEST(ShaderLog, MesaAndNvidiaLocationsNameTheFile) {
+    // node_force.comp includes common/layout.glsl as GLSL source string 1.
+    const std::string mesa = gl::mapShaderLog("1:12(3): error: boom\n0:40(1): error: bang", "node_force");
+    EXPECT_NE(mesa.find("shaders/common/layout.glsl:12: error: boom"), std::string::npos) << mesa;
+    EXPECT_NE(mesa.find("shaders/passes/node_force.comp:40: error: bang"), std::string::npos) << mesa;
+    const std::string nvidia = gl::mapShaderLog("0(7) : error C0000: syntax error", "node_force");
+    EXPECT_NE(nvidia.find("shaders/passes/node_force.comp:7 : error C0000"), std::string::npos) << nvidia;
+}
+
+TEST(ShaderLog, DefinesAreInsertedAfterVersionWithoutShiftingLines) {
+    const std::string source = gl::shaderSource("node_update", {"GLC_GROUND"});
+    EXPECT_EQ(source.rfind("#version 430 core\n#define GLC_GROUND\n#line 2 0\n", 0), 0u) << source.substr(0, 80);
+    EXPECT_THROW(gl::shaderSource("node_update", {"1BAD"}), Error);
+    EXPECT_THROW(gl::shaderSource("no_such_shader"), Error);
+}
+
+} // namespace
+} // namespace glcollide
