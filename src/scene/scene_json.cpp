@@ -459,20 +459,21 @@ Scene parseRoot(const Ctx& c, const json& root) {
 
 // Kept identical to scenes/hanging_cloth.json (a unit test compares them).
 constexpr const char* kDefaultScene = R"json({
-  // The scene `glcollide run` simulates when given none (see defaultScene()).
+  // The scene `glcollide run` simulates when given none (see defaultScene()): a horizontal
+  // cloth pinned at two corners swings down under gravity.
   "format_version": 1,
   "name": "hanging cloth",
   "effects": ["gravity", "springs", "damping"],
   "time": {"dt": 0.016666666666666666, "substeps": "auto", "frames": 240},
   "gravity": [0, -9.81, 0],
-  "damping": 0.05,
+  "damping": 0.1,
   "objects": [
     {
       "name": "cloth",
       "generator": {"type": "cloth", "size": [1, 1], "resolution": [32, 32]},
-      "transform": {"translate": [0, 1.5, 0]},
+      "transform": {"translate": [0, 1.5, 0], "rotate_deg": [90, 0, 0]},
       "mass": 0.3,
-      "springs": {"stiffness": 500, "damping": 0.5, "shear_stiffness": 200, "bend_stiffness": 20},
+      "springs": {"stiffness": 500, "damping": 0.002, "shear_stiffness": 200, "bend_stiffness": 20},
       "pinned": [0, 31]
     }
   ]

@@ -68,11 +68,14 @@ TEST(SceneJson, DefaultSceneEqualsHangingClothJson) {
     EXPECT_EQ(a.pinned, b.pinned);
     EXPECT_EQ(a.springs.size(), b.springs.size());
     EXPECT_EQ(a.faces, b.faces);
-    // Pinned at the two top corners; hanging vertically (in the XY plane).
+    // Pinned at the two corners of one edge; horizontal at y = 1.5 (the XY plane turned 90°
+    // about X), so it swings down. Tolerance: the rotation's cos(90°) rounding, ~1e-16 m.
     EXPECT_EQ(a.pinned[0], 1);
     EXPECT_EQ(a.pinned[31], 1);
-    EXPECT_EQ(a.positions[0].y, 2.0);
-    EXPECT_EQ(a.positions.back().y, 1.0);
+    EXPECT_NEAR(a.positions[0].y, 1.5, 1e-12);
+    EXPECT_NEAR(a.positions.back().y, 1.5, 1e-12);
+    EXPECT_NEAR(a.positions[0].z, 0.5, 1e-12);
+    EXPECT_NEAR(a.positions.back().z, -0.5, 1e-12);
     EXPECT_TRUE(def.sourcePath.empty());
     EXPECT_EQ(file.sourcePath, std::filesystem::path(kSource + "/scenes/hanging_cloth.json"));
 }
