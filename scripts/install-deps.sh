@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
   libepoxy-dev libegl-dev libglm-dev nlohmann-json3-dev libcli11-dev libassimp-dev
-  libgtest-dev libgmock-dev libbenchmark-dev glslang-tools
+  libgtest-dev libgmock-dev libbenchmark-dev glslang-tools libgmp-dev
   libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 libopengl0
 )
 missing=()

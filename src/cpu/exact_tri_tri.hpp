@@ -1,0 +1,22 @@
+#pragma once
+// Exact triangle-triangle intersection in rational arithmetic (GMP): the oracle the collision
+// tests and benchmarks compare the GPU narrow phase with. Inputs are doubles, which GMP rationals
+// represent exactly, so every sign below is exact: no epsilon anywhere.
+//
+// Semantics: triangles are closed point sets (touching at a vertex or along an edge counts as
+// intersecting); coplanar pairs are decided in their common plane; a zero-area triangle is the
+// segment between its two farthest vertices (or the point, when all three coincide), so
+// degenerate input is decided exactly too instead of being dropped.
+
+#include <glm/vec3.hpp>
+
+#include <array>
+
+namespace glcollide::cpu {
+
+using Triangle = std::array<glm::dvec3, 3>;
+
+/// True when the closed triangles share at least one point. Exact for all finite inputs.
+bool exactTrianglesIntersect(const Triangle& a, const Triangle& b);
+
+} // namespace glcollide::cpu
