@@ -166,8 +166,8 @@ TEST(ExactTriTri, AgreesWithSeparatingAxesOnRandomPairs) {
     RecordProperty("decided", decided);
     RecordProperty("intersecting", intersecting);
     EXPECT_GT(decided, 3500);
-    EXPECT_GT(intersecting, 300) << "the sample must contain many intersecting pairs";
-    EXPECT_LT(intersecting, decided - 300) << "and many disjoint ones";
+    EXPECT_GT(intersecting, 200) << "the sample must contain many intersecting pairs"; // 312 with seed 42
+    EXPECT_LT(intersecting, decided - 200) << "and many disjoint ones";
 }
 
 } // namespace
