@@ -79,7 +79,19 @@ std::string mapShaderLog(const std::string& log, std::string_view shaderName) {
 
 ComputeProgram::ComputeProgram(std::string_view shaderName, const std::vector<std::string>& defines)
     : m_shaderName(shaderName) {
-    const std::string source = shaderSource(shaderName, defines);
+    build(shaderSource(shaderName, defines),
+          [&](const std::string& log) { return mapShaderLog(log, shaderName); });
+}
+
+ComputeProgram ComputeProgram::fromSource(std::string label, const std::string& source) {
+    ComputeProgram program;
+    program.m_shaderName = std::move(label);
+    program.build(source, [](const std::string& log) { return log; });
+    return program;
+}
+
+void ComputeProgram::build(const std::string& source,
+                           const std::function<std::string(const std::string&)>& mapLog) {
     const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
     const char* text = source.c_str();
     glShaderSource(shader, 1, &text, nullptr);
@@ -87,9 +99,9 @@ ComputeProgram::ComputeProgram(std::string_view shaderName, const std::vector<st
     GLint ok = 0;
     glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-        const std::string log = mapShaderLog(infoLog(shader, false), shaderName);
+        const std::string log = mapLog(infoLog(shader, false));
         glDeleteShader(shader);
-        throw Error("compiling shader '" + std::string(shaderName) + "' failed:\n" + log);
+        throw Error("compiling shader '" + m_shaderName + "' failed:\n" + log);
     }
     const GLuint program = glCreateProgram();
     m_handle = Handle<deleteProgram>(program);
@@ -98,9 +110,7 @@ ComputeProgram::ComputeProgram(std::string_view shaderName, const std::vector<st
     glDetachShader(program, shader);
     glDeleteShader(shader);
     glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (!ok)
-        throw Error("linking shader '" + std::string(shaderName) + "' failed:\n" +
-                    mapShaderLog(infoLog(program, true), shaderName));
+    if (!ok) throw Error("linking shader '" + m_shaderName + "' failed:\n" + mapLog(infoLog(program, true)));
     labelObject(GL_PROGRAM, program, "glcollide/" + m_shaderName);
 }
 

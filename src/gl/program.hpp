@@ -5,6 +5,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -27,6 +28,9 @@ class ComputeProgram {
 public:
     ComputeProgram() = default;
     ComputeProgram(std::string_view shaderName, const std::vector<std::string>& defines = {});
+    /// A program from complete GLSL text that is not an embedded shader (tests, probes); its
+    /// compile log is reported unmapped.
+    static ComputeProgram fromSource(std::string label, const std::string& source);
 
     [[nodiscard]] GLname name() const { return m_handle.name(); }
     [[nodiscard]] const std::string& shaderName() const { return m_shaderName; }
@@ -41,6 +45,8 @@ public:
     void dispatch1D(std::uint32_t invocations, std::uint32_t groupSize) const;
 
 private:
+    void build(const std::string& source, const std::function<std::string(const std::string&)>& mapLog);
+
     Handle<deleteProgram> m_handle;
     std::string m_shaderName;
 };

@@ -116,17 +116,8 @@ TEST(LayoutGl, ObjectStructMatchesCpp) {
         "layout(local_size_x = 1) in;\n"
         "layout(std430, binding = GLC_BIND_OBJECTS) buffer ObjectsBuf { GpuObject g_objects[]; };\n"
         "void main() { GpuObject o = g_objects[0]; g_objects[1] = o; }\n";
-    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-    const char* text = source.c_str();
-    glShaderSource(shader, 1, &text, nullptr);
-    glCompileShader(shader);
-    GLint ok = 0;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    ASSERT_TRUE(ok);
-    const GLuint p = glCreateProgram();
-    glAttachShader(p, shader);
-    glLinkProgram(p);
-    glDeleteShader(shader);
+    const gl::ComputeProgram probe = gl::ComputeProgram::fromSource("layout_probe", source);
+    const GLuint p = probe.name();
     EXPECT_EQ(resourceProperty(p, GL_SHADER_STORAGE_BLOCK, "ObjectsBuf", GL_BUFFER_BINDING), GLC_BIND_OBJECTS);
     EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, "g_objects[0].firstNode", GL_TOP_LEVEL_ARRAY_STRIDE),
               static_cast<GLint>(sizeof(gpu::GpuObject)));
@@ -140,7 +131,6 @@ TEST(LayoutGl, ObjectStructMatchesCpp) {
     };
     for (const auto& [name, offset] : members)
         EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset)) << name;
-    glDeleteProgram(p);
 }
 
 TEST(LayoutGl, CompileErrorsNameTheFileAndLine) {
