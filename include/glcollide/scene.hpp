@@ -54,6 +54,30 @@ struct Wind {
     double drag = 1.0;        ///< kg/(m²·s), >= 0
 };
 
+/// Which broad phase finds candidate face pairs (docs/collisions.md).
+enum class BroadPhase : std::uint8_t {
+    Octree,   ///< AABB-octree boxes, overlapping box pairs expanded to face pairs: work ~ candidates
+    Masked,   ///< the paper's scheme: every face pair dispatched, masked by the box-pair overlap mask
+    AllPairs, ///< every face pair dispatched and tested: the reference the others are measured against
+};
+
+/// Precision of the triangle-triangle test (docs/collisions.md).
+enum class TriTriPrecision : std::uint8_t {
+    Fast,   ///< float with epsilons: may disagree with the exact answer near degenerate configurations
+    Robust, ///< float filter with a certified error bound, exact fallback: always the exact answer
+};
+
+/// Settings of the `collisions` and `self_collisions` effects.
+struct CollisionSettings {
+    BroadPhase broadPhase = BroadPhase::Octree;
+    int octreeDepth = 2;            ///< 1, 2 or 3: 8^depth leaf boxes per object (2 = the paper's 64)
+    TriTriPrecision precision = TriTriPrecision::Robust;
+    double thickness = 0.01;        ///< m, > 0: contact distance; boxes are inflated by half of it per side
+    double stiffness = 1.0e4;       ///< N/m, > 0: penalty stiffness per vertex-face or edge-edge contact
+    double damping = 0.0;           ///< N·s/m, >= 0: damping of the normal relative velocity in a contact
+    std::uint32_t initialCapacity = 4096; ///< >= 1: first size of every pair list (grown on overflow)
+};
+
 struct TimeSettings {
     double dt = 1.0 / 60.0; ///< s per frame, > 0
     /// Substeps per frame. 0 = automatic: the smallest count that keeps explicit integration
@@ -72,6 +96,7 @@ struct Scene {
     double damping = 0.0;                ///< 1/s, viscous damping coefficient (Damping)
     Wind wind;                           ///< used when effects has Wind
     GroundPlane ground;                  ///< used when effects has Ground
+    CollisionSettings collision;         ///< used when effects has Collisions or SelfCollisions
     TimeSettings time;
     std::vector<Body> bodies;
 };

@@ -10,12 +10,33 @@
 #define GLC_BIND_NODE_VELOCITIES 1     // vec4[]: xyz velocity (m/s), w unused
 #define GLC_BIND_SPRINGS 2             // GpuSpring[]
 #define GLC_BIND_NODE_FORCES 3         // vec4[]: xyz force (N), w unused
+#define GLC_BIND_BOXES 4               // GpuBox[objects * 8^depth]: AABB-octree leaf boxes, refit each substep
+#define GLC_BIND_INTERSECTIONS 5       // uvec2[capacity]: face pairs whose closed triangles intersect (TriTri output)
+#define GLC_BIND_FACE_INFO 6           // GpuFaceInfo[faces] (the paper's slot 6 held face normals; we compute those on the fly)
 #define GLC_BIND_FACES 7               // uint[3*faces]: node indices, CCW seen from outside (drawable as GL_ELEMENT_ARRAY_BUFFER)
 #define GLC_BIND_OBJECTS 8             // GpuObject[]
+#define GLC_BIND_BOX_FACE_LIST 9       // uint[faces]: face indices grouped by leaf box (CSR items)
+#define GLC_BIND_FACE_PAIRS 10         // uvec2[capacity]: candidate face pairs (broad-phase output)
+#define GLC_BIND_BOX_MASK 11           // uint[boxes * boxes]: 1 where two leaf boxes overlap (masked mode)
 #define GLC_BIND_NODE_SPRING_OFFSETS 12 // uint[nodes+1]: CSR row offsets into node-spring list
 #define GLC_BIND_NODE_SPRING_LIST 13   // uint[2*springs]: spring indices adjacent to each node
 #define GLC_BIND_NODE_FACE_OFFSETS 14  // uint[nodes+1]: CSR row offsets into node-face list
 #define GLC_BIND_NODE_FACE_LIST 15     // uint[3*faces]: face indices adjacent to each node
+#define GLC_BIND_BOX_FACE_OFFSETS 16   // uint[boxes+1]: CSR row offsets into the box face list
+#define GLC_BIND_BOX_PAIRS 17          // uvec2[capacity]: overlapping leaf-box pairs (octree mode)
+#define GLC_BIND_COLLISION_COUNTERS 18 // GpuCollisionCounters: append counters and capacities
+#define GLC_BIND_CONTACT_FORCES 19     // ivec4[nodes]: contact force, fixed point (GLC_CONTACT_FORCE_SCALE units per N)
+#define GLC_BIND_DISPATCH_ARGS 20      // uint[3 * k]: glDispatchComputeIndirect arguments written on the GPU
+
+// Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
+// containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
+// feature shared by several faces is never counted twice.
+#define GLC_OWN_VERTEX0 1u
+#define GLC_OWN_VERTEX1 2u
+#define GLC_OWN_VERTEX2 4u
+#define GLC_OWN_EDGE01 8u
+#define GLC_OWN_EDGE12 16u
+#define GLC_OWN_EDGE20 32u
 
 // Work-group size of the per-node and per-spring passes.
 #define GLC_WORKGROUP_SIZE 128
@@ -40,6 +61,34 @@ struct GpuObject {
     uint faceCount;
     uint firstSpring;
     uint springCount;
+    uint firstBox;  // first leaf box of this object (objects own 8^depth consecutive boxes)
+    uint closed;    // 1 when every edge has exactly two faces (a closed surface with outward normals)
+};
+
+// An axis-aligned box; an empty box has lo > hi and overlaps nothing.
+struct GpuBox {
+    vec4 lo; // xyz min (m), w unused
+    vec4 hi; // xyz max (m), w unused
+};
+
+// Per-face data the collision passes need beside the three node indices.
+struct GpuFaceInfo {
+    uint object; // index into ObjectsBuf
+    uint box;    // global leaf box index
+    uint owned;  // GLC_OWN_* bits
     uint pad0;
-    uint pad1;
+};
+
+// Append counters. A writer does i = atomicAdd(count, 1) and stores only if i < capacity, so
+// after the pass `count` is the exact number of items found, even on overflow; the engine then
+// grows the list to at least `count` and reruns the pass (DESIGN.md: lists never drop data).
+struct GpuCollisionCounters {
+    uint boxPairCount;
+    uint candidateCount;
+    uint intersectionCount;
+    uint exactFallbackCount; // robust TriTri: predicates the float filter could not decide
+    uint boxPairCapacity;
+    uint candidateCapacity;
+    uint intersectionCapacity;
+    uint contactCount;       // vertex-face and edge-edge contacts that produced a force
 };

@@ -32,5 +32,23 @@ static_assert(offsetof(GpuObject, firstFace) == 8);
 static_assert(offsetof(GpuObject, faceCount) == 12);
 static_assert(offsetof(GpuObject, firstSpring) == 16);
 static_assert(offsetof(GpuObject, springCount) == 20);
+static_assert(offsetof(GpuObject, firstBox) == 24);
+static_assert(offsetof(GpuObject, closed) == 28);
+static_assert(sizeof(GpuBox) == 32);
+static_assert(offsetof(GpuBox, lo) == 0);
+static_assert(offsetof(GpuBox, hi) == 16);
+static_assert(sizeof(GpuFaceInfo) == 16);
+static_assert(offsetof(GpuFaceInfo, object) == 0);
+static_assert(offsetof(GpuFaceInfo, box) == 4);
+static_assert(offsetof(GpuFaceInfo, owned) == 8);
+static_assert(sizeof(GpuCollisionCounters) == 32);
+static_assert(offsetof(GpuCollisionCounters, boxPairCount) == 0);
+static_assert(offsetof(GpuCollisionCounters, candidateCount) == 4);
+static_assert(offsetof(GpuCollisionCounters, intersectionCount) == 8);
+static_assert(offsetof(GpuCollisionCounters, exactFallbackCount) == 12);
+static_assert(offsetof(GpuCollisionCounters, boxPairCapacity) == 16);
+static_assert(offsetof(GpuCollisionCounters, candidateCapacity) == 20);
+static_assert(offsetof(GpuCollisionCounters, intersectionCapacity) == 24);
+static_assert(offsetof(GpuCollisionCounters, contactCount) == 28);
 
 } // namespace glcollide::gpu

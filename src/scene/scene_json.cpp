@@ -409,10 +409,50 @@ Body parseObject(const Ctx& c, const json& j, const Ptr& p, const EffectSet& eff
     return body;
 }
 
+CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
+    checkObject(c, j, p, {"broad_phase", "octree_depth", "precision", "thickness", "stiffness", "damping",
+                          "initial_capacity"});
+    CollisionSettings s;
+    if (const json* v = find(j, "broad_phase")) {
+        const std::string name = string(c, *v, p / "broad_phase");
+        if (name == "octree") s.broadPhase = BroadPhase::Octree;
+        else if (name == "masked") s.broadPhase = BroadPhase::Masked;
+        else if (name == "all_pairs") s.broadPhase = BroadPhase::AllPairs;
+        else c.fail(p / "broad_phase", "unknown broad phase " + shown(*v) + "; expected \"octree\", \"masked\" or \"all_pairs\"");
+    }
+    if (const json* v = find(j, "octree_depth")) {
+        if (!v->is_number_integer() || v->get<long long>() < 1 || v->get<long long>() > 3)
+            c.fail(p / "octree_depth", "expected an integer 1, 2 or 3 (8, 64 or 512 boxes per object), got " + shown(*v));
+        s.octreeDepth = static_cast<int>(v->get<long long>());
+    }
+    if (const json* v = find(j, "precision")) {
+        const std::string name = string(c, *v, p / "precision");
+        if (name == "fast") s.precision = TriTriPrecision::Fast;
+        else if (name == "robust") s.precision = TriTriPrecision::Robust;
+        else c.fail(p / "precision", "unknown precision " + shown(*v) + "; expected \"fast\" or \"robust\"");
+    }
+    if (const json* v = find(j, "thickness")) {
+        s.thickness = number(c, *v, p / "thickness", "a positive number of metres");
+        if (!(s.thickness > 0.0)) c.fail(p / "thickness", "expected a positive number of metres, got " + shown(*v));
+    }
+    if (const json* v = find(j, "stiffness")) {
+        s.stiffness = number(c, *v, p / "stiffness", "a positive number of N/m");
+        if (!(s.stiffness > 0.0)) c.fail(p / "stiffness", "expected a positive number of N/m, got " + shown(*v));
+    }
+    if (const json* v = find(j, "damping")) s.damping = nonNegative(c, *v, p / "damping");
+    if (const json* v = find(j, "initial_capacity")) {
+        if (!v->is_number_integer() || v->get<long long>() < 1 || v->get<long long>() > (1LL << 30))
+            c.fail(p / "initial_capacity", "expected an integer in 1 ... 2^30, got " + shown(*v));
+        s.initialCapacity = static_cast<std::uint32_t>(v->get<long long>());
+    }
+    return s;
+}
+
 Scene parseRoot(const Ctx& c, const json& root) {
     const Ptr p;
     checkObject(c, root, p,
-                {"format_version", "name", "effects", "time", "gravity", "damping", "wind", "ground", "objects"});
+                {"format_version", "name", "effects", "time", "gravity", "damping", "wind", "ground", "collision",
+                 "objects"});
     const json& version = require(c, root, p, "format_version");
     if (!version.is_number_integer() || version.get<long long>() != Scene::kFormatVersion)
         c.fail(p / "format_version", "unsupported format version " + shown(version) + "; supported versions: " +
@@ -448,6 +488,12 @@ Scene parseRoot(const Ctx& c, const json& root) {
                 c.fail(pg / "restitution", "expected a number in [0, 1], got " + shown(*w));
         }
         if (const json* w = find(*v, "friction")) scene.ground.friction = nonNegative(c, *w, pg / "friction");
+    }
+    if (const json* v = find(root, "collision")) {
+        if (!scene.effects.has(Effect::Collisions) && !scene.effects.has(Effect::SelfCollisions))
+            c.fail(p / "collision", "given but neither 'collisions' nor 'self_collisions' is in /effects "
+                                    "(remove it or add an effect)");
+        scene.collision = parseCollision(c, *v, p / "collision");
     }
 
     const json& objects = require(c, root, p, "objects");

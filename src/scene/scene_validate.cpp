@@ -33,6 +33,15 @@ void validateScene(const Scene& scene) {
         fail("ground.restitution must be in [0, 1], got " + std::to_string(scene.ground.restitution));
     if (!(scene.ground.friction >= 0.0) || !std::isfinite(scene.ground.friction))
         fail("ground.friction must be finite and >= 0");
+    const CollisionSettings& col = scene.collision;
+    if (col.octreeDepth < 1 || col.octreeDepth > 3)
+        fail("collision.octree_depth must be 1, 2 or 3, got " + std::to_string(col.octreeDepth));
+    if (!(col.thickness > 0.0) || !std::isfinite(col.thickness))
+        fail("collision.thickness must be finite and > 0, got " + std::to_string(col.thickness));
+    if (!(col.stiffness > 0.0) || !std::isfinite(col.stiffness))
+        fail("collision.stiffness must be finite and > 0, got " + std::to_string(col.stiffness));
+    if (!(col.damping >= 0.0) || !std::isfinite(col.damping)) fail("collision.damping must be finite and >= 0");
+    if (col.initialCapacity < 1) fail("collision.initial_capacity must be >= 1");
 
     for (std::size_t bi = 0; bi < scene.bodies.size(); ++bi) {
         const Body& b = scene.bodies[bi];
