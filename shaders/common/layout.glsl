@@ -27,6 +27,9 @@
 #define GLC_BIND_COLLISION_COUNTERS 18 // GpuCollisionCounters: append counters and capacities
 #define GLC_BIND_CONTACT_FORCES 19     // ivec4[nodes]: contact force, fixed point (GLC_CONTACT_FORCE_SCALE units per N)
 #define GLC_BIND_DISPATCH_ARGS 20      // uint[3 * k]: glDispatchComputeIndirect arguments written on the GPU
+#define GLC_BIND_QUERY_TRIANGLES 21   // float[18 * pairs]: tri-tri query input, a0 a1 a2 b0 b1 b2 (xyz each)
+#define GLC_BIND_QUERY_RESULTS 22     // uint[pairs]: tri-tri query output, 1 = the closed triangles intersect
+#define GLC_BIND_QUERY_STATS 23       // uint[1]: tri-tri query exact-fallback counter (robust precision)
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
