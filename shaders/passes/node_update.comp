@@ -2,7 +2,9 @@
 // NodeUpdate — one symplectic Euler substep (v += h w f; x += h v), pinned nodes (w = 0) held,
 // optional ground plane with restitution and Coulomb friction on the velocity.
 // The NodeUpdate stage of the AABB-octree pipeline (seeds/002, Table 2).
-// GLC_FORCES: a force buffer exists. GLC_GROUND: the ground plane is on. Twin: cpu::nodeUpdate.
+// GLC_FORCES: a force buffer exists. GLC_GROUND: the ground plane is on. GLC_CONTACTS: add the
+// fixed-point contact forces of ContactResponse and clear them for the next substep.
+// Twin: cpu::nodeUpdate.
 #include "common/layout.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
@@ -12,6 +14,10 @@ layout(std430, binding = GLC_BIND_NODE_POSITIONS) buffer NodePositionsBuf { vec4
 layout(std430, binding = GLC_BIND_NODE_VELOCITIES) buffer NodeVelocitiesBuf { vec4 g_velocities[]; };
 #ifdef GLC_FORCES
 layout(std430, binding = GLC_BIND_NODE_FORCES) readonly buffer NodeForcesBuf { vec4 g_forces[]; };
+#endif
+#ifdef GLC_CONTACTS
+layout(std430, binding = GLC_BIND_CONTACT_FORCES) buffer ContactForcesBuf { ivec4 g_contactForces[]; };
+uniform float u_contactForceScale; // fixed-point units per N
 #endif
 
 uniform uint u_nodeCount;
@@ -27,6 +33,10 @@ void main() {
     if (i >= u_nodeCount) return;
     vec4 p = g_positions[i];
     float w = p.w;
+#ifdef GLC_CONTACTS
+    vec3 contactForce = vec3(g_contactForces[i].xyz) / u_contactForceScale;
+    g_contactForces[i] = ivec4(0);
+#endif
     if (w <= 0.0) {
         g_velocities[i] = vec4(0.0);
         return;
@@ -34,6 +44,9 @@ void main() {
     vec3 v = g_velocities[i].xyz;
 #ifdef GLC_FORCES
     v += (u_h * w) * g_forces[i].xyz;
+#endif
+#ifdef GLC_CONTACTS
+    v += (u_h * w) * contactForce;
 #endif
     vec3 x = p.xyz + u_h * v;
 #ifdef GLC_GROUND

@@ -19,6 +19,7 @@ std::vector<std::string> nodeUpdateDefines(const NodeUpdateParams& c) {
     std::vector<std::string> d;
     if (c.forces) d.emplace_back("GLC_FORCES");
     if (c.ground) d.emplace_back("GLC_GROUND");
+    if (c.contacts) d.emplace_back("GLC_CONTACTS");
     return d;
 }
 
@@ -71,6 +72,10 @@ void NodeUpdatePass::dispatch(const DeviceBuffers& b, const NodeUpdateParams& pa
     bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
     if (m_config.forces) bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
+    if (m_config.contacts) {
+        bindRequired(b.contactForces, GLC_BIND_CONTACT_FORCES, kName, "contactForces");
+        m_program.set("u_contactForceScale", static_cast<float>(params.contactForceScale));
+    }
     m_program.set("u_h", static_cast<float>(params.h));
     if (m_config.ground) {
         m_program.set("u_groundHeight", static_cast<float>(params.groundHeight));

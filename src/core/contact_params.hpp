@@ -1,0 +1,35 @@
+#pragma once
+// Parameters of the contact response (ContactResponse pass and its CPU twin), derived from a
+// scene's CollisionSettings in one place so both sides use the same numbers. docs/collisions.md.
+
+#include <glcollide/scene.hpp>
+
+#include <cmath>
+
+namespace glcollide {
+
+struct ContactParams {
+    double thickness = 0.0;  ///< m: contact distance h
+    double stiffness = 0.0;  ///< N/m per contact
+    double damping = 0.0;    ///< N·s/m on the normal relative speed
+    double forceCap = 0.0;   ///< N per contact: 4·k·h (twice the force at the deepest signed depth 2h)
+    double forceScale = 1.0; ///< fixed-point units per N of the GPU's integer force sums
+};
+
+/// Contacts that may add to one node in one substep before its int32 fixed-point sum could
+/// overflow. Each contributes at most forceCap, so the scale leaves room for this many.
+inline constexpr double kContactsPerNodeHeadroom = 1024.0;
+
+inline ContactParams contactParams(const CollisionSettings& s) {
+    ContactParams p;
+    p.thickness = s.thickness;
+    p.stiffness = s.stiffness;
+    p.damping = s.damping;
+    p.forceCap = 4.0 * s.stiffness * s.thickness;
+    // Largest power of two with headroom·cap·scale ≤ 2^31 - 1: resolution cap·headroom/2^31
+    // (~5e-7 of the cap), exact in float.
+    p.forceScale = std::exp2(std::floor(std::log2(2147483647.0 / (kContactsPerNodeHeadroom * p.forceCap))));
+    return p;
+}
+
+} // namespace glcollide

@@ -1,0 +1,167 @@
+#include "cpu/contact_twin.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+
+namespace glcollide::cpu {
+namespace {
+
+// GLC_OWN_* of shaders/common/layout.glsl (cpu does not include the GL layout header).
+constexpr std::uint32_t kOwnVertex0 = 1u, kOwnEdge01 = 8u;
+
+struct Solver {
+    const ContactParams& p;
+    const ContactInput& in;
+    ContactResult& out;
+
+    const glm::dvec3& x(std::uint32_t n) const { return (*in.positions)[n]; }
+    const glm::dvec3& v(std::uint32_t n) const { return (*in.velocities)[n]; }
+    double normalForce(double depth, double normalSpeed) const {
+        return std::clamp(p.stiffness * depth - p.damping * normalSpeed, 0.0, p.forceCap);
+    }
+
+    void vertexFace(std::uint32_t node, const std::array<std::uint32_t, 3>& f, bool closed) {
+        const glm::dvec3 &xp = x(node), &xa = x(f[0]), &xb = x(f[1]), &xc = x(f[2]);
+        glm::dvec3 n = glm::cross(xb - xa, xc - xa);
+        const double area2 = glm::length(n);
+        if (!(area2 > 0.0)) return;
+        n /= area2;
+        const glm::dvec3 w = closestOnTriangle(xp, xa, xb, xc);
+        const glm::dvec3 diff = xp - (w.x * xa + w.y * xb + w.z * xc);
+        const double d = glm::length(diff), s = glm::dot(n, xp - xa), h = p.thickness;
+        const bool inside = w.x > 0.0 && w.y > 0.0 && w.z > 0.0;
+        glm::dvec3 u;
+        double depth = 0.0;
+        if (closed && inside && s < h && s > -h) {
+            u = n;
+            depth = h - s;
+        } else if (d < h && d > 0.0) {
+            u = diff / d;
+            depth = h - d;
+        } else {
+            return;
+        }
+        const glm::dvec3 vRel = v(node) - (w.x * v(f[0]) + w.y * v(f[1]) + w.z * v(f[2]));
+        const double fn = normalForce(depth, glm::dot(vRel, u));
+        if (fn <= 0.0) return;
+        const glm::dvec3 F = fn * u;
+        out.forces[node] += F;
+        ++out.contributions[node];
+        for (int k = 0; k < 3; ++k) {
+            out.forces[f[static_cast<std::size_t>(k)]] -= w[k] * F;
+            ++out.contributions[f[static_cast<std::size_t>(k)]];
+        }
+        ++out.contacts;
+    }
+
+    void edgeEdge(std::uint32_t p0, std::uint32_t p1, std::uint32_t q0, std::uint32_t q1) {
+        const auto [s, t] = closestSegmentParams(x(p0), x(p1), x(q0), x(q1));
+        const glm::dvec3 diff = (x(p0) + s * (x(p1) - x(p0))) - (x(q0) + t * (x(q1) - x(q0)));
+        const double d = glm::length(diff);
+        if (!(d < p.thickness) || !(d > 0.0)) return;
+        const glm::dvec3 u = diff / d;
+        const glm::dvec3 vRel = (v(p0) + s * (v(p1) - v(p0))) - (v(q0) + t * (v(q1) - v(q0)));
+        const double fn = normalForce(p.thickness - d, glm::dot(vRel, u));
+        if (fn <= 0.0) return;
+        const glm::dvec3 F = fn * u;
+        out.forces[p0] += (1.0 - s) * F;
+        out.forces[p1] += s * F;
+        out.forces[q0] -= (1.0 - t) * F;
+        out.forces[q1] -= t * F;
+        for (std::uint32_t n : {p0, p1, q0, q1}) ++out.contributions[n];
+        ++out.contacts;
+    }
+};
+
+} // namespace
+
+glm::dvec3 closestOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) return {1.0, 0.0, 0.0};
+    const glm::dvec3 bp = p - b;
+    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) return {0.0, 1.0, 0.0};
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+        const double v = d1 / (d1 - d3);
+        return {1.0 - v, v, 0.0};
+    }
+    const glm::dvec3 cp = p - c;
+    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) return {0.0, 0.0, 1.0};
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+        const double w = d2 / (d2 - d6);
+        return {1.0 - w, 0.0, w};
+    }
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+        const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return {0.0, 1.0 - w, w};
+    }
+    const double denom = 1.0 / (va + vb + vc);
+    const double v = vb * denom, w = vc * denom;
+    return {1.0 - v - w, v, w};
+}
+
+std::array<double, 2> closestSegmentParams(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& q0,
+                                           const glm::dvec3& q1) {
+    const glm::dvec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+    const double a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r);
+    double s = 0.0, t = 0.0;
+    if (a <= 0.0 && e <= 0.0) return {0.0, 0.0};
+    if (a <= 0.0) {
+        t = std::clamp(f / e, 0.0, 1.0);
+    } else {
+        const double c = glm::dot(d1, r);
+        if (e <= 0.0) {
+            s = std::clamp(-c / a, 0.0, 1.0);
+        } else {
+            const double b = glm::dot(d1, d2);
+            const double denom = a * e - b * b;
+            s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+            t = (b * s + f) / e;
+            if (t < 0.0) {
+                t = 0.0;
+                s = std::clamp(-c / a, 0.0, 1.0);
+            } else if (t > 1.0) {
+                t = 1.0;
+                s = std::clamp((b - c) / a, 0.0, 1.0);
+            }
+        }
+    }
+    return {s, t};
+}
+
+ContactResult contactForces(const ContactParams& params, const ContactInput& in,
+                            const std::vector<std::array<std::uint32_t, 2>>& candidates) {
+    ContactResult out;
+    out.forces.assign(in.positions->size(), glm::dvec3(0.0));
+    out.contributions.assign(in.positions->size(), 0u);
+    Solver solver{params, in, out};
+    const auto face = [&](std::uint32_t f) {
+        const std::vector<std::uint32_t>& idx = *in.faceIndices;
+        return std::array<std::uint32_t, 3>{idx[3 * f], idx[3 * f + 1], idx[3 * f + 2]};
+    };
+    for (const auto& [a, b] : candidates) {
+        const auto fa = face(a), fb = face(b);
+        const std::uint32_t oa = (*in.faceOwned)[a], ob = (*in.faceOwned)[b];
+        const bool closedA = (*in.faceClosed)[a] != 0, closedB = (*in.faceClosed)[b] != 0;
+        for (std::uint32_t k = 0; k < 3; ++k) {
+            if (oa & (kOwnVertex0 << k)) solver.vertexFace(fa[k], fb, closedB);
+            if (ob & (kOwnVertex0 << k)) solver.vertexFace(fb[k], fa, closedA);
+        }
+        for (std::uint32_t e = 0; e < 3; ++e) {
+            if (!(oa & (kOwnEdge01 << e))) continue;
+            for (std::uint32_t g = 0; g < 3; ++g) {
+                if (!(ob & (kOwnEdge01 << g))) continue;
+                solver.edgeEdge(fa[e], fa[(e + 1) % 3], fb[g], fb[(g + 1) % 3]);
+            }
+        }
+    }
+    return out;
+}
+
+} // namespace glcollide::cpu

@@ -1,0 +1,216 @@
+// ContactResponse against its double-precision twin (src/cpu/contact_twin.cpp) and against
+// hand-computed forces. The GPU gets float positions; the twin the same floats widened to double.
+
+#include "cpu/contact_twin.hpp"
+#include "gl/layout.hpp"
+#include "passes/contact_response.hpp"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+namespace glcollide {
+namespace {
+
+constexpr std::uint32_t kOwnAll = GLC_OWN_VERTEX0 | GLC_OWN_VERTEX1 | GLC_OWN_VERTEX2 | GLC_OWN_EDGE01 |
+                                  GLC_OWN_EDGE12 | GLC_OWN_EDGE20;
+
+struct Soup {
+    std::vector<glm::dvec3> positions, velocities; // float values widened to double
+    std::vector<std::uint32_t> faces, owned, faceObject;
+    std::vector<std::uint8_t> objectClosed;
+    std::vector<std::array<std::uint32_t, 2>> candidates;
+};
+
+std::vector<glm::vec4> pack(const std::vector<glm::dvec3>& v, float w) {
+    std::vector<glm::vec4> out;
+    for (const glm::dvec3& p : v)
+        out.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z), w);
+    return out;
+}
+
+template <typename T>
+gl::Buffer upload(const char* label, const std::vector<T>& v) {
+    return gl::Buffer(label, v.size() * sizeof(T), v.data());
+}
+
+struct GpuResult {
+    std::vector<glm::dvec3> forces;
+    std::uint32_t contacts = 0;
+};
+
+GpuResult runGpu(const Soup& s, const ContactParams& params) {
+    passes::DeviceBuffers b;
+    b.nodeCount = static_cast<std::uint32_t>(s.positions.size());
+    b.faceCount = static_cast<std::uint32_t>(s.faces.size() / 3);
+    b.positions = upload("positions", pack(s.positions, 1.0f));
+    b.velocities = upload("velocities", pack(s.velocities, 0.0f));
+    b.faces = upload("faces", s.faces);
+    b.contactForces = upload("contactForces", std::vector<glm::ivec4>(s.positions.size(), glm::ivec4(0)));
+    std::vector<gpu::GpuFaceInfo> info;
+    for (std::size_t f = 0; f < s.owned.size(); ++f) info.push_back({s.faceObject[f], 0u, s.owned[f], 0u});
+    std::vector<gpu::GpuObject> objects;
+    for (std::uint8_t closed : s.objectClosed) objects.push_back({0, 0, 0, 0, 0, 0, 0, closed});
+    std::vector<glm::uvec2> pairs;
+    for (const auto& [a, c] : s.candidates) pairs.emplace_back(a, c);
+    if (pairs.empty()) pairs.emplace_back(0u, 0u); // a zero-size buffer cannot be bound
+    const gl::Buffer candidates = upload("candidates", pairs), faceInfo = upload("faceInfo", info),
+                     objectBuffer = upload("objects", objects),
+                     counters = upload("counters", std::vector<gpu::GpuCollisionCounters>(1));
+    passes::ContactResponsePass pass;
+    pass.dispatch(b, {&candidates, &faceInfo, &objectBuffer, &counters,
+                      static_cast<std::uint32_t>(s.candidates.size())},
+                  params);
+    std::vector<glm::ivec4> raw(s.positions.size());
+    b.contactForces.download(0, raw.size() * sizeof(glm::ivec4), raw.data());
+    gpu::GpuCollisionCounters c{};
+    counters.download(0, sizeof c, &c);
+    GpuResult r;
+    for (const glm::ivec4& q : raw) r.forces.push_back(glm::dvec3(q.x, q.y, q.z) / params.forceScale);
+    r.contacts = c.contactCount;
+    return r;
+}
+
+cpu::ContactResult runCpu(const Soup& s, const ContactParams& params) {
+    std::vector<std::uint8_t> faceClosed;
+    for (std::uint32_t o : s.faceObject) faceClosed.push_back(s.objectClosed[o]);
+    return cpu::contactForces(params, {&s.positions, &s.velocities, &s.faces, &s.owned, &faceClosed}, s.candidates);
+}
+
+ContactParams testParams(double thickness) {
+    CollisionSettings settings;
+    settings.thickness = thickness;
+    settings.stiffness = 1000.0;
+    settings.damping = 0.5;
+    return contactParams(settings);
+}
+
+// Isolated triangles (no shared nodes, so every face owns all its features) scattered in a box
+// small enough that many come within the thickness; pairs between the two objects are candidates.
+Soup randomSoup(std::uint32_t faceCount, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> centre(0.0f, 0.2f), offset(-0.03f, 0.03f), speed(-0.2f, 0.2f);
+    Soup s;
+    for (std::uint32_t f = 0; f < faceCount; ++f) {
+        const glm::dvec3 c(centre(rng), centre(rng), centre(rng));
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec3 p = glm::vec3(c) + glm::vec3(offset(rng), offset(rng), offset(rng));
+            s.positions.emplace_back(p);
+            s.velocities.emplace_back(glm::vec3(speed(rng), speed(rng), speed(rng)));
+            s.faces.push_back(3 * f + static_cast<std::uint32_t>(k));
+        }
+        s.owned.push_back(kOwnAll);
+        s.faceObject.push_back(f % 2);
+    }
+    s.objectClosed = {0, 0};
+    for (std::uint32_t a = 0; a < faceCount; ++a)
+        for (std::uint32_t b = a + 1; b < faceCount; ++b)
+            if ((a % 2) != (b % 2)) s.candidates.push_back({a, b});
+    return s;
+}
+
+TEST(ContactResponseGl, MatchesTheTwinOnRandomTriangleSoups) {
+    for (std::uint32_t faces : {2u, 40u, 129u}) {
+        const Soup soup = randomSoup(faces, 7u + faces);
+        const ContactParams params = testParams(0.03);
+        const GpuResult gpu = runGpu(soup, params);
+        const cpu::ContactResult cpu = runCpu(soup, params);
+        if (faces >= 40) {
+            EXPECT_GT(cpu.contacts, faces) << "the soup should be dense in contacts";
+        }
+        // Contacts whose depth is within rounding of 0 may be counted on one side only; each
+        // such contact adds almost no force, so only the count may differ, by a few.
+        EXPECT_NEAR(static_cast<double>(gpu.contacts), static_cast<double>(cpu.contacts),
+                    2.0 + 0.002 * cpu.contacts);
+        glm::dvec3 total(0.0);
+        double worst = 0.0;
+        for (std::size_t n = 0; n < soup.positions.size(); ++n)
+            for (int k = 0; k < 3; ++k)
+                worst = std::max(worst, std::abs(gpu.forces[n][k] - cpu.forces[n][k]) /
+                                            (std::max(1u, cpu.contributions[n]) * params.forceCap));
+        std::printf("faces %u: contacts gpu %u cpu %u, worst error per contribution %.3g of the cap\n", faces,
+                    gpu.contacts, cpu.contacts, worst);
+        for (std::size_t n = 0; n < soup.positions.size(); ++n) {
+            // Per contribution: float evaluation of closest points, normals and the force, a few
+            // tens of u (u = 2^-24) of the force cap, times an allowance of 8 for the
+            // conditioning of the closest-point parameters: 2^-16 of the cap (measured on
+            // llvmpipe: 2.4e-7 of the cap, 64x below), plus the fixed-point rounding of
+            // 0.5/scale per component. A rule difference or a 0.1 % stiffness error is far above.
+            const double tolerance =
+                std::max(1u, cpu.contributions[n]) * (params.forceCap / 65536.0 + 0.5 / params.forceScale);
+            for (int k = 0; k < 3; ++k)
+                ASSERT_NEAR(gpu.forces[n][k], cpu.forces[n][k], tolerance) << "faces " << faces << " node " << n;
+            total += gpu.forces[n];
+        }
+        // Momentum: every contact applies opposite forces; only the fixed-point rounding
+        // (0.5/scale per add, 4 adds per contact per component) may remain.
+        const double roundoff = 4.0 * 0.5 / params.forceScale * std::max(1u, gpu.contacts);
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(total[k], 0.0, roundoff);
+    }
+}
+
+// One unit triangle in the plane y = 0 (normal +y, CCW seen from +y) and a second, tiny
+// triangle whose first vertex is the probe; only that vertex is owned, so exactly one
+// vertex-face contact can act (plus none of the probe face's edges).
+Soup probeAboveFace(double probeHeight, bool closed) {
+    Soup s;
+    s.positions = {{-1, 0, -1}, {-1, 0, 2}, {2, 0, -1}, // normal = (b-a)x(c-a) = (0,0,3)x(3,0,0) = (0,9,0)
+                   {0.25, probeHeight, 0.25}, {0.25, probeHeight + 5.0, 0.25}, {0.25 + 1e-3, probeHeight + 5.0, 0.25}};
+    for (glm::dvec3& p : s.positions) p = glm::dvec3(glm::vec3(p)); // what the GPU sees
+    s.velocities.assign(6, glm::dvec3(0.0));
+    s.faces = {0, 1, 2, 3, 4, 5};
+    s.owned = {kOwnAll, GLC_OWN_VERTEX0};
+    s.faceObject = {0, 1};
+    s.objectClosed = {static_cast<std::uint8_t>(closed ? 1 : 0), 0};
+    s.candidates = {{0, 1}};
+    return s;
+}
+
+TEST(ContactResponseGl, VertexAboveAFaceIsPushedOutWithThePenaltyForce) {
+    const ContactParams params = testParams(0.1);
+    const double height = static_cast<float>(0.04);
+    const GpuResult gpu = runGpu(probeAboveFace(height, false), params);
+    const double expected = params.stiffness * (params.thickness - height); // k (h - d)
+    EXPECT_EQ(gpu.contacts, 1u);
+    EXPECT_NEAR(gpu.forces[3].y, expected, expected * 1e-5); // float rounding of h - d
+    EXPECT_NEAR(gpu.forces[0].y + gpu.forces[1].y + gpu.forces[2].y, -expected, expected * 1e-5);
+    EXPECT_EQ(gpu.forces[4], glm::dvec3(0.0));
+}
+
+TEST(ContactResponseGl, ClosedObjectsPushAShallowPenetrationOutAlongTheNormal) {
+    const ContactParams params = testParams(0.1);
+    const double depthBelow = static_cast<float>(0.03);
+    // Closed: the vertex 0.03 below the face is pushed up with k (h + 0.03).
+    const GpuResult closed = runGpu(probeAboveFace(-depthBelow, true), params);
+    EXPECT_NEAR(closed.forces[3].y, params.stiffness * (params.thickness + depthBelow), 1e-3);
+    // Open (cloth): the same vertex is on the other side and is pushed further down, k (h - 0.03).
+    const GpuResult open = runGpu(probeAboveFace(-depthBelow, false), params);
+    EXPECT_NEAR(open.forces[3].y, -params.stiffness * (params.thickness - depthBelow), 1e-3);
+    // Out of range on either side: nothing.
+    EXPECT_EQ(runGpu(probeAboveFace(0.2, true), params).contacts, 0u);
+    EXPECT_EQ(runGpu(probeAboveFace(-0.2, true), params).contacts, 0u);
+}
+
+TEST(ContactResponseGl, AVertexSharedByTwoCandidateFacesActsOnce) {
+    // Two faces share the probe vertex 3; only face 1 owns it. Both are candidates with face 0.
+    Soup s = probeAboveFace(0.05, false);
+    s.positions.push_back(glm::dvec3(glm::vec3(0.3f, 5.0f, 0.2f)));
+    s.velocities.emplace_back(0.0);
+    s.faces.insert(s.faces.end(), {3, 6, 5});
+    s.owned = {kOwnAll, GLC_OWN_VERTEX0, 0u};
+    s.faceObject = {0, 1, 1};
+    s.candidates = {{0, 1}, {0, 2}};
+    const ContactParams params = testParams(0.1);
+    const GpuResult gpu = runGpu(s, params);
+    EXPECT_EQ(gpu.contacts, 1u);
+    EXPECT_NEAR(gpu.forces[3].y, params.stiffness * 0.05, 1e-2);
+}
+
+} // namespace
+} // namespace glcollide
