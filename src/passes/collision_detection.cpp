@@ -1,0 +1,357 @@
+#include "passes/collision_detection.hpp"
+
+#include "cpu/collision_twin.hpp"
+#include "gl/debug_output.hpp"
+#include "gl/layout.hpp"
+
+#include <glcollide/error.hpp>
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <bit>
+
+namespace glcollide::passes {
+namespace {
+
+static_assert(cpu::kOwnVertex0 == GLC_OWN_VERTEX0 && cpu::kOwnVertex1 == GLC_OWN_VERTEX1 &&
+              cpu::kOwnVertex2 == GLC_OWN_VERTEX2 && cpu::kOwnEdge01 == GLC_OWN_EDGE01 &&
+              cpu::kOwnEdge12 == GLC_OWN_EDGE12 && cpu::kOwnEdge20 == GLC_OWN_EDGE20,
+              "cpu/octree.hpp and layout.glsl disagree on the owned-feature bits");
+
+// Mirrors of shaders/common/collision.glsl and the work-group sizes of the collision shaders.
+constexpr std::uint32_t kRuleBetweenObjects = 1u, kRuleSelf = 2u;
+constexpr std::uint32_t kBBUpdateGroup = 64;   // bb_update.comp GLC_BB_UPDATE_GROUP
+constexpr std::uint32_t kBoxPairTile = 8;      // bb_collision.comp box-pair variants: 8 x 8
+constexpr std::uint32_t kFacePairTile = 16;    // tri_tri.comp GLC_TRITRI_ALL_PAIRS: 16 x 16
+constexpr std::uint32_t kMaxGroups = 65535;    // GL 4.3 minimum of GL_MAX_COMPUTE_WORK_GROUP_COUNT
+constexpr std::size_t kPairBytes = 2 * sizeof(std::uint32_t); // uvec2
+
+// Counter words of GpuCollisionCounters.
+constexpr std::size_t kBoxPairCount = 0, kCandidateCount = 1, kIntersectionCount = 2,
+                      kExactFallbackCount = 3, kBoxPairCapacity = 4, kCandidateCapacity = 5,
+                      kIntersectionCapacity = 6;
+
+template <typename T>
+gl::Buffer makeBuffer(const char* label, const std::vector<T>& data) {
+    return gl::Buffer(label, data.size() * sizeof(T), data.empty() ? nullptr : data.data());
+}
+
+std::vector<std::string> triTriDefines(const CollisionConfig& c) {
+    std::vector<std::string> d;
+    if (c.settings.precision == TriTriPrecision::Robust) d.emplace_back("GLC_PRECISION_ROBUST");
+    if (c.settings.broadPhase != BroadPhase::Octree) d.emplace_back("GLC_TRITRI_ALL_PAIRS");
+    if (c.settings.broadPhase == BroadPhase::Masked) d.emplace_back("GLC_TRITRI_MASKED");
+    return d;
+}
+
+/// Dispatches `program` over the upper triangle (x >= y, diagonal included) of an n x n grid of
+/// invocations in groups of tile x tile, in chunks of at most 65535 groups per dimension; the
+/// shader adds (u_originX, u_originY) and rejects the invocations below the diagonal itself.
+void dispatchUpperTriangle(const gl::ComputeProgram& program, std::uint32_t n, std::uint32_t tile) {
+    if (n == 0) return;
+    const std::uint32_t groups = (n + tile - 1) / tile;
+    for (std::uint32_t gy = 0; gy < groups; gy += kMaxGroups) {
+        const std::uint32_t ny = std::min(kMaxGroups, groups - gy);
+        // Chunks wholly below the diagonal hold no invocation with x >= y.
+        for (std::uint32_t gx = gy; gx < groups; gx += kMaxGroups) {
+            const std::uint32_t nx = std::min(kMaxGroups, groups - gx);
+            program.set("u_originX", gx * tile);
+            program.set("u_originY", gy * tile);
+            glDispatchCompute(nx, ny, 1);
+        }
+        if (gy + ny >= groups) break;
+    }
+}
+
+} // namespace
+
+CollisionDetection::CollisionDetection(const CollisionConfig& config, const cpu::FlatModel& model)
+    : m_config(config),
+      m_pairRules((config.betweenObjects ? kRuleBetweenObjects : 0u) | (config.selfCollisions ? kRuleSelf : 0u)),
+      m_halfThickness(cpu::halfThicknessFloat(config.settings.thickness)),
+      m_faceCount(static_cast<std::uint32_t>(model.faceCount())),
+      m_layout(cpu::buildOctree(model, config.settings.octreeDepth)) {
+    const CollisionSettings& s = config.settings;
+    if (s.initialCapacity < 1) throw Error("collision: initialCapacity must be at least 1");
+    if (!(s.thickness > 0.0)) throw Error("collision: thickness must be positive");
+    const BroadPhase mode = s.broadPhase;
+
+    std::vector<gpu::GpuFaceInfo> info(m_faceCount);
+    for (std::uint32_t f = 0; f < m_faceCount; ++f)
+        info[f] = {m_layout.faceObject[f], m_layout.faceBox[f], m_layout.faceOwned[f], 0u};
+    m_faceInfo = makeBuffer("faceInfo", info);
+    std::vector<gpu::GpuObject> objects;
+    for (std::size_t o = 0; o < model.objects.size(); ++o) {
+        const cpu::ObjectRange& r = model.objects[o];
+        objects.push_back({r.firstNode, r.nodeCount, r.firstFace, r.faceCount, r.firstSpring, r.springCount,
+                           m_layout.firstBox[o], m_layout.closed[o]});
+    }
+    m_objects = makeBuffer("objects", objects);
+
+    if (mode != BroadPhase::AllPairs) {
+        m_boxes = gl::Buffer("boxes", std::size_t{m_layout.boxCount} * sizeof(gpu::GpuBox));
+        m_boxFaceOffsets = makeBuffer("boxFaceOffsets", m_layout.boxFaces.offsets);
+        m_boxFaceList = makeBuffer("boxFaceList", m_layout.boxFaces.items);
+        m_bbUpdate = gl::ComputeProgram("bb_update");
+        m_bbUpdate.set("u_boxCount", m_layout.boxCount);
+        m_bbUpdate.set("u_halfThickness", m_halfThickness);
+    }
+    if (mode == BroadPhase::Masked) {
+        if (m_layout.boxCount > kMaxGroups)
+            throw Error("collision: masked broad phase supports at most 65535 leaf boxes (the mask is boxes^2)");
+        m_boxMaskBuffer = gl::Buffer("boxMask", std::size_t{m_layout.boxCount} * m_layout.boxCount * sizeof(std::uint32_t));
+        m_boxMask = gl::ComputeProgram("bb_collision", {"GLC_BB_MASK"});
+    }
+    if (mode == BroadPhase::Octree) {
+        m_boxPairs = gl::ComputeProgram("bb_collision");
+        m_expand = gl::ComputeProgram("bb_collision", {"GLC_BB_EXPAND"});
+        m_args = gl::ComputeProgram("collision_dispatch_args");
+        m_boxPairCapacity = s.initialCapacity;
+        m_boxPairList = gl::Buffer("boxPairs", std::size_t{m_boxPairCapacity} * kPairBytes);
+        m_dispatchArgs = gl::Buffer("dispatchArgs", 2 * 3 * sizeof(std::uint32_t));
+    }
+    for (const gl::ComputeProgram* p : {&m_boxPairs, &m_boxMask, &m_expand}) {
+        if (p->name() == 0) continue; // not used by this mode
+        p->set("u_pairRules", m_pairRules);
+        p->set("u_boxCount", m_layout.boxCount);
+        p->set("u_boxesPerObject", m_layout.boxesPerObject);
+        p->set("u_halfThickness", m_halfThickness);
+    }
+    m_triTri = gl::ComputeProgram("tri_tri", triTriDefines(config));
+    m_triTri.set("u_faceCount", m_faceCount);
+    m_triTri.set("u_pairRules", m_pairRules);
+    m_triTri.set("u_halfThickness", m_halfThickness);
+    m_triTri.set("u_boxCount", m_layout.boxCount);
+
+    m_candidateCapacity = s.initialCapacity;
+    m_intersectionCapacity = s.initialCapacity;
+    m_candidates = gl::Buffer("candidates", std::size_t{m_candidateCapacity} * kPairBytes);
+    m_intersections = gl::Buffer("intersections", std::size_t{m_intersectionCapacity} * kPairBytes);
+    m_counters = gl::Buffer("collisionCounters", sizeof(gpu::GpuCollisionCounters));
+    writeCapacities();
+}
+
+std::vector<std::string> CollisionDetection::passNames() const {
+    if (m_config.settings.broadPhase == BroadPhase::AllPairs) return {kTriTri};
+    return {kBBUpdate, kBBCollision, kTriTri};
+}
+
+template <typename F>
+void CollisionDetection::timed(gl::GpuTimer* timer, std::size_t section, const char* name, F&& work) const {
+    gl::DebugGroup group(name);
+    if (timer) timer->begin(section);
+    work();
+    if (timer) timer->end(section);
+}
+
+void CollisionDetection::bindInputs(const DeviceBuffers& b) const {
+    bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, "CollisionDetection", "positions");
+    bindRequired(b.faces, GLC_BIND_FACES, "CollisionDetection", "faces");
+    m_faceInfo.bindStorage(GLC_BIND_FACE_INFO);
+    m_objects.bindStorage(GLC_BIND_OBJECTS);
+    m_candidates.bindStorage(GLC_BIND_FACE_PAIRS);
+    m_intersections.bindStorage(GLC_BIND_INTERSECTIONS);
+    m_counters.bindStorage(GLC_BIND_COLLISION_COUNTERS);
+    if (m_boxes) {
+        m_boxes.bindStorage(GLC_BIND_BOXES);
+        m_boxFaceOffsets.bindStorage(GLC_BIND_BOX_FACE_OFFSETS);
+        m_boxFaceList.bindStorage(GLC_BIND_BOX_FACE_LIST);
+    }
+    if (m_boxMaskBuffer) m_boxMaskBuffer.bindStorage(GLC_BIND_BOX_MASK);
+    if (m_boxPairList) m_boxPairList.bindStorage(GLC_BIND_BOX_PAIRS);
+    if (m_dispatchArgs) m_dispatchArgs.bindStorage(GLC_BIND_DISPATCH_ARGS);
+}
+
+void CollisionDetection::bindOutputs() const {
+    m_faceInfo.bindStorage(GLC_BIND_FACE_INFO);
+    m_objects.bindStorage(GLC_BIND_OBJECTS);
+    m_candidates.bindStorage(GLC_BIND_FACE_PAIRS);
+    m_intersections.bindStorage(GLC_BIND_INTERSECTIONS);
+    m_counters.bindStorage(GLC_BIND_COLLISION_COUNTERS);
+}
+
+void CollisionDetection::writeCapacities() {
+    const std::uint32_t caps[3] = {m_boxPairCapacity, m_candidateCapacity, m_intersectionCapacity};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after earlier shader writes to the counters
+    m_counters.upload(kBoxPairCapacity * sizeof(std::uint32_t), sizeof caps, caps);
+}
+
+void CollisionDetection::resetCounts(bool boxPairs, bool candidates, bool intersections) {
+    // Counts of later stages are reset with their producer's, since they depend on its output;
+    // the exact-fallback count belongs to the last TriTri run. contactCount is the response's.
+    if (!boxPairs && !candidates && !intersections) return;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    const std::uint32_t zeros[4] = {0, 0, 0, 0};
+    const std::size_t first = boxPairs ? kBoxPairCount : candidates ? kCandidateCount : kIntersectionCount;
+    m_counters.upload(first * sizeof(std::uint32_t), (kExactFallbackCount + 1 - first) * sizeof(std::uint32_t), zeros);
+}
+
+void CollisionDetection::readCounters() {
+    m_counters.download(0, sizeof m_rawCounters, m_rawCounters.data());
+    m_counts.boxPairs = m_rawCounters[kBoxPairCount];
+    m_counts.candidates = m_rawCounters[kCandidateCount];
+    m_counts.intersections = m_rawCounters[kIntersectionCount];
+    m_counts.exactFallbacks = m_rawCounters[kExactFallbackCount];
+}
+
+void CollisionDetection::grow(gl::Buffer& list, std::uint32_t& capacity, std::uint32_t count, const char* label) {
+    capacity = std::bit_ceil(count);
+    list = gl::Buffer(label, std::size_t{capacity} * kPairBytes);
+    writeCapacities();
+}
+
+void CollisionDetection::runBBUpdate() const {
+    m_bbUpdate.use();
+    m_bbUpdate.dispatch1D(m_layout.boxCount * kBBUpdateGroup, kBBUpdateGroup); // one group per box
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void CollisionDetection::runBoxPairs() const {
+    m_boxPairs.use();
+    dispatchUpperTriangle(m_boxPairs, m_layout.boxCount, kBoxPairTile);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    // Expansion: one group per box pair, sized on the GPU.
+    m_args.use();
+    m_args.set("u_source", 0u);
+    m_args.set("u_invocationsPerGroup", 1u);
+    m_args.set("u_slot", 0u);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
+}
+
+void CollisionDetection::runExpand() const {
+    m_expand.use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_dispatchArgs.name());
+    glDispatchComputeIndirect(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    m_args.use();
+    m_args.set("u_source", 1u);
+    m_args.set("u_invocationsPerGroup", static_cast<std::uint32_t>(GLC_WORKGROUP_SIZE));
+    m_args.set("u_slot", 1u);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
+}
+
+void CollisionDetection::runTriTriCandidates() const {
+    m_triTri.use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_dispatchArgs.name());
+    glDispatchComputeIndirect(static_cast<GLintptr>(3 * sizeof(std::uint32_t)));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void CollisionDetection::runTriTriAllPairs(std::uint32_t faceCount) const {
+    m_triTri.use();
+    dispatchUpperTriangle(m_triTri, faceCount, kFacePairTile);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::GpuTimer* timer, std::size_t timerBase) {
+    if (buffers.faceCount != m_faceCount)
+        throw Error("CollisionDetection: built for " + std::to_string(m_faceCount) + " faces, given " +
+                    std::to_string(buffers.faceCount));
+    m_counts = {};
+    bindInputs(buffers);
+    resetCounts(true, true, true);
+    const BroadPhase mode = m_config.settings.broadPhase;
+    const std::size_t bbUpdate = timerBase, bbCollision = timerBase + 1,
+                      triTri = mode == BroadPhase::AllPairs ? timerBase : timerBase + 2;
+    const std::uint32_t faces = m_faceCount;
+    std::uint32_t reruns = 0;
+
+    if (mode != BroadPhase::AllPairs) timed(timer, bbUpdate, kBBUpdate, [&] { runBBUpdate(); });
+    if (mode == BroadPhase::Octree) {
+        // Sync point: one read-back after the whole chain; the expansion and TriTri are sized on
+        // the GPU (indirect dispatch). A list that overflowed invalidates what was built from it,
+        // so the rerun starts at the stage whose list overflowed.
+        timed(timer, bbCollision, kBBCollision, [&] { runBoxPairs(); runExpand(); });
+        timed(timer, triTri, kTriTri, [&] { runTriTriCandidates(); });
+        for (readCounters();; readCounters()) {
+            if (m_counts.boxPairs > m_boxPairCapacity) {
+                grow(m_boxPairList, m_boxPairCapacity, m_counts.boxPairs, "boxPairs");
+                bindInputs(buffers);
+                resetCounts(true, true, true);
+                timed(timer, bbCollision, kBBCollision, [&] { runBoxPairs(); runExpand(); });
+                timed(timer, triTri, kTriTri, [&] { runTriTriCandidates(); });
+            } else if (m_counts.candidates > m_candidateCapacity) {
+                grow(m_candidates, m_candidateCapacity, m_counts.candidates, "candidates");
+                bindInputs(buffers);
+                resetCounts(false, true, true);
+                // The box pairs are intact: rerun from their expansion.
+                timed(timer, bbCollision, kBBCollision, [&] { runExpand(); });
+                timed(timer, triTri, kTriTri, [&] { runTriTriCandidates(); });
+            } else if (m_counts.intersections > m_intersectionCapacity) {
+                grow(m_intersections, m_intersectionCapacity, m_counts.intersections, "intersections");
+                bindInputs(buffers);
+                resetCounts(false, false, true);
+                timed(timer, triTri, kTriTri, [&] { runTriTriCandidates(); });
+            } else {
+                break;
+            }
+            ++reruns;
+        }
+    } else {
+        if (mode == BroadPhase::Masked)
+            timed(timer, bbCollision, kBBCollision, [&] {
+                m_boxMask.use();
+                dispatchUpperTriangle(m_boxMask, m_layout.boxCount, kBoxPairTile);
+                glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            });
+        // Sync point: one read-back after TriTri, which fills both lists in one pass.
+        timed(timer, triTri, kTriTri, [&] { runTriTriAllPairs(faces); });
+        for (readCounters(); m_counts.candidates > m_candidateCapacity ||
+                             m_counts.intersections > m_intersectionCapacity;
+             readCounters()) {
+            if (m_counts.candidates > m_candidateCapacity)
+                grow(m_candidates, m_candidateCapacity, m_counts.candidates, "candidates");
+            if (m_counts.intersections > m_intersectionCapacity)
+                grow(m_intersections, m_intersectionCapacity, m_counts.intersections, "intersections");
+            bindInputs(buffers);
+            resetCounts(false, true, true);
+            timed(timer, triTri, kTriTri, [&] { runTriTriAllPairs(faces); });
+            ++reruns;
+        }
+    }
+    m_counts.reruns = reruns;
+    return m_counts;
+}
+
+namespace {
+std::vector<std::array<std::uint32_t, 2>> readPairs(const gl::Buffer& list, std::uint32_t count) {
+    std::vector<std::array<std::uint32_t, 2>> pairs(count);
+    static_assert(sizeof(std::array<std::uint32_t, 2>) == kPairBytes);
+    list.download(0, std::size_t{count} * kPairBytes, pairs.data());
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+}
+} // namespace
+
+std::vector<std::array<std::uint32_t, 2>> CollisionDetection::readCandidates() const {
+    return readPairs(m_candidates, std::min(m_counts.candidates, m_candidateCapacity));
+}
+
+std::vector<std::array<std::uint32_t, 2>> CollisionDetection::readIntersections() const {
+    return readPairs(m_intersections, std::min(m_counts.intersections, m_intersectionCapacity));
+}
+
+std::vector<std::string> CollisionDetection::allocatedLabels() const {
+    std::vector<std::string> labels;
+    for (const gl::Buffer* b : {&m_faceInfo, &m_objects, &m_boxes, &m_boxFaceOffsets, &m_boxFaceList,
+                                &m_boxMaskBuffer, &m_boxPairList, &m_candidates, &m_intersections,
+                                &m_counters, &m_dispatchArgs})
+        if (*b) labels.push_back(b->label());
+    return labels;
+}
+
+std::size_t CollisionDetection::allocatedBytes() const {
+    std::size_t bytes = 0;
+    for (const gl::Buffer* b : {&m_faceInfo, &m_objects, &m_boxes, &m_boxFaceOffsets, &m_boxFaceList,
+                                &m_boxMaskBuffer, &m_boxPairList, &m_candidates, &m_intersections,
+                                &m_counters, &m_dispatchArgs})
+        if (*b) bytes += b->bytes();
+    return bytes;
+}
+
+} // namespace glcollide::passes
