@@ -1,0 +1,54 @@
+#pragma once
+// Triangle-pair generators shared by the narrow-phase tests and the tri-tri benchmark: the hard
+// cases (hand-made, touching / coplanar / one ulp apart / tiny / far / zero-area / denormal /
+// huge) and seeded random sets, uniform and near-degenerate. All coordinates are floats, the
+// precision the GPU works in; the oracle gets them widened to double exactly.
+
+#include "cpu/exact_tri_tri.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace glcollide::cpu {
+
+/// a0 a1 a2 b0 b1 b2, xyz each.
+using FloatTriPair = std::array<float, 18>;
+
+struct NamedTriPair {
+    std::string name;
+    FloatTriPair pair;
+};
+
+/// The hand-made hard cases, each in its six variants (three corner rotations, both orders).
+std::vector<NamedTriPair> hardTriTriCases();
+
+/// Seeded random sets.
+enum class TriTriSet {
+    Uniform,    ///< corners uniform in a cube: mostly clear-cut, about 10 % intersecting
+    Grid,       ///< corners on a coarse integer grid: exact coplanarity, touching, zero area
+    Coplanar,   ///< both triangles in one slanted plane (exactly, on a lattice of the plane)
+    Touching,   ///< pairs built to touch: shared corner, shared edge, corner on face, edge on edge
+    Ulp,        ///< touching pairs with one coordinate moved one float step
+    Degenerate, ///< zero-area triangles (segments, points) against triangles and each other
+    Scaled,     ///< grid pairs scaled to 1e-6 .. 1e6 and moved far from the origin
+};
+
+inline constexpr std::array<TriTriSet, 7> kAllTriTriSets = {TriTriSet::Uniform, TriTriSet::Grid,    TriTriSet::Coplanar,
+                                                            TriTriSet::Touching, TriTriSet::Ulp, TriTriSet::Degenerate,
+                                                            TriTriSet::Scaled};
+
+const char* toString(TriTriSet set);
+
+/// `count` pairs of the set, deterministic for a given seed.
+std::vector<FloatTriPair> randomTriTriPairs(TriTriSet set, std::size_t count, std::uint32_t seed);
+
+/// Corner k (0..5) of a pair as doubles (exact).
+glm::dvec3 corner(const FloatTriPair& pair, int k);
+
+/// The oracle on a float pair.
+bool exactPairIntersects(const FloatTriPair& pair);
+
+} // namespace glcollide::cpu
