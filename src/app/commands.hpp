@@ -29,4 +29,14 @@ struct InfoOptions {
 
 int infoCommand(const InfoOptions& options);
 
+struct QueryTriTriOptions {
+    std::string inPath;                ///< CSV of triangle pairs (docs/narrow-phase.md)
+    std::string outPath;               ///< empty: answers on stdout
+    std::string precision = "robust";  ///< fast or robust
+    std::string device;
+};
+
+/// glcollide query tritri: one line `1` (the closed triangles intersect) or `0` per data row.
+int queryTriTriCommand(const QueryTriTriOptions& options);
+
 } // namespace glcollide::app

@@ -30,6 +30,19 @@ int main(int argc, char** argv) {
     infoCmd->add_option("--device", info.device, "EGL device: auto, software, <index> or cuda:<n>");
     infoCmd->add_flag("--json", info.json, "Print JSON");
 
+    glcollide::app::QueryTriTriOptions tritri;
+    CLI::App* queryCmd = cli.add_subcommand("query", "Answer geometric queries on the GPU");
+    queryCmd->require_subcommand(1);
+    CLI::App* tritriCmd = queryCmd->add_subcommand(
+        "tritri", "Triangle-triangle intersection for each row of a CSV (18 numbers: a0 a1 a2 b0 b1 b2, xyz each); "
+                  "prints 1 or 0 per row");
+    tritriCmd->add_option("--in", tritri.inPath, "CSV of triangle pairs; blank lines and # comment lines are skipped")->required();
+    tritriCmd->add_option("--out", tritri.outPath, "Write the answers here (default: stdout)");
+    tritriCmd->add_option("--precision", tritri.precision, "fast (Moeller 1997, float, epsilon) or robust (exact)")
+        ->check(CLI::IsMember({"fast", "robust"}))
+        ->default_val("robust");
+    tritriCmd->add_option("--device", tritri.device, "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
+
     try {
         cli.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -41,6 +54,7 @@ int main(int argc, char** argv) {
             return glcollide::app::runCommand(run);
         }
         if (infoCmd->parsed()) return glcollide::app::infoCommand(info);
+        if (tritriCmd->parsed()) return glcollide::app::queryTriTriCommand(tritri);
     } catch (const glcollide::Error& e) {
         std::cerr << "glcollide: error: " << e.what() << "\n";
         return 1;
