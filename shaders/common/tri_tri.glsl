@@ -158,9 +158,11 @@ const float GLC_FILTER_RANGE = 1099511627776.0;  // 2^40: larger coordinates go 
 
 bool glcInRange(vec3 v) { return all(lessThanEqual(abs(v), vec3(GLC_FILTER_RANGE))); }
 
-// Sign of det[b-a, c-a, d-a] = (b-a) x (c-a) . (d-a): d above (+), on (0), below (-) plane abc.
-int glcOrient3d(vec3 a, vec3 b, vec3 c, vec3 d) {
-    if (glcExactPending) return 0;
+// Sign of det[b-a, c-a, d-a] = (b-a) x (c-a) . (d-a) (d above (+) or below (-) the plane abc)
+// when the filter certifies it, else GLC_UNDECIDED.
+const int GLC_UNDECIDED = 2;
+
+int glcOrient3dFilter(vec3 a, vec3 b, vec3 c, vec3 d) {
     if (glcInRange(a) && glcInRange(b) && glcInRange(c) && glcInRange(d)) {
         precise vec3 ba = b - a;
         precise vec3 ca = c - a;
@@ -177,16 +179,23 @@ int glcOrient3d(vec3 a, vec3 b, vec3 c, vec3 d) {
         if (det > bound) return 1;
         if (-det > bound) return -1;
     }
-    return glcUndecided(a, b, c, d);
+    return GLC_UNDECIDED;
+}
+
+// The exact sign of det[b-a, c-a, d-a]: the filter's, else the exact path's.
+int glcOrient3d(vec3 a, vec3 b, vec3 c, vec3 d) {
+    if (glcExactPending) return 0;
+    int s = glcOrient3dFilter(a, b, c, d);
+    return s != GLC_UNDECIDED ? s : glcUndecided(a, b, c, d);
 }
 
 // The 2D view of a point that drops coordinate `drop` (0: (y,z), 1: (x,z), 2: (x,y)), as in the
 // oracle's Projection.
 vec2 glcProject(vec3 v, int drop) { return drop == 0 ? v.yz : (drop == 1 ? v.xz : v.xy); }
 
-// Sign of (b.u-a.u)(c.w-a.w) - (b.w-a.w)(c.u-a.u) in the projection dropping `drop`.
-int glcOrient2d(vec3 fa, vec3 fb, vec3 fc, int drop) {
-    if (glcExactPending) return 0;
+// Sign of (b.u-a.u)(c.w-a.w) - (b.w-a.w)(c.u-a.u) in the projection dropping `drop` when the
+// filter certifies it, else GLC_UNDECIDED.
+int glcOrient2dFilter(vec3 fa, vec3 fb, vec3 fc, int drop) {
     vec2 a = glcProject(fa, drop), b = glcProject(fb, drop), c = glcProject(fc, drop);
     if (all(lessThanEqual(max(max(abs(a), abs(b)), abs(c)), vec2(GLC_FILTER_RANGE)))) {
         precise vec2 ba = b - a;
@@ -201,7 +210,16 @@ int glcOrient2d(vec3 fa, vec3 fb, vec3 fc, int drop) {
         if (det > bound) return 1;
         if (-det > bound) return -1;
     }
-    return glcUndecided(vec3(a, 0.0), vec3(b, 0.0), vec3(c, 0.0), vec3(0.0, 0.0, 1.0));
+    return GLC_UNDECIDED;
+}
+
+// The exact sign of the orient2d: the filter's, else the exact path's (lifted to orient3d).
+int glcOrient2d(vec3 a, vec3 b, vec3 c, int drop) {
+    if (glcExactPending) return 0;
+    int s = glcOrient2dFilter(a, b, c, drop);
+    if (s != GLC_UNDECIDED) return s;
+    vec2 pa = glcProject(a, drop), pb = glcProject(b, drop), pc = glcProject(c, drop);
+    return glcUndecided(vec3(pa, 0.0), vec3(pb, 0.0), vec3(pc, 0.0), vec3(0.0, 0.0, 1.0));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -367,7 +385,21 @@ bool glcRobustTriTri(vec3 a0, vec3 a1, vec3 a2, vec3 b0, vec3 b1, vec3 b2) {
     return s.count >= t.count ? glcShapesIntersectOrdered(s, t) : glcShapesIntersectOrdered(t, s);
 }
 
+// The common case in straight-line code: both triangles certified proper (a nonzero normal
+// component) and one certified strictly on one side of the other's plane. These are the oracle's
+// first decisions, so "separated" here is its answer; anything else goes to the full procedure.
+bool glcCertifiedSeparated(vec3 a0, vec3 a1, vec3 a2, vec3 b0, vec3 b1, vec3 b2) {
+    int sa = glcOrient2dFilter(a0, a1, a2, glcAxesByMagnitude(cross(a1 - a0, a2 - a0)).x);
+    int sb = glcOrient2dFilter(b0, b1, b2, glcAxesByMagnitude(cross(b1 - b0, b2 - b0)).x);
+    if (sa == 0 || sa == GLC_UNDECIDED || sb == 0 || sb == GLC_UNDECIDED) return false;
+    int d0 = glcOrient3dFilter(a0, a1, a2, b0), d1 = glcOrient3dFilter(a0, a1, a2, b1), d2 = glcOrient3dFilter(a0, a1, a2, b2);
+    if ((d0 == 1 && d1 == 1 && d2 == 1) || (d0 == -1 && d1 == -1 && d2 == -1)) return true;
+    int e0 = glcOrient3dFilter(b0, b1, b2, a0), e1 = glcOrient3dFilter(b0, b1, b2, a1), e2 = glcOrient3dFilter(b0, b1, b2, a2);
+    return (e0 == 1 && e1 == 1 && e2 == 1) || (e0 == -1 && e1 == -1 && e2 == -1);
+}
+
 bool triTriIntersect(vec3 a0, vec3 a1, vec3 a2, vec3 b0, vec3 b1, vec3 b2) {
+    if (glcCertifiedSeparated(a0, a1, a2, b0, b1, b2)) return false;
     glcExactKnown = 0;
     bool hit = false;
     for (int run = 0; run <= GLC_MAX_EXACT; ++run) {
