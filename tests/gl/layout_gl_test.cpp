@@ -31,6 +31,17 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"NodeSpringListBuf", GLC_BIND_NODE_SPRING_LIST},
     {"NodeFaceOffsetsBuf", GLC_BIND_NODE_FACE_OFFSETS},
     {"NodeFaceListBuf", GLC_BIND_NODE_FACE_LIST},
+    // collision detection (src/passes/collision_detection.cpp)
+    {"BoxesBuf", GLC_BIND_BOXES},
+    {"IntersectionsBuf", GLC_BIND_INTERSECTIONS},
+    {"FaceInfoBuf", GLC_BIND_FACE_INFO},
+    {"BoxFaceListBuf", GLC_BIND_BOX_FACE_LIST},
+    {"FacePairsBuf", GLC_BIND_FACE_PAIRS},
+    {"BoxMaskBuf", GLC_BIND_BOX_MASK},
+    {"BoxFaceOffsetsBuf", GLC_BIND_BOX_FACE_OFFSETS},
+    {"BoxPairsBuf", GLC_BIND_BOX_PAIRS},
+    {"CollisionCountersBuf", GLC_BIND_COLLISION_COUNTERS},
+    {"DispatchArgsBuf", GLC_BIND_DISPATCH_ARGS},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {
@@ -48,6 +59,14 @@ std::vector<gl::ComputeProgram> allPrograms() {
     p.emplace_back("node_force", std::vector<std::string>{"GLC_GRAVITY", "GLC_DAMPING", "GLC_WIND"});
     p.emplace_back("spring_update", std::vector<std::string>{"GLC_ACCUMULATE"});
     p.emplace_back("node_update", std::vector<std::string>{"GLC_FORCES", "GLC_GROUND"});
+    // Collision detection: every variant (precision adds no block, so the fast ones suffice).
+    p.emplace_back("bb_update");
+    p.emplace_back("bb_collision");
+    p.emplace_back("bb_collision", std::vector<std::string>{"GLC_BB_MASK"});
+    p.emplace_back("bb_collision", std::vector<std::string>{"GLC_BB_EXPAND"});
+    p.emplace_back("collision_dispatch_args");
+    p.emplace_back("tri_tri");
+    p.emplace_back("tri_tri", std::vector<std::string>{"GLC_TRITRI_ALL_PAIRS", "GLC_TRITRI_MASKED"});
     return p;
 }
 
@@ -128,6 +147,36 @@ TEST(LayoutGl, ObjectStructMatchesCpp) {
         {"g_objects[0].faceCount", offsetof(gpu::GpuObject, faceCount)},
         {"g_objects[0].firstSpring", offsetof(gpu::GpuObject, firstSpring)},
         {"g_objects[0].springCount", offsetof(gpu::GpuObject, springCount)},
+    };
+    for (const auto& [name, offset] : members)
+        EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset)) << name;
+}
+
+// The collision structs, as the collision shaders see them.
+TEST(LayoutGl, CollisionStructsMatchCpp) {
+    gl::ComputeProgram update("bb_update"), expand("bb_collision", {"GLC_BB_EXPAND"});
+    EXPECT_EQ(resourceProperty(update.name(), GL_BUFFER_VARIABLE, "g_boxes[0].lo", GL_TOP_LEVEL_ARRAY_STRIDE),
+              static_cast<GLint>(sizeof(gpu::GpuBox)));
+    EXPECT_EQ(resourceProperty(update.name(), GL_BUFFER_VARIABLE, "g_boxes[0].lo", GL_OFFSET),
+              static_cast<GLint>(offsetof(gpu::GpuBox, lo)));
+    EXPECT_EQ(resourceProperty(update.name(), GL_BUFFER_VARIABLE, "g_boxes[0].hi", GL_OFFSET),
+              static_cast<GLint>(offsetof(gpu::GpuBox, hi)));
+    const GLuint p = expand.name();
+    EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, "g_faceInfo[0].object", GL_TOP_LEVEL_ARRAY_STRIDE),
+              static_cast<GLint>(sizeof(gpu::GpuFaceInfo)));
+    const std::pair<const char*, std::size_t> members[] = {
+        {"g_faceInfo[0].object", offsetof(gpu::GpuFaceInfo, object)},
+        {"g_faceInfo[0].box", offsetof(gpu::GpuFaceInfo, box)},
+        {"g_faceInfo[0].owned", offsetof(gpu::GpuFaceInfo, owned)},
+        {"g_faceInfo[0].pad0", offsetof(gpu::GpuFaceInfo, pad0)},
+        {"g_counters.boxPairCount", offsetof(gpu::GpuCollisionCounters, boxPairCount)},
+        {"g_counters.candidateCount", offsetof(gpu::GpuCollisionCounters, candidateCount)},
+        {"g_counters.intersectionCount", offsetof(gpu::GpuCollisionCounters, intersectionCount)},
+        {"g_counters.exactFallbackCount", offsetof(gpu::GpuCollisionCounters, exactFallbackCount)},
+        {"g_counters.boxPairCapacity", offsetof(gpu::GpuCollisionCounters, boxPairCapacity)},
+        {"g_counters.candidateCapacity", offsetof(gpu::GpuCollisionCounters, candidateCapacity)},
+        {"g_counters.intersectionCapacity", offsetof(gpu::GpuCollisionCounters, intersectionCapacity)},
+        {"g_counters.contactCount", offsetof(gpu::GpuCollisionCounters, contactCount)},
     };
     for (const auto& [name, offset] : members)
         EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset)) << name;

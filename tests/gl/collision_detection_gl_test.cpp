@@ -1,0 +1,293 @@
+// Differential tests of the collision detection (BBUpdate, BBCollision, TriTri; seeds/002 Alg.
+// 1-3) against the brute-force CPU twin (src/cpu/collision_twin.cpp): for every broad phase
+// (octree depth 1-3, masked, all-pairs) and every pair rule (between objects, self, both), the
+// GPU's candidate set equals the twin's exactly, and with robust precision the intersection set
+// equals the exact rational oracle's. Inputs are seeded random triangle soups (strips, so
+// neighbouring faces share nodes) of 1, L-1, L+1 and a large prime number of faces (L = 128),
+// moved away from the rest pose the octree was built on. Discrete outputs: no tolerance anywhere;
+// both sides compute the face boxes in the same float operations.
+
+#include "cpu/collision_twin.hpp"
+#include "cpu/flat_model.hpp"
+#include "cpu/octree.hpp"
+#include "gl/layout.hpp"
+#include "passes/collision_detection.hpp"
+
+#include <gtest/gtest.h>
+
+#include <glm/common.hpp>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <sstream>
+#include <tuple>
+
+namespace glcollide {
+namespace {
+
+using Pairs = std::vector<std::array<std::uint32_t, 2>>;
+
+constexpr double kThickness = 0.01; // m
+
+struct Soup {
+    cpu::FlatModel model;             // rest pose (the octree is built on it)
+    std::vector<glm::vec3> current;   // positions the GPU detects on
+};
+
+/// `faces` triangles split over `objects` objects; each object is a random-walk triangle strip
+/// (face k uses nodes k, k+1, k+2) in the unit cube with steps up to 0.15 m, then every node is
+/// moved by up to 0.03 m and each object by `objectOffset` * its index, so the current pose is not
+/// the rest pose.
+Soup makeSoup(std::uint32_t faces, std::uint32_t objects, std::uint32_t seed, glm::vec3 objectOffset = {}) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f), step(-0.15f, 0.15f), jitter(-0.03f, 0.03f);
+    Soup s;
+    cpu::FlatModel& m = s.model;
+    std::uint32_t faceBegin = 0;
+    for (std::uint32_t o = 0; o < objects; ++o) {
+        const std::uint32_t n = faces / objects + (o + 1 == objects ? faces % objects : 0u);
+        cpu::ObjectRange r;
+        r.firstNode = static_cast<std::uint32_t>(m.positions.size());
+        r.firstFace = faceBegin;
+        r.faceCount = n;
+        r.nodeCount = n == 0 ? 0 : n + 2;
+        glm::vec3 p(unit(rng), unit(rng), unit(rng));
+        for (std::uint32_t k = 0; k < r.nodeCount; ++k) {
+            p = glm::clamp(p + glm::vec3(step(rng), step(rng), step(rng)), glm::vec3(0.0f), glm::vec3(1.0f));
+            m.positions.emplace_back(p); // float values: exactly what the GPU gets
+            s.current.push_back(p + glm::vec3(jitter(rng), jitter(rng), jitter(rng)) + objectOffset * static_cast<float>(o));
+        }
+        for (std::uint32_t k = 0; k < n; ++k)
+            m.faceIndices.insert(m.faceIndices.end(), {r.firstNode + k, r.firstNode + k + 1, r.firstNode + k + 2});
+        m.objects.push_back(r);
+        faceBegin += n;
+    }
+    m.velocities.assign(m.positions.size(), glm::dvec3(0.0));
+    m.masses.assign(m.positions.size(), 1.0);
+    m.inverseMasses.assign(m.positions.size(), 1.0);
+    return s;
+}
+
+passes::DeviceBuffers upload(const Soup& s) {
+    passes::DeviceBuffers b;
+    b.nodeCount = static_cast<std::uint32_t>(s.current.size());
+    b.faceCount = static_cast<std::uint32_t>(s.model.faceCount());
+    std::vector<glm::vec4> p;
+    for (const glm::vec3& x : s.current) p.emplace_back(x, 1.0f);
+    b.positions = gl::Buffer("positions", p.size() * sizeof(glm::vec4), p.empty() ? nullptr : p.data());
+    b.faces = gl::Buffer("faces", s.model.faceIndices.size() * sizeof(std::uint32_t),
+                         s.model.faceIndices.empty() ? nullptr : s.model.faceIndices.data());
+    return b;
+}
+
+struct Mode {
+    BroadPhase broadPhase;
+    int depth;
+};
+
+std::string modeName(const Mode& m) {
+    switch (m.broadPhase) {
+    case BroadPhase::Octree: return "Octree" + std::to_string(m.depth);
+    case BroadPhase::Masked: return "Masked" + std::to_string(m.depth);
+    case BroadPhase::AllPairs: return "AllPairs";
+    }
+    return "?";
+}
+
+const Mode kModes[] = {{BroadPhase::Octree, 1}, {BroadPhase::Octree, 2}, {BroadPhase::Octree, 3},
+                       {BroadPhase::Masked, 1}, {BroadPhase::Masked, 2}, {BroadPhase::AllPairs, 2}};
+const std::uint32_t kFaceCounts[] = {1, GLC_WORKGROUP_SIZE - 1, GLC_WORKGROUP_SIZE + 1, 1009};
+const cpu::PairRules kRules[] = {{true, false}, {false, true}, {true, true}};
+
+passes::CollisionConfig configFor(const Mode& mode, const cpu::PairRules& rules, TriTriPrecision precision,
+                                  std::uint32_t capacity = 4096) {
+    passes::CollisionConfig c;
+    c.betweenObjects = rules.betweenObjects;
+    c.selfCollisions = rules.selfCollisions;
+    c.settings.broadPhase = mode.broadPhase;
+    c.settings.octreeDepth = mode.depth;
+    c.settings.precision = precision;
+    c.settings.thickness = kThickness;
+    c.settings.initialCapacity = capacity;
+    return c;
+}
+
+/// The twin's answer for a soup and rule, computed once per (faces, rules).
+struct Expected {
+    Pairs candidates, intersections;
+};
+const Expected& expected(const Soup& soup, std::uint32_t faces, const cpu::PairRules& rules) {
+    static std::map<std::tuple<std::uint32_t, bool, bool>, Expected> cache;
+    const auto key = std::make_tuple(faces, rules.betweenObjects, rules.selfCollisions);
+    auto it = cache.find(key);
+    if (it != cache.end()) return it->second;
+    const cpu::OctreeLayout layout = cpu::buildOctree(soup.model, 1);
+    Expected e;
+    e.candidates = cpu::twinCandidates(soup.model.faceIndices, layout.faceObject, soup.current, kThickness, rules);
+    e.intersections = cpu::twinIntersections(soup.model.faceIndices, soup.current, e.candidates);
+    return cache.emplace(key, std::move(e)).first->second;
+}
+
+std::uint32_t seedFor(std::uint32_t faces) { return 1234u + faces; }
+
+class CollisionDetectionGl : public ::testing::TestWithParam<std::tuple<Mode, std::uint32_t, cpu::PairRules>> {};
+
+TEST_P(CollisionDetectionGl, CandidatesAndIntersectionsMatchTheTwin) {
+    const auto& [mode, faces, rules] = GetParam();
+    const Soup soup = makeSoup(faces, 3, seedFor(faces));
+    const passes::DeviceBuffers buffers = upload(soup);
+    const Expected& e = expected(soup, faces, rules);
+    passes::CollisionDetection detection(configFor(mode, rules, TriTriPrecision::Robust, 1u << 16), soup.model);
+    const passes::CollisionCounts counts = detection.detect(buffers, nullptr, 0);
+    EXPECT_EQ(counts.candidates, e.candidates.size());
+    EXPECT_EQ(detection.readCandidates(), e.candidates);
+    EXPECT_EQ(counts.intersections, e.intersections.size());
+    EXPECT_EQ(detection.readIntersections(), e.intersections) << "robust TriTri vs the exact oracle";
+    EXPECT_EQ(counts.reruns, 0u); // 2^16 entries hold every list of these soups (growth: CapacityOne...)
+    if (faces == 1009) {
+        // The soup is dense enough that every rule finds work.
+        EXPECT_GT(e.candidates.size(), 100u);
+        EXPECT_GT(e.intersections.size(), 10u);
+        RecordProperty("candidates", static_cast<int>(e.candidates.size()));
+        RecordProperty("intersections", static_cast<int>(e.intersections.size()));
+        RecordProperty("exact_fallbacks", static_cast<int>(counts.exactFallbacks));
+    }
+    // Detecting again on the same positions gives the same sets (counters are reset per call).
+    detection.detect(buffers, nullptr, 0);
+    EXPECT_EQ(detection.readCandidates(), e.candidates);
+}
+
+std::string caseName(const ::testing::TestParamInfo<CollisionDetectionGl::ParamType>& info) {
+    const auto& [mode, faces, rules] = info.param;
+    const char* r = rules.betweenObjects ? (rules.selfCollisions ? "Both" : "Between") : "Self";
+    return modeName(mode) + "_" + std::to_string(faces) + "_" + r;
+}
+
+INSTANTIATE_TEST_SUITE_P(Soups, CollisionDetectionGl,
+                         ::testing::Combine(::testing::ValuesIn(kModes), ::testing::ValuesIn(kFaceCounts),
+                                            ::testing::ValuesIn(kRules)),
+                         caseName);
+
+TEST(CollisionDetectionGlCases, FastPrecisionFindsTheSameCandidates) {
+    const Soup soup = makeSoup(1009, 3, seedFor(1009));
+    const passes::DeviceBuffers buffers = upload(soup);
+    const cpu::PairRules rules{true, true};
+    const Expected& e = expected(soup, 1009, rules);
+    for (const Mode& mode : kModes) {
+        passes::CollisionDetection detection(configFor(mode, rules, TriTriPrecision::Fast), soup.model);
+        const passes::CollisionCounts counts = detection.detect(buffers, nullptr, 0);
+        EXPECT_EQ(detection.readCandidates(), e.candidates) << modeName(mode);
+        EXPECT_EQ(counts.exactFallbacks, 0u) << modeName(mode);
+        // Fast TriTri may disagree with the exact oracle near degenerate configurations; these
+        // random soups have none, so a large disagreement would be a bug in the plumbing.
+        const Pairs got = detection.readIntersections();
+        Pairs diff;
+        std::set_symmetric_difference(got.begin(), got.end(), e.intersections.begin(), e.intersections.end(),
+                                      std::back_inserter(diff));
+        EXPECT_LE(diff.size(), 2u) << modeName(mode);
+        RecordProperty("fast_disagreements_" + modeName(mode), static_cast<int>(diff.size()));
+    }
+}
+
+TEST(CollisionDetectionGlCases, BodiesFarApartHaveNoCandidates) {
+    const Soup soup = makeSoup(1009, 2, 99, glm::vec3(100.0f, 0.0f, 0.0f));
+    const passes::DeviceBuffers buffers = upload(soup);
+    for (const Mode& mode : kModes) {
+        passes::CollisionDetection detection(configFor(mode, {true, false}, TriTriPrecision::Robust), soup.model);
+        const passes::CollisionCounts counts = detection.detect(buffers, nullptr, 0);
+        EXPECT_EQ(counts.boxPairs, 0u) << modeName(mode);
+        EXPECT_EQ(counts.candidates, 0u) << modeName(mode);
+        EXPECT_EQ(counts.intersections, 0u) << modeName(mode);
+        EXPECT_TRUE(detection.readCandidates().empty());
+    }
+}
+
+TEST(CollisionDetectionGlCases, CapacityOneGrowsAndFindsTheSameSets) {
+    const Soup soup = makeSoup(1009, 3, seedFor(1009));
+    const passes::DeviceBuffers buffers = upload(soup);
+    const cpu::PairRules rules{true, true};
+    for (const Mode& mode : kModes) {
+        passes::CollisionDetection large(configFor(mode, rules, TriTriPrecision::Robust, 1u << 20), soup.model);
+        passes::CollisionDetection small(configFor(mode, rules, TriTriPrecision::Robust, 1u), soup.model);
+        const passes::CollisionCounts a = large.detect(buffers, nullptr, 0);
+        const passes::CollisionCounts b = small.detect(buffers, nullptr, 0);
+        EXPECT_EQ(a.reruns, 0u) << modeName(mode);
+        EXPECT_GT(b.reruns, 0u) << modeName(mode);
+        EXPECT_EQ(a.boxPairs, b.boxPairs) << modeName(mode);
+        EXPECT_EQ(a.candidates, b.candidates) << modeName(mode);
+        EXPECT_EQ(a.intersections, b.intersections) << modeName(mode);
+        EXPECT_EQ(large.readCandidates(), small.readCandidates()) << modeName(mode);
+        EXPECT_EQ(large.readIntersections(), small.readIntersections()) << modeName(mode);
+        // Once grown, the lists hold everything: the next call needs no rerun.
+        EXPECT_EQ(small.detect(buffers, nullptr, 0).reruns, 0u) << modeName(mode);
+        EXPECT_EQ(small.readCandidates(), large.readCandidates()) << modeName(mode);
+    }
+}
+
+TEST(CollisionDetectionGlCases, LeafBoxesMatchTheTwin) {
+    const Soup soup = makeSoup(1009, 3, seedFor(1009));
+    const passes::DeviceBuffers buffers = upload(soup);
+    for (int depth = 1; depth <= 3; ++depth) {
+        passes::CollisionDetection detection(configFor({BroadPhase::Octree, depth}, {true, true}, TriTriPrecision::Robust),
+                                             soup.model);
+        detection.detect(buffers, nullptr, 0);
+        const cpu::OctreeLayout& layout = detection.layout();
+        const auto twin = cpu::twinLeafBoxes(layout, soup.model.faceIndices, soup.current, kThickness);
+        std::vector<gpu::GpuBox> gpu(layout.boxCount);
+        detection.boxes().download(0, gpu.size() * sizeof(gpu::GpuBox), gpu.data());
+        std::size_t empty = 0;
+        for (std::uint32_t b = 0; b < layout.boxCount; ++b) {
+            // Exact: min/max are exact and the inflation is one correctly rounded float op.
+            EXPECT_EQ(glm::vec3(gpu[b].lo), twin[b].lo) << "depth " << depth << " box " << b;
+            EXPECT_EQ(glm::vec3(gpu[b].hi), twin[b].hi) << "depth " << depth << " box " << b;
+            empty += twin[b].lo.x > twin[b].hi.x ? 1u : 0u;
+        }
+        if (depth == 3) {
+            EXPECT_GT(empty, 0u); // empty boxes are exercised
+        }
+    }
+}
+
+TEST(CollisionDetectionGlCases, FaceInfoAndObjectsAreUploaded) {
+    const Soup soup = makeSoup(129, 3, 5);
+    passes::CollisionDetection detection(configFor({BroadPhase::Octree, 2}, {true, true}, TriTriPrecision::Robust),
+                                         soup.model);
+    const cpu::OctreeLayout& layout = detection.layout();
+    std::vector<gpu::GpuFaceInfo> info(soup.model.faceCount());
+    detection.faceInfo().download(0, info.size() * sizeof(gpu::GpuFaceInfo), info.data());
+    for (std::size_t f = 0; f < info.size(); ++f) {
+        EXPECT_EQ(info[f].object, layout.faceObject[f]);
+        EXPECT_EQ(info[f].box, layout.faceBox[f]);
+        EXPECT_EQ(info[f].owned, layout.faceOwned[f]);
+    }
+    std::vector<gpu::GpuObject> objects(soup.model.objects.size());
+    detection.objects().download(0, objects.size() * sizeof(gpu::GpuObject), objects.data());
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+        EXPECT_EQ(objects[o].firstFace, soup.model.objects[o].firstFace);
+        EXPECT_EQ(objects[o].faceCount, soup.model.objects[o].faceCount);
+        EXPECT_EQ(objects[o].firstBox, o * 64u);
+        EXPECT_EQ(objects[o].closed, 0u); // strips are open
+    }
+}
+
+TEST(CollisionDetectionGlCases, PassNamesAndAllocations) {
+    const Soup soup = makeSoup(127, 2, 3);
+    passes::CollisionDetection octree(configFor({BroadPhase::Octree, 2}, {true, false}, TriTriPrecision::Robust), soup.model);
+    passes::CollisionDetection masked(configFor({BroadPhase::Masked, 2}, {true, false}, TriTriPrecision::Robust), soup.model);
+    passes::CollisionDetection all(configFor({BroadPhase::AllPairs, 2}, {true, false}, TriTriPrecision::Robust), soup.model);
+    EXPECT_EQ(octree.passNames(), (std::vector<std::string>{"BBUpdate", "BBCollision", "TriTri"}));
+    EXPECT_EQ(masked.passNames(), (std::vector<std::string>{"BBUpdate", "BBCollision", "TriTri"}));
+    EXPECT_EQ(all.passNames(), (std::vector<std::string>{"TriTri"}));
+    auto has = [](const passes::CollisionDetection& d, const std::string& label) {
+        const auto labels = d.allocatedLabels();
+        return std::find(labels.begin(), labels.end(), label) != labels.end();
+    };
+    EXPECT_TRUE(has(octree, "boxPairs") && has(octree, "boxes") && !has(octree, "boxMask"));
+    EXPECT_TRUE(has(masked, "boxMask") && has(masked, "boxes") && !has(masked, "boxPairs"));
+    EXPECT_TRUE(!has(all, "boxes") && !has(all, "boxMask") && has(all, "candidates") && has(all, "faceInfo"));
+    EXPECT_GT(octree.allocatedBytes(), all.allocatedBytes());
+}
+
+} // namespace
+} // namespace glcollide
