@@ -5,6 +5,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -23,12 +24,25 @@ struct PassTiming {
     double gpuMilliseconds = 0.0; ///< 0 when gpuTiming is off
 };
 
+/// What the collision passes found (effects collisions / self_collisions).
+struct CollisionStats {
+    std::uint32_t boxPairs = 0;          ///< overlapping leaf-box pairs (octree broad phase), last substep
+    std::uint32_t candidatePairs = 0;    ///< face pairs within the contact thickness, last substep
+    std::uint32_t intersectingPairs = 0; ///< face pairs whose closed triangles intersect, last substep
+    std::uint32_t maxIntersectingPairs = 0; ///< the largest intersectingPairs of the frame's substeps
+    std::uint32_t contacts = 0;          ///< vertex-face and edge-edge contacts with a force, last substep
+    std::uint32_t exactFallbacks = 0;    ///< robust predicates decided by the exact path, last substep
+    std::uint32_t listGrowths = 0;       ///< pair lists grown (and passes rerun) during the frame
+};
+
 struct StepStats {
     std::uint64_t frame = 0;      ///< frames completed, this one included
     double time = 0.0;            ///< s of simulated time after this frame
     int substeps = 0;
     double wallMilliseconds = 0.0; ///< CPU wall time of step(), including the wait for timings
     std::vector<PassTiming> passes;
+    bool collisions = false;   ///< the collision passes ran (then `collision` is filled)
+    CollisionStats collision;
 };
 
 /// How the substep count was chosen (docs/integration.md).
@@ -64,7 +78,8 @@ public:
     void step();
     [[nodiscard]] const StepStats& lastStep() const;
 
-    /// The passes dispatched each substep, in order ("NodeForce", "SpringUpdate", "NodeUpdate").
+    /// The passes dispatched each substep, in order ("NodeForce", "SpringUpdate", "BBUpdate",
+    /// "BBCollision", "TriTri", "ContactResponse", "NodeUpdate"; only those the effects call for).
     [[nodiscard]] std::vector<std::string> pipeline() const;
     /// Labels of the GPU buffers allocated for this scene ("positions", "springs", ...).
     [[nodiscard]] std::vector<std::string> allocatedBuffers() const;
@@ -83,6 +98,14 @@ public:
     /// Reads node positions / velocities back (waits for the GPU).
     [[nodiscard]] std::vector<glm::dvec3> readPositions() const;
     [[nodiscard]] std::vector<glm::dvec3> readVelocities() const;
+    /// Face pairs (global face indices, first < second, sorted) whose closed triangles
+    /// intersected in the last substep; empty without collision effects. Reads back.
+    [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> readIntersectingPairs() const;
+    /// Candidate face pairs of the last substep's broad phase (sorted). Reads back.
+    [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> readCandidatePairs() const;
+    /// First global face index of each body.
+    [[nodiscard]] std::vector<std::uint32_t> bodyFirstFaces() const;
+
     /// Kinetic and potential energy of the current state (reads back).
     [[nodiscard]] EnergyReport energy() const;
 

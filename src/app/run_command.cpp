@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <algorithm>
 #include <iostream>
 
 namespace glcollide::app {
@@ -22,13 +23,24 @@ nlohmann::json frameRecord(const Engine& engine) {
     const EnergyReport e = engine.energy();
     nlohmann::json gpu = nlohmann::json::object();
     for (const PassTiming& p : s.passes) gpu[p.name] = p.gpuMilliseconds;
-    return {{"frame", s.frame},
-            {"time_s", s.time},
-            {"wall_ms", s.wallMilliseconds},
-            {"kinetic_energy_J", e.kinetic},
-            {"potential_energy_J", e.potential},
-            {"total_energy_J", e.total()},
-            {"gpu_ms", gpu}};
+    nlohmann::json record = {{"frame", s.frame},
+                             {"time_s", s.time},
+                             {"wall_ms", s.wallMilliseconds},
+                             {"kinetic_energy_J", e.kinetic},
+                             {"potential_energy_J", e.potential},
+                             {"total_energy_J", e.total()},
+                             {"gpu_ms", gpu}};
+    if (s.collisions) {
+        const CollisionStats& c = s.collision;
+        record["collision"] = {{"box_pairs", c.boxPairs},
+                               {"candidate_pairs", c.candidatePairs},
+                               {"intersecting_pairs", c.intersectingPairs},
+                               {"max_intersecting_pairs", c.maxIntersectingPairs},
+                               {"contacts", c.contacts},
+                               {"exact_fallbacks", c.exactFallbacks},
+                               {"list_growths", c.listGrowths}};
+    }
+    return record;
 }
 
 bool allFinite(const std::vector<glm::dvec3>& positions, std::size_t& firstBad) {
@@ -92,9 +104,12 @@ int runCommand(const RunOptions& options) {
     nlohmann::json frameList = nlohmann::json::array();
     Progress progress("glcollide run", frames, !options.quiet);
     double wallTotal = 0.0;
+    std::uint32_t maxIntersecting = 0, maxContacts = 0;
     for (std::uint64_t f = 1; f <= frames; ++f) {
         engine.step();
         wallTotal += engine.lastStep().wallMilliseconds;
+        maxIntersecting = std::max(maxIntersecting, engine.lastStep().collision.maxIntersectingPairs);
+        maxContacts = std::max(maxContacts, engine.lastStep().collision.contacts);
         if (!options.statsPath.empty()) frameList.push_back(frameRecord(engine));
         if (!options.exportDir.empty() && f % static_cast<std::uint64_t>(options.exportEvery) == 0) exportFrame(f);
         progress.update(f);
@@ -127,6 +142,10 @@ int runCommand(const RunOptions& options) {
     }
     std::cout << "simulated " << frames << " frames in " << wallTotal << " ms ("
               << (frames ? wallTotal / static_cast<double>(frames) : 0.0) << " ms/frame)\n";
+    if (engine.lastStep().collisions)
+        std::cout << "collisions: at most " << maxContacts << " contacts and " << maxIntersecting
+                  << " intersecting face pairs in a substep; " << engine.lastStep().collision.intersectingPairs
+                  << " intersecting at the end\n";
     if (!finite) {
         std::cerr << "glcollide: error: the state became non-finite (first at node " << bad
                   << "); lower /time/dt or use automatic substeps\n";

@@ -8,7 +8,7 @@
 namespace glcollide::cpu {
 
 StabilityLimit stableSubstep(const FlatModel& model, bool springs, const NodeForceParams& forces,
-                             double safety) {
+                             double safety, const ContactParams* contacts) {
     StabilityLimit limit;
     limit.maxSubstep = std::numeric_limits<double>::infinity();
     for (std::uint32_t i = 0; i < model.nodeCount(); ++i) {
@@ -21,6 +21,10 @@ StabilityLimit stableSubstep(const FlatModel& model, bool springs, const NodeFor
                 stiffness += model.springs[model.nodeSprings.items[k]].stiffness;
                 springDamping += model.springs[model.nodeSprings.items[k]].damping;
             }
+        if (contacts) {
+            stiffness += kContactsPerNodeForStability * contacts->stiffness;
+            springDamping += kContactsPerNodeForStability * contacts->damping;
+        }
         double gamma = 2.0 * w * springDamping;
         if (forces.damping) gamma += forces.dampingCoefficient;
         if (forces.wind) {

@@ -2,6 +2,7 @@
 // The automatic substep rule: the largest explicit (symplectic Euler) substep that stays stable
 // for the stiffest spring at its lightest node. Derivation in docs/integration.md.
 
+#include "core/contact_params.hpp"
 #include "core/dynamics_params.hpp"
 #include "cpu/flat_model.hpp"
 
@@ -18,8 +19,14 @@ struct StabilityLimit {
 
 /// Largest substep h with h²ω² + 2hγ ≤ 4 at every free node, where ω² = 2·w·Σk and
 /// γ = 2·w·Σc + c_air + wind drag rate (Gershgorin bounds on M⁻¹K and M⁻¹C), times `safety`.
+/// With `contacts`, every node counts kContactsPerNodeForStability penalty contacts as extra
+/// springs of the contact stiffness and damping.
 StabilityLimit stableSubstep(const FlatModel& model, bool springs, const NodeForceParams& forces,
-                             double safety = 0.9);
+                             double safety = 0.9, const ContactParams* contacts = nullptr);
+
+/// Simultaneous contacts per node the substep rule assumes (a vertex on a face, or an edge
+/// crossing near another: one or two; deeper stacks than that stiffen the node further).
+inline constexpr double kContactsPerNodeForStability = 2.0;
 
 /// Substeps per frame: ceil(dt / maxSubstep), at least 1.
 int substepsFor(double dt, const StabilityLimit& limit);

@@ -7,6 +7,8 @@
 #include "gl/debug_output.hpp"
 #include "gl/gpu_timer.hpp"
 #include "gl/layout.hpp"
+#include "passes/collision_detection.hpp"
+#include "passes/contact_response.hpp"
 #include "passes/dynamics_passes.hpp"
 
 #include <glcollide/error.hpp>
@@ -15,7 +17,9 @@
 #include <epoxy/gl.h>
 #include <glm/vec4.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -56,20 +60,26 @@ struct Engine::Impl {
     std::optional<passes::NodeForcePass> nodeForce;
     std::optional<passes::SpringUpdatePass> springUpdate;
     std::optional<passes::NodeUpdatePass> nodeUpdate;
+    std::optional<passes::CollisionDetection> collision;
+    std::optional<passes::ContactResponsePass> contact;
     std::vector<std::string> passNames;
-    gl::GpuTimer timer{3};
+    // Timer sections: the dynamics passes, the response, then the collision detection's passes.
+    static constexpr std::size_t kNodeForce = 0, kSpringUpdate = 1, kNodeUpdate = 2, kContact = 3,
+                                 kCollisionBase = 4;
+    gl::GpuTimer timer{kCollisionBase};
     StepStats stats;
 
     void chooseSubsteps();
     void allocate();
+    void substep(bool lastOfFrame);
     template <typename Pass, typename... Args>
     void run(std::size_t section, const Pass& pass, Args&&... args);
 };
 
 void Engine::Impl::chooseSubsteps() {
     const double dt = scene.time.dt;
-    const cpu::StabilityLimit limit =
-        cpu::stableSubstep(model, plan.springUpdate, plan.nodeForceParams);
+    const cpu::StabilityLimit limit = cpu::stableSubstep(model, plan.springUpdate, plan.nodeForceParams, 0.9,
+                                                         plan.collisions ? &plan.contact : nullptr);
     const int stable = cpu::substepsFor(dt, limit);
     substeps.stableSubsteps = stable;
     substeps.maxStableSubstep = limit.maxSubstep;
@@ -125,6 +135,8 @@ void Engine::Impl::allocate() {
         buffers.nodeFaceOffsets = makeBuffer("nodeFaceOffsets", m.nodeFaces.offsets);
         buffers.nodeFaceList = makeBuffer("nodeFaceList", m.nodeFaces.items);
     }
+    if (plan.collisions)
+        buffers.contactForces = makeBuffer("contactForces", std::vector<glm::ivec4>(m.nodeCount(), glm::ivec4(0)));
 }
 
 template <typename Pass, typename... Args>
@@ -148,8 +160,20 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) : m_impl(std::m
     if (d.plan.nodeForce) d.nodeForce.emplace(d.plan.nodeForceParams);
     if (d.plan.springUpdate) d.springUpdate.emplace(d.plan.springUpdateParams);
     if (d.plan.nodeUpdate) d.nodeUpdate.emplace(d.plan.nodeUpdateParams);
+    if (d.plan.collisions) {
+        passes::CollisionConfig config;
+        config.betweenObjects = d.plan.betweenObjects;
+        config.selfCollisions = d.plan.selfCollisions;
+        config.settings = d.plan.collision;
+        d.collision.emplace(config, d.model);
+        if (d.collision->passNames() != d.plan.collisionPasses())
+            throw Error("internal error: collision passes differ from the pipeline plan");
+        d.contact.emplace();
+        d.timer = gl::GpuTimer(Impl::kCollisionBase + d.plan.collisionPasses().size());
+    }
     d.passNames = d.plan.passes();
     d.stats.substeps = d.substeps.substeps;
+    d.stats.collisions = d.plan.collisions;
     for (const std::string& name : d.passNames) d.stats.passes.push_back({name, 0.0});
 }
 
@@ -157,17 +181,44 @@ Engine::~Engine() = default;
 Engine::Engine(Engine&&) noexcept = default;
 Engine& Engine::operator=(Engine&&) noexcept = default;
 
+void Engine::Impl::substep(bool lastOfFrame) {
+    if (nodeForce) run(kNodeForce, *nodeForce, plan.nodeForceParams);
+    if (springUpdate) run(kSpringUpdate, *springUpdate);
+    if (collision) {
+        const passes::CollisionCounts counts =
+            collision->detect(buffers, options.gpuTiming ? &timer : nullptr, kCollisionBase);
+        CollisionStats& c = stats.collision;
+        c.boxPairs = counts.boxPairs;
+        c.candidatePairs = counts.candidates;
+        c.intersectingPairs = counts.intersections;
+        c.maxIntersectingPairs = std::max(c.maxIntersectingPairs, counts.intersections);
+        c.exactFallbacks = counts.exactFallbacks;
+        c.listGrowths += counts.reruns;
+        // contactCount is the response's own counter: cleared here, read after the last substep.
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, collision->counters().name());
+        glClearBufferSubData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, offsetof(gpu::GpuCollisionCounters, contactCount),
+                             sizeof(std::uint32_t), GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+        run(kContact, *contact,
+            passes::ContactInputs{&collision->candidates(), &collision->faceInfo(), &collision->objects(),
+                                  &collision->counters(), counts.candidates},
+            plan.contact);
+        if (lastOfFrame) {
+            glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+            collision->counters().download(offsetof(gpu::GpuCollisionCounters, contactCount),
+                                           sizeof c.contacts, &c.contacts);
+        }
+    }
+    if (nodeUpdate) run(kNodeUpdate, *nodeUpdate, plan.nodeUpdateParams);
+}
+
 void Engine::step() {
     Impl& d = *m_impl;
     const auto start = std::chrono::steady_clock::now();
     if (d.options.gpuTiming) d.timer.beginFrame();
+    d.stats.collision = {};
     {
         gl::DebugGroup frame("glcollide::Engine::step");
-        for (int s = 0; s < d.substeps.substeps; ++s) {
-            if (d.nodeForce) d.run(0, *d.nodeForce, d.plan.nodeForceParams);
-            if (d.springUpdate) d.run(1, *d.springUpdate);
-            if (d.nodeUpdate) d.run(2, *d.nodeUpdate, d.plan.nodeUpdateParams);
-        }
+        for (int s = 0; s < d.substeps.substeps; ++s) d.substep(s + 1 == d.substeps.substeps);
     }
     // A host draws positions as vertices and faces as indices right after step().
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT |
@@ -176,10 +227,16 @@ void Engine::step() {
     d.stats.time = static_cast<double>(d.stats.frame) * d.scene.time.dt;
     if (d.options.gpuTiming) {
         const std::vector<double> ms = d.timer.resolveMilliseconds();
-        std::size_t k = 0;
-        if (d.nodeForce) d.stats.passes[k++].gpuMilliseconds = ms[0];
-        if (d.springUpdate) d.stats.passes[k++].gpuMilliseconds = ms[1];
-        if (d.nodeUpdate) d.stats.passes[k++].gpuMilliseconds = ms[2];
+        // Pass names in pipeline order map to timer sections.
+        std::size_t collisionPass = 0;
+        for (PassTiming& p : d.stats.passes) {
+            std::size_t section = Impl::kNodeUpdate;
+            if (p.name == passes::NodeForcePass::kName) section = Impl::kNodeForce;
+            else if (p.name == passes::SpringUpdatePass::kName) section = Impl::kSpringUpdate;
+            else if (p.name == passes::ContactResponsePass::kName) section = Impl::kContact;
+            else if (p.name != passes::NodeUpdatePass::kName) section = Impl::kCollisionBase + collisionPass++;
+            p.gpuMilliseconds = ms[section];
+        }
     }
     d.stats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -187,8 +244,32 @@ void Engine::step() {
 
 const StepStats& Engine::lastStep() const { return m_impl->stats; }
 std::vector<std::string> Engine::pipeline() const { return m_impl->passNames; }
-std::vector<std::string> Engine::allocatedBuffers() const { return m_impl->buffers.allocatedLabels(); }
-std::size_t Engine::allocatedBytes() const { return m_impl->buffers.allocatedBytes(); }
+std::vector<std::string> Engine::allocatedBuffers() const {
+    std::vector<std::string> labels = m_impl->buffers.allocatedLabels();
+    if (m_impl->collision)
+        for (std::string& l : m_impl->collision->allocatedLabels()) labels.push_back(std::move(l));
+    return labels;
+}
+
+std::size_t Engine::allocatedBytes() const {
+    return m_impl->buffers.allocatedBytes() + (m_impl->collision ? m_impl->collision->allocatedBytes() : 0);
+}
+
+std::vector<std::array<std::uint32_t, 2>> Engine::readIntersectingPairs() const {
+    if (!m_impl->collision) return {};
+    return m_impl->collision->readIntersections();
+}
+
+std::vector<std::array<std::uint32_t, 2>> Engine::readCandidatePairs() const {
+    if (!m_impl->collision) return {};
+    return m_impl->collision->readCandidates();
+}
+
+std::vector<std::uint32_t> Engine::bodyFirstFaces() const {
+    std::vector<std::uint32_t> first;
+    for (const cpu::ObjectRange& o : m_impl->model.objects) first.push_back(o.firstFace);
+    return first;
+}
 const SubstepInfo& Engine::substepInfo() const { return m_impl->substeps; }
 const std::vector<std::string>& Engine::warnings() const { return m_impl->warnings; }
 const Scene& Engine::scene() const { return m_impl->scene; }

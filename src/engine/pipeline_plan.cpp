@@ -8,8 +8,16 @@ std::vector<std::string> PipelinePlan::passes() const {
     std::vector<std::string> p;
     if (nodeForce) p.emplace_back("NodeForce");
     if (springUpdate) p.emplace_back("SpringUpdate");
+    for (std::string& c : collisionPasses()) p.push_back(std::move(c));
+    if (collisions) p.emplace_back("ContactResponse");
     if (nodeUpdate) p.emplace_back("NodeUpdate");
     return p;
+}
+
+std::vector<std::string> PipelinePlan::collisionPasses() const {
+    if (!collisions) return {};
+    if (collision.broadPhase == BroadPhase::AllPairs) return {"TriTri"};
+    return {"BBUpdate", "BBCollision", "TriTri"};
 }
 
 std::vector<std::string> PipelinePlan::buffers() const {
@@ -26,16 +34,12 @@ std::vector<std::string> PipelinePlan::buffers() const {
         b.emplace_back("nodeFaceOffsets");
         b.emplace_back("nodeFaceList");
     }
+    if (collisions) b.emplace_back("contactForces");
     return b;
 }
 
 PipelinePlan planPipeline(const Scene& scene) {
     const EffectSet& fx = scene.effects;
-    for (Effect e : {Effect::Collisions, Effect::SelfCollisions})
-        if (fx.has(e))
-            throw Error(scene.sourcePath.string() + ": effect '" + std::string(effectName(e)) +
-                        "' is not implemented in this version of glcollide (the collision "
-                        "pipeline is planned); remove it from /effects");
     PipelinePlan plan;
     NodeForceParams& nf = plan.nodeForceParams;
     nf.gravity = fx.has(Effect::Gravity);
@@ -49,12 +53,21 @@ PipelinePlan planPipeline(const Scene& scene) {
     std::size_t nodes = 0;
     for (const Body& b : scene.bodies) nodes += b.positions.size();
     plan.nodeUpdate = nodes > 0;
+    std::size_t faces = 0;
+    for (const Body& b : scene.bodies) faces += b.faces.size();
+    plan.betweenObjects = fx.has(Effect::Collisions);
+    plan.selfCollisions = fx.has(Effect::SelfCollisions);
+    plan.collisions = plan.nodeUpdate && faces > 0 && (plan.betweenObjects || plan.selfCollisions);
+    plan.collision = scene.collision;
+    plan.contact = contactParams(scene.collision);
     plan.nodeForce = plan.nodeUpdate && (nf.gravity || nf.damping || nf.wind);
     plan.springUpdate = plan.nodeUpdate && fx.has(Effect::Springs);
     plan.springUpdateParams.accumulate = plan.nodeForce;
 
     NodeUpdateParams& nu = plan.nodeUpdateParams;
     nu.forces = plan.nodeForce || plan.springUpdate;
+    nu.contacts = plan.collisions;
+    nu.contactForceScale = plan.contact.forceScale;
     nu.ground = fx.has(Effect::Ground);
     nu.groundHeight = scene.ground.height;
     nu.restitution = scene.ground.restitution;

@@ -2,6 +2,7 @@
 // Composes the pass list and the buffer set from a scene's effects, without touching GL, so
 // "simulate only what the scene calls for" is decided in one place and testable on its own.
 
+#include "core/contact_params.hpp"
 #include "core/dynamics_params.hpp"
 
 #include <glcollide/scene.hpp>
@@ -19,12 +20,21 @@ struct PipelinePlan {
     SpringUpdateParams springUpdateParams;
     NodeUpdateParams nodeUpdateParams; ///< h is filled in once substeps are known
 
+    /// Collision detection and response (effects collisions / self_collisions).
+    bool collisions = false;
+    bool betweenObjects = false; ///< pairs of faces of different objects
+    bool selfCollisions = false; ///< pairs of faces of one object that share no node
+    CollisionSettings collision;
+    ContactParams contact;
+
     [[nodiscard]] std::vector<std::string> passes() const;
-    /// Buffer labels the passes need, in DeviceBuffers declaration order.
+    /// The collision detection passes of the chosen broad phase, in dispatch order.
+    [[nodiscard]] std::vector<std::string> collisionPasses() const;
+    /// Labels of the engine's own buffers (DeviceBuffers declaration order); the collision
+    /// detection's lists and tables follow them in Engine::allocatedBuffers().
     [[nodiscard]] std::vector<std::string> buffers() const;
 };
 
-/// Throws Error for effects this version cannot simulate (collisions, self_collisions).
 PipelinePlan planPipeline(const Scene& scene);
 
 } // namespace glcollide::engine

@@ -54,10 +54,45 @@ TEST(PipelinePlan, EmptySceneRunsNothing) {
     EXPECT_TRUE(engine::planPipeline(scene).buffers().empty());
 }
 
-TEST(PipelinePlan, CollisionEffectsAreRejected) {
+TEST(PipelinePlan, CollisionEffectsAddTheBroadPhaseNarrowPhaseAndResponse) {
     Scene scene = twoNodeScene(10, 0, 1);
+    scene.bodies[0].faces = {{0, 1, 0}};
+    scene.effects = {Effect::Gravity, Effect::Collisions};
+    engine::PipelinePlan plan = engine::planPipeline(scene);
+    EXPECT_TRUE(plan.betweenObjects);
+    EXPECT_FALSE(plan.selfCollisions);
+    EXPECT_EQ(plan.passes(), (std::vector<std::string>{"NodeForce", "BBUpdate", "BBCollision", "TriTri",
+                                                       "ContactResponse", "NodeUpdate"}));
+    EXPECT_EQ(plan.buffers(), (std::vector<std::string>{"positions", "velocities", "faces", "forces", "contactForces"}));
+    EXPECT_TRUE(plan.nodeUpdateParams.contacts);
     scene.effects = {Effect::SelfCollisions};
-    EXPECT_THROW(engine::planPipeline(scene), Error);
+    scene.collision.broadPhase = BroadPhase::AllPairs;
+    plan = engine::planPipeline(scene);
+    EXPECT_TRUE(plan.selfCollisions);
+    EXPECT_EQ(plan.passes(), (std::vector<std::string>{"TriTri", "ContactResponse", "NodeUpdate"}));
+    scene.bodies[0].faces.clear(); // nothing to collide: no collision passes
+    EXPECT_EQ(engine::planPipeline(scene).passes(), std::vector<std::string>{"NodeUpdate"});
+}
+
+TEST(PipelinePlan, ContactForceScaleLeavesHeadroomAndIsAPowerOfTwo) {
+    CollisionSettings s;
+    s.stiffness = 1.0e4;
+    s.thickness = 0.01;
+    const ContactParams p = contactParams(s);
+    EXPECT_EQ(p.forceCap, 4.0 * 1.0e4 * 0.01);
+    EXPECT_LE(p.forceScale * p.forceCap * kContactsPerNodeHeadroom, 2147483647.0);
+    EXPECT_GT(2.0 * p.forceScale * p.forceCap * kContactsPerNodeHeadroom, 2147483647.0);
+    EXPECT_EQ(std::exp2(std::round(std::log2(p.forceScale))), p.forceScale);
+}
+
+TEST(Stability, ContactsStiffenEveryFreeNode) {
+    const cpu::FlatModel model = cpu::flatten(twoNodeScene(400, 0, 0.25));
+    CollisionSettings s;
+    s.stiffness = 1000;
+    const ContactParams contacts = contactParams(s);
+    const cpu::StabilityLimit with = cpu::stableSubstep(model, true, {}, 1.0, &contacts);
+    const double expected = 2.0 * (1.0 / 0.25) * (400 + cpu::kContactsPerNodeForStability * 1000);
+    EXPECT_DOUBLE_EQ(with.omega * with.omega, expected);
 }
 
 TEST(Stability, SingleSpringLimitIsTheBoundOnTwoOverOmega) {

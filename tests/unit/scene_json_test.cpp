@@ -238,6 +238,19 @@ TEST(SceneJson, SettingsAndEffects) {
     EXPECT_EQ(s.ground.friction, 0.25);
     EXPECT_TRUE(s.effects.has(Effect::Collisions));
     EXPECT_TRUE(s.effects.has(Effect::SelfCollisions));
+    EXPECT_EQ(s.collision.broadPhase, BroadPhase::Octree) << "documented default";
+    EXPECT_EQ(s.collision.octreeDepth, 2);
+    EXPECT_EQ(s.collision.precision, TriTriPrecision::Robust);
+    const Scene c = parse(scene(kCloth, R"("collision": {"broad_phase": "masked", "octree_depth": 3,
+        "precision": "fast", "thickness": 0.002, "stiffness": 500, "damping": 0.1, "initial_capacity": 1})",
+                                R"(["springs", "self_collisions"])"));
+    EXPECT_EQ(c.collision.broadPhase, BroadPhase::Masked);
+    EXPECT_EQ(c.collision.octreeDepth, 3);
+    EXPECT_EQ(c.collision.precision, TriTriPrecision::Fast);
+    EXPECT_EQ(c.collision.thickness, 0.002);
+    EXPECT_EQ(c.collision.stiffness, 500.0);
+    EXPECT_EQ(c.collision.damping, 0.1);
+    EXPECT_EQ(c.collision.initialCapacity, 1u);
     // Effects listed without their key use the documented defaults.
     const Scene d = parse(scene(kCloth, "", R"(["springs", "wind", "ground"])"));
     EXPECT_EQ(d.wind.velocity, glm::dvec3(0));
@@ -280,6 +293,21 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
     EXPECT_THAT(errorOf(scene(kCloth, R"("wind": {"velocity": [1, 0, 0]})")),
                 HasSubstr("test.json: /wind: given but 'wind' is not in /effects"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("damping": 0.1)")), HasSubstr("/damping: given but 'damping'"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {})")),
+                HasSubstr("/collision: given but neither 'collisions' nor 'self_collisions' is in /effects"));
+    const char* collide = R"(["springs", "collisions"])";
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"broad_phase": "bvh"})", collide)),
+                HasSubstr("/collision/broad_phase: unknown broad phase \"bvh\"; expected \"octree\", \"masked\" or \"all_pairs\""));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"octree_depth": 4})", collide)),
+                HasSubstr("/collision/octree_depth: expected an integer 1, 2 or 3"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"precision": "exact"})", collide)),
+                HasSubstr("/collision/precision: unknown precision \"exact\""));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"thickness": 0})", collide)),
+                HasSubstr("/collision/thickness: expected a positive number of metres, got 0"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"initial_capacity": 0})", collide)),
+                HasSubstr("/collision/initial_capacity: expected an integer in 1 ... 2^30, got 0"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"thicknes": 1})", collide)),
+                HasSubstr("/collision/thicknes: unknown key"));
     EXPECT_THAT(errorOf(scene(kCloth, "", R"(["gravity"])")), HasSubstr("/objects/0/springs: given but 'springs'"));
     EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 1], "resolution": [2, 2]}, "mass": 1})")),
                 HasSubstr("/objects/0/springs: required because 'springs' is in /effects"));
