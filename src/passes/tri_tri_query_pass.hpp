@@ -6,17 +6,18 @@
 #include "gl/handles.hpp"
 #include "gl/program.hpp"
 
+#include <glcollide/scene.hpp>
+
 #include <array>
 #include <cstdint>
 #include <vector>
 
 namespace glcollide::passes {
 
-/// Narrow-phase precision (docs/narrow-phase.md).
-enum class TriTriPrecision {
-    Fast,   ///< Moeller 1997 in float with an absolute coplanarity epsilon of 1e-6 (length^3)
-    Robust, ///< filtered exact predicates: the answer of the rational oracle for every finite input
-};
+/// Narrow-phase precision, the scene setting's type (docs/narrow-phase.md): Fast = Moeller 1997
+/// in float with an absolute coplanarity epsilon of 1e-6 (length^3); Robust = filtered exact
+/// predicates, the answer of the rational oracle for every finite input.
+using ::glcollide::TriTriPrecision;
 
 /// "fast" or "robust".
 const char* toString(TriTriPrecision precision);
