@@ -5,7 +5,7 @@
 //                 collide (i == j only with self-collisions) and whose boxes overlap is appended
 //                 to the box-pair list.
 //   GLC_BB_EXPAND octree, step 2: one work group per box pair, looping over faces(i) x faces(j)
-//                 in 64 x 64 tiles staged in shared memory; valid pairs whose face boxes overlap
+//                 (flattened, shared by the group's threads and z slices); valid pairs whose face boxes overlap
 //                 are appended to the candidate list as (lower, higher) face index. Work is
 //                 proportional to the face pairs of overlapping boxes, never to faces^2.
 //   GLC_BB_MASK   the paper's masked scheme: 2D over box pairs, writes mask[i * boxes + j] (and
@@ -41,71 +41,40 @@ layout(std430, binding = GLC_BIND_COLLISION_COUNTERS) coherent buffer CollisionC
 
 uniform float u_halfThickness; // m: float(0.5 * thickness), as cpu::halfThicknessFloat
 
-shared vec3 s_lo[GLC_EXPAND_GROUP];
-shared vec3 s_hi[GLC_EXPAND_GROUP];
-shared uvec3 s_nodes[GLC_EXPAND_GROUP];
-shared uint s_face[GLC_EXPAND_GROUP];
-shared uint s_object[GLC_EXPAND_GROUP];
-
 uvec3 faceNodes(uint face) {
     return uvec3(g_faceIndices[3u * face], g_faceIndices[3u * face + 1u], g_faceIndices[3u * face + 2u]);
 }
 
 void main() {
-    // One group per box pair (indirect dispatch; more than 65535 groups spill into y).
+    // Groups (x, y) = box pair (indirect dispatch; more than 65535 spill into y), z = slice. The
+    // nA x nB face pairs of a box pair are one flat index range, shared out over the group's
+    // threads and the z slices, so no invocation runs more than 2^15 loop iterations: llvmpipe
+    // ends any shader invocation after 65535 loop iterations in total (gallivm's loop limiter),
+    // and an earlier version, one group per box pair walking faces(i) x faces(j), silently lost
+    // pairs there once a box held ~1000 faces. The host sizes z from the largest box.
     uint pair = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
-    if (pair >= min(g_counters.boxPairCount, g_counters.boxPairCapacity)) return; // uniform in the group
+    if (pair >= min(g_counters.boxPairCount, g_counters.boxPairCapacity)) return;
     uvec2 boxes = g_boxPairs[pair];
     bool sameBox = boxes.x == boxes.y;
-    uint aEnd = g_boxFaceOffsets[boxes.x + 1u];
-    uint bBegin = g_boxFaceOffsets[boxes.y], bEnd = g_boxFaceOffsets[boxes.y + 1u];
-    uint t = gl_LocalInvocationID.x;
-    const uint group = uint(GLC_EXPAND_GROUP);
-    for (uint a0 = g_boxFaceOffsets[boxes.x]; a0 < aEnd; a0 += group) {
-        uint a = a0 + t;
-        bool haveA = a < aEnd;
-        uint faceA = 0u, objectA = 0u;
-        uvec3 nodesA = uvec3(0u);
-        vec3 loA = vec3(0.0), hiA = vec3(0.0);
-        if (haveA) {
-            faceA = g_boxFaceList[a];
-            objectA = g_faceInfo[faceA].object;
-            nodesA = faceNodes(faceA);
-            faceBox(g_positions[nodesA.x].xyz, g_positions[nodesA.y].xyz, g_positions[nodesA.z].xyz,
-                    u_halfThickness, loA, hiA);
-        }
-        // Within one box, list position order is face order: only tiles at or after a0 hold
-        // partners b > a.
-        for (uint b0 = sameBox ? a0 : bBegin; b0 < bEnd; b0 += group) {
-            memoryBarrierShared();
-            barrier(); // the previous tile is no longer read
-            uint b = b0 + t;
-            if (b < bEnd) {
-                uint faceB = g_boxFaceList[b];
-                uvec3 nodesB = faceNodes(faceB);
-                vec3 lo, hi;
-                faceBox(g_positions[nodesB.x].xyz, g_positions[nodesB.y].xyz, g_positions[nodesB.z].xyz,
-                        u_halfThickness, lo, hi);
-                s_lo[t] = lo;
-                s_hi[t] = hi;
-                s_nodes[t] = nodesB;
-                s_face[t] = faceB;
-                s_object[t] = g_faceInfo[faceB].object;
-            }
-            memoryBarrierShared();
-            barrier();
-            if (haveA) { // not `continue`: the barriers above stay in uniform control flow
-                uint tile = min(group, bEnd - b0);
-                for (uint k = 0u; k < tile; ++k) {
-                    if (sameBox && b0 + k <= a) continue;
-                    if (!validFacePair(objectA, nodesA, s_object[k], s_nodes[k], u_pairRules)) continue;
-                    if (!boxesOverlap(loA, hiA, s_lo[k], s_hi[k])) continue;
-                    uint faceB = s_face[k];
-                    GLC_APPEND(g_counters.candidateCount, g_counters.candidateCapacity, g_facePairs,
-                               uvec2(min(faceA, faceB), max(faceA, faceB)))
-                }
-            }
-        }
+    uint aBegin = g_boxFaceOffsets[boxes.x], aCount = g_boxFaceOffsets[boxes.x + 1u] - aBegin;
+    uint bBegin = g_boxFaceOffsets[boxes.y], bCount = g_boxFaceOffsets[boxes.y + 1u] - bBegin;
+    uint total = aCount * bCount; // < 2^32: boxes hold < 65536 faces (checked on the host)
+    uint stride = uint(GLC_EXPAND_GROUP) * gl_NumWorkGroups.z;
+    for (uint k = gl_WorkGroupID.z * uint(GLC_EXPAND_GROUP) + gl_LocalInvocationID.x; k < total; k += stride) {
+        uint ia = k / bCount, ib = k - ia * bCount;
+        // Within one box, list position order is face order: partners b > a only.
+        if (sameBox && ib <= ia) continue;
+        uint faceA = g_boxFaceList[aBegin + ia], faceB = g_boxFaceList[bBegin + ib];
+        uvec3 nodesA = faceNodes(faceA), nodesB = faceNodes(faceB);
+        if (!validFacePair(g_faceInfo[faceA].object, nodesA, g_faceInfo[faceB].object, nodesB, u_pairRules)) continue;
+        vec3 loA, hiA, loB, hiB;
+        faceBox(g_positions[nodesA.x].xyz, g_positions[nodesA.y].xyz, g_positions[nodesA.z].xyz, u_halfThickness,
+                loA, hiA);
+        faceBox(g_positions[nodesB.x].xyz, g_positions[nodesB.y].xyz, g_positions[nodesB.z].xyz, u_halfThickness,
+                loB, hiB);
+        if (!boxesOverlap(loA, hiA, loB, hiB)) continue;
+        GLC_APPEND(g_counters.candidateCount, g_counters.candidateCapacity, g_facePairs,
+                   uvec2(min(faceA, faceB), max(faceA, faceB)))
     }
 }
 

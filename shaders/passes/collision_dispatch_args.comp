@@ -13,6 +13,7 @@ layout(std430, binding = GLC_BIND_DISPATCH_ARGS) writeonly buffer DispatchArgsBu
 uniform uint u_source;              // 0: box pairs, 1: candidates
 uniform uint u_invocationsPerGroup; // items handled by one work group
 uniform uint u_slot;                // writes g_dispatchArgs[3 * u_slot .. 3 * u_slot + 2]
+uniform uint u_z;                   // groups in z (the expansion's slices of one box pair's work)
 
 void main() {
     uint n = u_source == 0u ? min(g_counters.boxPairCount, g_counters.boxPairCapacity)
@@ -23,5 +24,5 @@ void main() {
     uint y = x == 0u ? 1u : (groups + x - 1u) / x;
     g_dispatchArgs[3u * u_slot] = x;
     g_dispatchArgs[3u * u_slot + 1u] = y;
-    g_dispatchArgs[3u * u_slot + 2u] = 1u;
+    g_dispatchArgs[3u * u_slot + 2u] = max(u_z, 1u);
 }

@@ -93,6 +93,16 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const cpu:
         m_boxes = gl::Buffer("boxes", std::size_t{m_layout.boxCount} * sizeof(gpu::GpuBox));
         m_boxFaceOffsets = makeBuffer("boxFaceOffsets", m_layout.boxFaces.offsets);
         m_boxFaceList = makeBuffer("boxFaceList", m_layout.boxFaces.items);
+        // The expansion shares a box pair's nA x nB face pairs out over 64 threads x slices so no
+        // invocation loops more than 2^15 times (llvmpipe stops an invocation after 65535 loop
+        // iterations); its flat index needs nA x nB < 2^32.
+        std::uint64_t largest = 0;
+        for (std::size_t b = 0; b + 1 < m_layout.boxFaces.offsets.size(); ++b)
+            largest = std::max<std::uint64_t>(largest, m_layout.boxFaces.offsets[b + 1] - m_layout.boxFaces.offsets[b]);
+        if (largest >= 65536)
+            throw Error("collision octree: a leaf box holds " + std::to_string(largest) +
+                        " faces (at most 65535); raise /collision/octree_depth");
+        m_expandSlices = static_cast<std::uint32_t>(std::max<std::uint64_t>(1, (largest * largest + 64 * 32768 - 1) / (64 * 32768)));
         m_bbUpdate = gl::ComputeProgram("bb_update");
         m_bbUpdate.set("u_boxCount", m_layout.boxCount);
         m_bbUpdate.set("u_halfThickness", m_halfThickness);
@@ -216,6 +226,7 @@ void CollisionDetection::runBoxPairs() const {
     m_args.set("u_source", 0u);
     m_args.set("u_invocationsPerGroup", 1u);
     m_args.set("u_slot", 0u);
+    m_args.set("u_z", m_expandSlices);
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
 }
@@ -230,6 +241,7 @@ void CollisionDetection::runExpand() const {
     m_args.set("u_source", 1u);
     m_args.set("u_invocationsPerGroup", static_cast<std::uint32_t>(GLC_WORKGROUP_SIZE));
     m_args.set("u_slot", 1u);
+    m_args.set("u_z", 1u);
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
 }

@@ -110,6 +110,7 @@ private:
     gl::Buffer m_faceInfo, m_objects, m_boxes, m_boxFaceOffsets, m_boxFaceList, m_boxMaskBuffer;
     gl::Buffer m_boxPairList, m_candidates, m_intersections, m_counters, m_dispatchArgs;
     std::uint32_t m_boxPairCapacity = 0, m_candidateCapacity = 0, m_intersectionCapacity = 0;
+    std::uint32_t m_expandSlices = 1; ///< z groups per box pair in the expansion (bb_collision.comp)
     std::array<std::uint32_t, 8> m_rawCounters{};
     CollisionCounts m_counts;
 };
