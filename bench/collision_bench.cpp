@@ -18,6 +18,8 @@
 #include <glcollide/gl_info.hpp>
 #include <glcollide/headless_context.hpp>
 
+#include "bench_support.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -172,45 +174,24 @@ void registerCases() {
 
 int run(int argc, char** argv) {
     benchmark::Initialize(&argc, argv);
-    std::string device;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (arg.rfind("--device=", 0) == 0)
-            device = arg.substr(9);
-        else {
-            std::cerr << argv[0] << ": unknown argument " << arg << " (own flag: --device=<selector>)\n";
-            return 2;
-        }
+    bench::Flags flags;
+    if (!bench::parseFlags(argc, argv, flags)) return 2;
+    HeadlessContext context({.device = flags.device, .debug = false});
+    if (flags.printSlug) {
+        std::cout << bench::rendererSlug(context.glInfo().renderer) << '\n';
+        return 0;
     }
-    HeadlessContext context({.device = device, .debug = false});
-    const GlInfo& gl = context.glInfo();
-    benchmark::AddCustomContext("gl_renderer", gl.renderer);
-    benchmark::AddCustomContext("gl_version", gl.version);
-    benchmark::AddCustomContext("gl_software_renderer", gl.isSoftware ? "true" : "false");
-    benchmark::AddCustomContext("git_commit", GLCOLLIDE_BENCH_CONFIGURE_COMMIT);
-    benchmark::AddCustomContext("glcollide_build_type", GLCOLLIDE_BENCH_BUILD_TYPE);
+    bench::recordContext(context, "GPU time of one detect() = sum of per-pass GL_TIMESTAMP pairs");
     benchmark::AddCustomContext("scene", "two unit tet boxes, the second turned 20 deg about (1,1,1) and pushed "
                                          "0.15 m into the first; collisions between objects, thickness 0.01 m");
-    benchmark::AddCustomContext("timing", "GPU time of one detect() = sum of per-pass GL_TIMESTAMP pairs");
     registerCases();
     const std::size_t ran = benchmark::RunSpecifiedBenchmarks();
     g_case.reset();
     benchmark::Shutdown();
-    if (ran == 0) {
-        std::cerr << argv[0] << ": no benchmark matched\n";
-        return 1;
-    }
-    return g_failed ? 1 : 0;
+    return bench::exitCode(argv[0], ran, g_failed);
 }
 
 } // namespace
 } // namespace glcollide
 
-int main(int argc, char** argv) {
-    try {
-        return glcollide::run(argc, argv);
-    } catch (const std::exception& e) {
-        std::cerr << argv[0] << ": " << e.what() << '\n';
-        return 1;
-    }
-}
+int main(int argc, char** argv) { return glcollide::bench::guardedMain(argc, argv, glcollide::run); }

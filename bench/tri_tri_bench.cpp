@@ -17,6 +17,8 @@
 
 #include <glcollide/headless_context.hpp>
 
+#include "bench_support.hpp"
+
 #include <benchmark/benchmark.h>
 #include <epoxy/gl.h>
 
@@ -107,36 +109,16 @@ void triTri(benchmark::State& state, passes::TriTriPrecision precision, cpu::Tri
     state.counters["disagreement_fraction"] = static_cast<double>(wrong) / pairs;
 }
 
-std::string gitCommit() {
-    std::string out;
-    if (FILE* pipe = popen("git -C '" GLCOLLIDE_BENCH_SOURCE_DIR "' rev-parse --short HEAD 2>/dev/null", "r")) {
-        char buf[64];
-        while (std::fgets(buf, sizeof buf, pipe)) out += buf;
-        pclose(pipe);
-    }
-    while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-    return out.empty() ? std::string(GLCOLLIDE_BENCH_CONFIGURE_COMMIT) + " (configure time)" : out;
-}
-
 int run(int argc, char** argv) {
     benchmark::Initialize(&argc, argv);
-    std::string device;
-    for (int i = 1; i < argc; ++i) {
-        const std::string_view arg = argv[i];
-        if (arg.rfind("--device=", 0) == 0) {
-            device = std::string(arg.substr(9));
-        } else {
-            std::cerr << argv[0] << ": unknown argument " << arg << " (own flag: --device=<selector>)\n";
-            return 2;
-        }
+    bench::Flags flags;
+    if (!bench::parseFlags(argc, argv, flags)) return 2;
+    HeadlessContext context({.device = flags.device, .debug = false});
+    if (flags.printSlug) {
+        std::cout << bench::rendererSlug(context.glInfo().renderer) << '\n';
+        return 0;
     }
-    HeadlessContext context({.device = device, .debug = false});
-    benchmark::AddCustomContext("gl_renderer", context.glInfo().renderer);
-    benchmark::AddCustomContext("gl_version", context.glInfo().version);
-    benchmark::AddCustomContext("egl_device", context.deviceDescription());
-    benchmark::AddCustomContext("git_commit", gitCommit());
-    benchmark::AddCustomContext("glcollide_build_type", GLCOLLIDE_BENCH_BUILD_TYPE);
-    benchmark::AddCustomContext("timing", "GPU time of one dispatch over all pairs (GL_TIMESTAMP pair)");
+    bench::recordContext(context, "GPU time of one dispatch over all pairs (GL_TIMESTAMP pair)");
     for (auto precision : {passes::TriTriPrecision::Fast, passes::TriTriPrecision::Robust}) {
         for (cpu::TriTriSet set : cpu::kAllTriTriSets) {
             const std::string name = std::string("TriTri/") + passes::toString(precision) + "/" + cpu::toString(set);
@@ -148,21 +130,10 @@ int run(int argc, char** argv) {
     const std::size_t ran = benchmark::RunSpecifiedBenchmarks();
     g_passes.clear(); // programs go before the context does
     benchmark::Shutdown();
-    if (ran == 0) {
-        std::cerr << argv[0] << ": no benchmark matched\n";
-        return 1;
-    }
-    return g_failed ? 1 : 0;
+    return bench::exitCode(argv[0], ran, g_failed);
 }
 
 } // namespace
 } // namespace glcollide
 
-int main(int argc, char** argv) {
-    try {
-        return glcollide::run(argc, argv);
-    } catch (const std::exception& e) {
-        std::cerr << argv[0] << ": " << e.what() << '\n';
-        return 1;
-    }
-}
+int main(int argc, char** argv) { return glcollide::bench::guardedMain(argc, argv, glcollide::run); }
