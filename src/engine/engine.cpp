@@ -194,10 +194,7 @@ void Engine::Impl::substep(bool lastOfFrame) {
         c.maxIntersectingPairs = std::max(c.maxIntersectingPairs, counts.intersections);
         c.exactFallbacks = counts.exactFallbacks;
         c.listGrowths += counts.reruns;
-        // contactCount is the response's own counter: cleared here, read after the last substep.
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, collision->counters().name());
-        glClearBufferSubData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, offsetof(gpu::GpuCollisionCounters, contactCount),
-                             sizeof(std::uint32_t), GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+        // detect() cleared the response's contact counter; it is read after the last substep.
         run(kContact, *contact,
             passes::ContactInputs{&collision->candidates(), &collision->faceInfo(), &collision->objects(),
                                   &collision->counters(), counts.candidates},

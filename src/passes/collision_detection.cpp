@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstddef>
 
 namespace glcollide::passes {
 namespace {
@@ -189,7 +190,8 @@ void CollisionDetection::writeCapacities() {
 
 void CollisionDetection::resetCounts(bool boxPairs, bool candidates, bool intersections) {
     // Counts of later stages are reset with their producer's, since they depend on its output;
-    // the exact-fallback count belongs to the last TriTri run. contactCount is the response's.
+    // the exact-fallback count belongs to the last TriTri run. contactCount (the response's) is
+    // cleared once per detect().
     if (!boxPairs && !candidates && !intersections) return;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     const std::uint32_t zeros[4] = {0, 0, 0, 0};
@@ -267,6 +269,10 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
     m_counts = {};
     bindInputs(buffers);
     resetCounts(true, true, true);
+    // A new substep: the contact response (which runs on this detection's candidates) counts
+    // its contacts from zero too.
+    const std::uint32_t zero = 0;
+    m_counters.upload(offsetof(gpu::GpuCollisionCounters, contactCount), sizeof zero, &zero);
     const BroadPhase mode = m_config.settings.broadPhase;
     const std::size_t bbUpdate = timerBase, bbCollision = timerBase + 1,
                       triTri = mode == BroadPhase::AllPairs ? timerBase : timerBase + 2;
