@@ -1,5 +1,7 @@
 #include "bench_support.hpp"
 
+#include "benchkit/run_context.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <cctype>
@@ -12,83 +14,7 @@
 #include <vector>
 
 namespace glcollide::bench {
-namespace {
-std::string runCommand(const std::string& command) {
-    std::string out;
-    if (FILE* pipe = popen(command.c_str(), "r")) {
-        char buf[256];
-        while (std::fgets(buf, sizeof buf, pipe)) out += buf;
-        if (pclose(pipe) != 0) return {};
-    }
-    while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-    return out;
-}
-
-/// HEAD of the source tree at run time ("-dirty" when tracked files differ from it), so a result
-/// names the code it measured even without a re-configure; the configure-time value otherwise.
-std::string gitCommit() {
-    const std::string dir = GLCOLLIDE_BENCH_SOURCE_DIR;
-    const std::string git = "git -C '" + dir + "' ";
-    const std::string head = runCommand(git + "rev-parse --short HEAD 2>/dev/null");
-    if (head.empty()) return std::string(GLCOLLIDE_BENCH_CONFIGURE_COMMIT) + " (configure time)";
-    const std::string dirty = runCommand(git + "status --porcelain --untracked-files=no 2>/dev/null");
-    return dirty.empty() ? head : head + "-dirty";
-}
-
-std::string cpuModel() {
-    std::ifstream in("/proc/cpuinfo");
-    for (std::string line; std::getline(in, line);)
-        if (line.rfind("model name", 0) == 0) {
-            const std::size_t colon = line.find(':');
-            if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
-        }
-    return "unknown";
-}
-
-std::string utcNow() {
-    const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-    std::tm tm{};
-    gmtime_r(&now, &tm);
-    char buf[32];
-    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-    return buf;
-}
-
-} // namespace
-
-/// "llvmpipe (LLVM 15.0.6, 256 bits)" -> "llvmpipe"; "NVIDIA H100 80GB HBM3/PCIe/SSE2" ->
-/// "nvidia-h100". Drops "(...)" groups (LLVM version, "(R)") and everything from the first '/'
-/// (NVIDIA's bus/ISA suffix), lower-cases, joins words with '-', and stops at the first
-/// memory-size word ("80gb") so memory variants of one board share a file name.
-std::string rendererSlug(std::string_view renderer) {
-    std::vector<std::string> words(1);
-    int depth = 0;
-    for (char ch : renderer) {
-        const auto u = static_cast<unsigned char>(ch);
-        if (ch == '(') ++depth;
-        if (ch == ')' && depth > 0) {
-            --depth;
-            continue;
-        }
-        if (depth > 0) continue;
-        if (ch == '/') break;
-        if (std::isalnum(u))
-            words.back() += static_cast<char>(std::tolower(u));
-        else if (!words.back().empty())
-            words.emplace_back();
-    }
-    std::string slug;
-    for (const std::string& w : words) {
-        if (w.empty()) continue;
-        const std::size_t digits = w.find_first_not_of("0123456789");
-        const bool memorySize = digits != 0 && digits != std::string::npos &&
-                                (w.substr(digits) == "gb" || w.substr(digits) == "mb");
-        if (memorySize && !slug.empty()) break;
-        if (!slug.empty()) slug += '-';
-        slug += w;
-    }
-    return slug.empty() ? "unknown" : slug;
-}
+std::string rendererSlug(std::string_view renderer) { return benchkit::rendererSlug(renderer); }
 
 bool parseFlags(int argc, char** argv, Flags& flags) {
     for (int i = 1; i < argc; ++i) {
@@ -107,21 +33,20 @@ bool parseFlags(int argc, char** argv, Flags& flags) {
 }
 
 void recordContext(const HeadlessContext& context, const std::string& timing) {
-    const GlInfo& gl = context.glInfo();
-    benchmark::AddCustomContext("gl_renderer", gl.renderer);
-    benchmark::AddCustomContext("gl_renderer_slug", rendererSlug(gl.renderer));
-    benchmark::AddCustomContext("gl_version", gl.version);
-    benchmark::AddCustomContext("gl_vendor", gl.vendor);
-    benchmark::AddCustomContext("gl_software_renderer", gl.isSoftware ? "true" : "false");
-    benchmark::AddCustomContext("egl_device", context.deviceDescription());
-    benchmark::AddCustomContext("egl_vendor", context.eglVendor());
-    benchmark::AddCustomContext("egl_version", context.eglVersion());
-    benchmark::AddCustomContext("cpu_model", cpuModel());
-    benchmark::AddCustomContext("git_commit", gitCommit());
-    const std::string buildType = GLCOLLIDE_BENCH_BUILD_TYPE;
-    benchmark::AddCustomContext("glcollide_build_type", buildType.empty() ? "unspecified" : buildType);
+    const benchkit::RunContext run = benchkit::describeRun(context);
+    benchmark::AddCustomContext("gl_renderer", run.renderer);
+    benchmark::AddCustomContext("gl_renderer_slug", run.rendererSlug);
+    benchmark::AddCustomContext("gl_version", run.glVersion);
+    benchmark::AddCustomContext("gl_vendor", run.glVendor);
+    benchmark::AddCustomContext("gl_software_renderer", run.softwareRenderer ? "true" : "false");
+    benchmark::AddCustomContext("egl_device", run.eglDevice);
+    benchmark::AddCustomContext("egl_vendor", run.eglVendor);
+    benchmark::AddCustomContext("egl_version", run.eglVersion);
+    benchmark::AddCustomContext("cpu_model", run.cpuModel);
+    benchmark::AddCustomContext("git_commit", run.gitCommit);
+    benchmark::AddCustomContext("glcollide_build_type", run.buildType);
     // Google Benchmark writes its own local-time "date"; this one is UTC and ISO 8601.
-    benchmark::AddCustomContext("date_utc", utcNow());
+    benchmark::AddCustomContext("date_utc", run.dateUtc);
     benchmark::AddCustomContext("timing", timing);
 }
 

@@ -103,6 +103,12 @@ public:
     [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> readIntersectingPairs() const;
     /// Candidate face pairs of the last substep's broad phase (sorted). Reads back.
     [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> readCandidatePairs() const;
+    /// Runs the broad and narrow phase on the current positions without moving anything (no forces,
+    /// no contact response, no timing): afterwards readCandidatePairs() / readIntersectingPairs()
+    /// describe exactly the state readPositions() returns (after step() they describe the positions
+    /// before the last substep's NodeUpdate). Returns the counts (contacts 0); all zero without the
+    /// collision effects. Waits for the GPU (one counter readback).
+    CollisionStats detectCollisions();
     /// First global face index of each body.
     [[nodiscard]] std::vector<std::uint32_t> bodyFirstFaces() const;
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace glcollide::app {
 
@@ -38,5 +39,18 @@ struct QueryTriTriOptions {
 
 /// glcollide query tritri: one line `1` (the closed triangles intersect) or `0` per data row.
 int queryTriTriCommand(const QueryTriTriOptions& options);
+
+struct BenchOptions {
+    std::string suite;                  ///< file, or "default" / "smoke" (built in); empty: default
+    std::string outDir = "glcollide-bench"; ///< "{device}" is replaced by the renderer's slug
+    std::vector<std::string> only;      ///< experiment names to run; empty: all
+    std::optional<int> frames;          ///< overrides every experiment's measured frames
+    std::string device;
+    bool quiet = false;
+};
+
+/// glcollide bench: bench.json (Google Benchmark schema), report.md, headline.md and SVG plots
+/// in the output folder, the table on stdout, progress on stderr.
+int benchCommand(const BenchOptions& options);
 
 } // namespace glcollide::app

@@ -43,6 +43,19 @@ int main(int argc, char** argv) {
         ->default_val("robust");
     tritriCmd->add_option("--device", tritri.device, "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
 
+    glcollide::app::BenchOptions bench;
+    CLI::App* benchCmd = cli.add_subcommand(
+        "bench", "Run a benchmark suite: per-pass GPU time and accuracy against ground truth; writes bench.json "
+                 "(Google Benchmark schema), SVG plots and report.md (docs/benchmarks.md)");
+    benchCmd->add_option("--suite", bench.suite, "Suite file (JSON), or the built-in 'default' or 'smoke'")->default_val("default");
+    benchCmd->add_option("--out", bench.outDir, "Output folder; {device} becomes the renderer's name (e.g. llvmpipe)")
+        ->default_val("glcollide-bench");
+    benchCmd->add_option("--only", bench.only, "Run only these experiments (repeatable)");
+    benchCmd->add_option("--frames", bench.frames, "Measured frames of every experiment (overrides the suite)")
+        ->check(CLI::Range(1, 100000));
+    benchCmd->add_option("--device", bench.device, "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
+    benchCmd->add_flag("--quiet", bench.quiet, "No progress on stderr");
+
     try {
         cli.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -55,6 +68,7 @@ int main(int argc, char** argv) {
         }
         if (infoCmd->parsed()) return glcollide::app::infoCommand(info);
         if (tritriCmd->parsed()) return glcollide::app::queryTriTriCommand(tritri);
+        if (benchCmd->parsed()) return glcollide::app::benchCommand(bench);
     } catch (const glcollide::Error& e) {
         std::cerr << "glcollide: error: " << e.what() << "\n";
         return 1;

@@ -262,6 +262,20 @@ std::vector<std::array<std::uint32_t, 2>> Engine::readCandidatePairs() const {
     return m_impl->collision->readCandidates();
 }
 
+CollisionStats Engine::detectCollisions() {
+    CollisionStats c;
+    if (!m_impl->collision) return c;
+    gl::DebugGroup group("glcollide::Engine::detectCollisions");
+    const passes::CollisionCounts counts = m_impl->collision->detect(m_impl->buffers, nullptr, 0);
+    c.boxPairs = counts.boxPairs;
+    c.candidatePairs = counts.candidates;
+    c.intersectingPairs = counts.intersections;
+    c.maxIntersectingPairs = counts.intersections;
+    c.exactFallbacks = counts.exactFallbacks;
+    c.listGrowths = counts.reruns;
+    return c;
+}
+
 std::vector<std::uint32_t> Engine::bodyFirstFaces() const {
     std::vector<std::uint32_t> first;
     for (const cpu::ObjectRange& o : m_impl->model.objects) first.push_back(o.firstFace);

@@ -1,0 +1,484 @@
+#include "benchkit/experiments.hpp"
+
+#include "cpu/flat_model.hpp"
+#include "cpu/ground_truth.hpp"
+#include "cpu/octree.hpp"
+#include "cpu/tri_tri_cases.hpp"
+#include "gl/gpu_timer.hpp"
+#include "gl/handles.hpp"
+#include "gl/layout.hpp"
+#include "passes/tri_tri_query_pass.hpp"
+
+#include <glcollide/engine.hpp>
+#include <glcollide/error.hpp>
+
+#include <epoxy/gl.h>
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+
+namespace glcollide::benchkit {
+namespace {
+
+using json = nlohmann::json;
+using Pairs = std::vector<std::array<std::uint32_t, 2>>;
+
+/// The scene of `entry` with the configuration's merge patch applied, parsed (and so validated)
+/// by the scene reader; errors name the scene's source and the configuration.
+Scene buildScene(const SceneEntry& entry, const ConfigEntry& config) {
+    json document = json::parse(entry.sceneJson);
+    document.merge_patch(json::parse(config.patchJson));
+    Scene scene = parseScene(document.dump(), entry.baseDir, entry.source + " (config \"" + config.name + "\")");
+    if (scene.name.empty()) scene.name = entry.name;
+    return scene;
+}
+
+/// Multiplies the scene's substeps per frame (its explicit count, or the automatic one).
+void applySubstepFactor(Scene& scene, int factor) {
+    if (factor == 1) return;
+    const int base = scene.time.substeps != 0 ? scene.time.substeps : Engine(scene, {.gpuTiming = false}).substepInfo().substeps;
+    scene.time.substeps = base * factor;
+}
+
+bool allFinite(const std::vector<glm::dvec3>& positions) {
+    return std::all_of(positions.begin(), positions.end(), [](const glm::dvec3& p) {
+        return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+    });
+}
+
+/// Called after every frame (warm-up included) with the 1-based frame number.
+using FrameHook = std::function<void(Engine&, int frame)>;
+
+/// Steps warm-up frames, then measured frames, collecting per-pass GPU time and wall time.
+RunResult measureRun(Engine& engine, const Experiment& experiment, const FrameHook& hook) {
+    RunResult r;
+    r.nodes = engine.nodeCount();
+    r.springs = engine.springCount();
+    r.faces = engine.faceCount();
+    r.substeps = engine.substepInfo().substeps;
+    r.frames = experiment.frames;
+    r.passNames = engine.pipeline();
+    std::vector<std::vector<double>> passSamples(r.passNames.size());
+    std::vector<double> gpu, wall;
+    double maxIntersecting = 0, maxContacts = 0, candidates = 0, growths = 0;
+    const int total = experiment.warmupFrames + experiment.frames;
+    for (int frame = 1; frame <= total; ++frame) {
+        engine.step();
+        const StepStats& s = engine.lastStep();
+        if (s.collisions) {
+            maxIntersecting = std::max(maxIntersecting, double(s.collision.maxIntersectingPairs));
+            maxContacts = std::max(maxContacts, double(s.collision.contacts));
+            candidates = s.collision.candidatePairs;
+            growths += s.collision.listGrowths;
+        }
+        if (frame > experiment.warmupFrames) {
+            double sum = 0.0;
+            for (std::size_t p = 0; p < s.passes.size(); ++p) {
+                passSamples[p].push_back(s.passes[p].gpuMilliseconds);
+                sum += s.passes[p].gpuMilliseconds;
+            }
+            gpu.push_back(sum);
+            wall.push_back(s.wallMilliseconds);
+        }
+        if (hook) hook(engine, frame);
+    }
+    for (auto& samples : passSamples) r.passMs.push_back(summarize(samples));
+    r.gpuMs = summarize(gpu);
+    r.wallMs = summarize(wall);
+    r.set("substeps_per_frame", r.substeps);
+    if (engine.lastStep().collisions) {
+        r.set("candidate_pairs_last_substep", candidates);
+        r.set("max_intersecting_pairs", maxIntersecting);
+        r.set("max_contacts", maxContacts);
+        r.set("list_growths", growths);
+    }
+    if (!allFinite(engine.readPositions())) r.failure = "diverged: non-finite positions";
+    return r;
+}
+
+double passMedian(const RunResult& r, std::initializer_list<const char*> names) {
+    double sum = 0.0;
+    for (std::size_t p = 0; p < r.passNames.size(); ++p)
+        for (const char* n : names)
+            if (r.passNames[p] == n) sum += r.passMs[p].median;
+    return sum;
+}
+
+std::size_t countMissing(const Pairs& wanted, const Pairs& have) {
+    Pairs missing;
+    std::set_difference(wanted.begin(), wanted.end(), have.begin(), have.end(), std::back_inserter(missing));
+    return missing.size();
+}
+
+/// The faces' objects and the pair rules of the scene's collision effects.
+struct FaceData {
+    cpu::FlatModel model;
+    std::vector<std::uint32_t> faceObject, nodeObject;
+    std::vector<bool> closed;
+    cpu::PairRules rules;
+};
+
+FaceData faceData(const Scene& scene) {
+    FaceData d;
+    d.model = cpu::flatten(scene);
+    for (std::uint32_t o = 0; o < d.model.objects.size(); ++o) {
+        const cpu::ObjectRange& r = d.model.objects[o];
+        d.faceObject.insert(d.faceObject.end(), r.faceCount, o);
+        d.nodeObject.insert(d.nodeObject.end(), r.nodeCount, o);
+        d.closed.push_back(cpu::isClosedSurface(d.model.faceIndices, r.firstFace, r.faceCount));
+    }
+    d.rules.betweenObjects = scene.effects.has(Effect::Collisions);
+    d.rules.selfCollisions = scene.effects.has(Effect::SelfCollisions);
+    return d;
+}
+
+/// Runs detection on the final state and compares candidates and intersections with the exact
+/// set of intersecting face pairs over all valid pairs.
+void compareWithOracle(Engine& engine, const FaceData& d, RunResult& r) {
+    engine.detectCollisions();
+    Pairs found = engine.readIntersectingPairs();
+    Pairs candidates = engine.readCandidatePairs();
+    std::sort(found.begin(), found.end());
+    std::sort(candidates.begin(), candidates.end());
+    std::vector<glm::vec3> positions;
+    for (const glm::dvec3& p : engine.readPositions()) positions.emplace_back(p);
+    const Pairs truth = cpu::exactIntersectingPairs(d.model.faceIndices, d.faceObject, positions, d.rules);
+    r.set("exact_intersecting_pairs", double(truth.size()));
+    r.set("candidate_pairs", double(candidates.size()));
+    r.set("reported_intersecting_pairs", double(found.size()));
+    r.set("candidates_missing_intersections", double(countMissing(truth, candidates)));
+    r.set("false_negatives", double(countMissing(truth, found)));
+    r.set("false_positives", double(countMissing(found, truth)));
+}
+
+RunResult runScene(const Experiment& x, const SceneEntry& s, const ConfigEntry& c, const FrameHook& hook,
+                   Scene* built = nullptr) {
+    Scene scene = buildScene(s, c);
+    applySubstepFactor(scene, c.substepFactor);
+    Engine engine(scene);
+    RunResult r = measureRun(engine, x, hook);
+    r.scene = s.name;
+    r.config = c.name;
+    if (built) *built = scene;
+    return r;
+}
+
+// --- experiments -------------------------------------------------------------------------------
+
+void scaling(const Experiment& x, ExperimentResult& out, const Progress& progress) {
+    out.timeLabel = "GPU ms per substep";
+    out.errorLabel = "";
+    for (const ConfigEntry& c : x.configs)
+        for (const SceneEntry& s : x.scenes) {
+            progress(s.name + " / " + c.name);
+            RunResult r = runScene(x, s, c, nullptr);
+            r.time = r.gpuMs.median / r.substeps;
+            out.runs.push_back(std::move(r));
+        }
+}
+
+void broadOrNarrow(const Experiment& x, ExperimentResult& out, const Progress& progress, bool broad) {
+    out.timeLabel = broad ? "collision detection GPU ms per substep" : "TriTri GPU ms per substep";
+    out.errorLabel = broad ? "intersecting pairs missed by the broad phase" : "disagreements with the exact oracle";
+    out.errorIsCount = true;
+    for (const SceneEntry& s : x.scenes)
+        for (const ConfigEntry& c : x.configs) {
+            progress(s.name + " / " + c.name);
+            Scene scene;
+            RunResult r;
+            {
+                Scene built = buildScene(s, c);
+                applySubstepFactor(built, c.substepFactor);
+                if (!built.effects.has(Effect::Collisions) && !built.effects.has(Effect::SelfCollisions))
+                    throw Error(s.source + " (config \"" + c.name + "\"): a " + kindName(x.kind) +
+                                " experiment needs the collisions or self_collisions effect");
+                Engine engine(built);
+                r = measureRun(engine, x, nullptr);
+                r.scene = s.name;
+                r.config = c.name;
+                if (r.failure.empty()) compareWithOracle(engine, faceData(built), r);
+            }
+            if (broad) {
+                r.time = passMedian(r, {"BBUpdate", "BBCollision", "TriTri"}) / r.substeps;
+                r.error = r.metric("candidates_missing_intersections");
+            } else {
+                r.time = passMedian(r, {"TriTri"}) / r.substeps;
+                r.error = r.metric("false_negatives") + r.metric("false_positives");
+            }
+            out.runs.push_back(std::move(r));
+        }
+    if (broad)
+        out.notes.push_back("Ground truth: every valid face pair of the final state tested by the exact rational "
+                            "oracle (sort-and-sweep over exact float boxes first). The error is the number of "
+                            "exactly intersecting pairs the broad phase did not report as candidates.");
+    else
+        out.notes.push_back("Ground truth: the exact rational oracle on every valid face pair of the final state. "
+                            "Disagreements = false positives + false negatives of the reported intersecting pairs.");
+}
+
+/// A family of triangle pairs with its exact answers.
+struct Family {
+    std::vector<cpu::FloatTriPair> pairs;
+    std::vector<std::uint8_t> exact;
+};
+
+Family makeFamily(const std::string& name) {
+    Family f;
+    if (name == "hard") {
+        for (const cpu::NamedTriPair& p : cpu::hardTriTriCases()) f.pairs.push_back(p.pair);
+    } else {
+        for (cpu::TriTriSet set : cpu::kAllTriTriSets)
+            if (name == cpu::toString(set)) f.pairs = cpu::randomTriTriPairs(set, 16384, 1000u + static_cast<std::uint32_t>(set));
+    }
+    for (const cpu::FloatTriPair& p : f.pairs) f.exact.push_back(cpu::exactPairIntersects(p) ? 1 : 0);
+    return f;
+}
+
+/// One batch of the family through the TriTri query pass: the answers once, then `frames`
+/// timed dispatches on resident buffers.
+RunResult runFamily(const Experiment& x, const std::string& name, const Family& f, const ConfigEntry& c,
+                    TriTriPrecision precision) {
+    RunResult r;
+    r.scene = "pairs: " + name;
+    r.config = c.name;
+    r.frames = x.frames;
+    r.substeps = 1;
+    r.passNames = {"TriTri"};
+    const passes::TriTriQueryPass pass(precision);
+    const passes::TriTriQueryResult answers = pass.run(f.pairs);
+    double fp = 0, fn = 0;
+    for (std::size_t i = 0; i < f.exact.size(); ++i) {
+        fp += answers.intersect[i] && !f.exact[i] ? 1 : 0;
+        fn += !answers.intersect[i] && f.exact[i] ? 1 : 0;
+    }
+    const auto n = static_cast<std::uint32_t>(f.pairs.size());
+    const gl::Buffer triangles("bench_triangles", f.pairs.size() * sizeof(cpu::FloatTriPair), f.pairs.data());
+    const gl::Buffer results("bench_results", f.pairs.size() * sizeof(std::uint32_t));
+    const std::uint32_t zero = 0;
+    const gl::Buffer stats("bench_stats", sizeof zero, &zero);
+    triangles.bindStorage(GLC_BIND_QUERY_TRIANGLES);
+    results.bindStorage(GLC_BIND_QUERY_RESULTS);
+    stats.bindStorage(GLC_BIND_QUERY_STATS);
+    gl::GpuTimer timer(1);
+    std::vector<double> ms;
+    for (int i = 0; i < x.warmupFrames + x.frames; ++i) {
+        timer.beginFrame();
+        timer.begin(0);
+        pass.dispatch(n);
+        timer.end(0);
+        const double t = timer.resolveMilliseconds()[0];
+        if (i >= x.warmupFrames) ms.push_back(t);
+    }
+    r.passMs = {summarize(ms)};
+    r.gpuMs = r.passMs[0];
+    r.set("pairs", n);
+    r.set("exact_intersecting_pairs", double(std::count(f.exact.begin(), f.exact.end(), std::uint8_t{1})));
+    r.set("false_positives", fp);
+    r.set("false_negatives", fn);
+    r.set("exact_fallbacks", double(answers.exactFallbacks));
+    r.set("gpu_ns_per_pair", r.gpuMs.median * 1e6 / n);
+    r.time = r.gpuMs.median;
+    r.error = fp + fn;
+    return r;
+}
+
+void narrowPhase(const Experiment& x, ExperimentResult& out, const Progress& progress) {
+    broadOrNarrow(x, out, progress, false);
+    for (const std::string& name : x.caseFamilies) {
+        const Family family = makeFamily(name);
+        for (const ConfigEntry& c : x.configs) {
+            progress("pairs: " + name + " / " + c.name);
+            const TriTriPrecision precision = buildScene(x.scenes.front(), c).collision.precision;
+            out.runs.push_back(runFamily(x, name, family, c, precision));
+        }
+    }
+    if (!x.caseFamilies.empty())
+        out.notes.push_back("Pair families (\"pairs: ...\"): one batch through the TriTri query pass with each "
+                            "configuration's precision; time is GPU ms per batch, ground truth the exact oracle.");
+}
+
+/// Node positions and energy after every frame.
+struct Trajectory {
+    std::vector<std::vector<glm::dvec3>> positions;
+    std::vector<double> energy;
+};
+
+FrameHook recordTrajectory(Trajectory& t) {
+    return [&t](Engine& e, int) {
+        t.positions.push_back(e.readPositions());
+        t.energy.push_back(e.energy().total());
+    };
+}
+
+/// A body in free flight under gravity with its springs at rest: every free node moves on the
+/// parabola x(t) = x0 + v0 t + g t^2 / 2 (the springs never stretch, since all free nodes share one
+/// velocity), pinned nodes stay. The exact solution of the discrete system, so any error is the
+/// integrator's (symplectic Euler: g h t / 2, first order in h) plus float rounding.
+struct Ballistic {
+    std::vector<glm::dvec3> start, velocity;
+    std::vector<bool> pinned;
+    glm::dvec3 gravity{0.0};
+    std::vector<double> masses;
+
+    [[nodiscard]] std::vector<glm::dvec3> positions(double t) const {
+        std::vector<glm::dvec3> x;
+        for (std::size_t i = 0; i < start.size(); ++i)
+            x.push_back(pinned[i] ? start[i] : start[i] + velocity[i] * t + 0.5 * gravity * t * t);
+        return x;
+    }
+    /// Kinetic + gravitational energy (springs stay at rest): constant in time.
+    [[nodiscard]] double energy() const {
+        double e = 0.0;
+        for (std::size_t i = 0; i < start.size(); ++i)
+            if (!pinned[i]) e += 0.5 * masses[i] * glm::dot(velocity[i], velocity[i]) - masses[i] * glm::dot(gravity, start[i]);
+        return e;
+    }
+};
+
+Ballistic ballisticOf(const Scene& scene, const std::string& source) {
+    const auto fail = [&](const std::string& what) -> Ballistic {
+        throw Error(source + ": the ballistic reference needs effects gravity (and optionally springs) only, no "
+                             "spring between a pinned and a free node, and one velocity for all free nodes: " + what);
+    };
+    for (Effect e : scene.effects.list())
+        if (e != Effect::Gravity && e != Effect::Springs) return fail("effect " + std::string(effectName(e)) + " is on");
+    if (!scene.effects.has(Effect::Gravity)) return fail("gravity is off");
+    const cpu::FlatModel m = cpu::flatten(scene);
+    Ballistic b;
+    b.start = m.positions;
+    b.velocity = m.velocities;
+    b.masses = m.masses;
+    b.gravity = scene.gravity;
+    for (double w : m.inverseMasses) b.pinned.push_back(w == 0.0);
+    std::optional<glm::dvec3> shared;
+    for (std::size_t i = 0; i < m.nodeCount(); ++i) {
+        if (b.pinned[i]) continue;
+        if (shared && *shared != m.velocities[i]) return fail("node " + std::to_string(i) + " has another velocity");
+        shared = m.velocities[i];
+    }
+    if (scene.effects.has(Effect::Springs))
+        for (const cpu::FlatSpring& sp : m.springs)
+            if (b.pinned[sp.a] != b.pinned[sp.b])
+                return fail("a spring joins pinned node " + std::to_string(b.pinned[sp.a] ? sp.a : sp.b) + " to a free one");
+    return b;
+}
+
+/// Largest node distance from the reference over all frames, and the largest energy difference
+/// relative to the reference's initial energy.
+void compareTrajectories(const Trajectory& run, const Trajectory& ref, double referenceEnergy, RunResult& r) {
+    double error = 0.0, energyError = 0.0;
+    const std::size_t frames = std::min(run.positions.size(), ref.positions.size());
+    for (std::size_t f = 0; f < frames; ++f) {
+        for (std::size_t i = 0; i < run.positions[f].size(); ++i)
+            error = std::max(error, glm::length(run.positions[f][i] - ref.positions[f][i]));
+        energyError = std::max(energyError, std::abs(run.energy[f] - ref.energy[f]));
+    }
+    const double scale = std::abs(referenceEnergy) > 0 ? std::abs(referenceEnergy) : 1.0;
+    r.set("max_position_error_m", std::isfinite(error) ? error : std::numeric_limits<double>::infinity());
+    r.set("max_energy_error_relative", energyError / scale);
+    r.error = r.metric("max_position_error_m");
+}
+
+void integration(const Experiment& x, ExperimentResult& out, const Progress& progress) {
+    out.timeLabel = "GPU ms per frame";
+    out.errorLabel = "largest node position error (m)";
+    for (const SceneEntry& s : x.scenes) {
+        Trajectory ref;
+        double referenceEnergy = 0.0;
+        if (x.reference == IntegrationReference::Ballistic) {
+            const Scene scene = buildScene(s, x.configs.front());
+            const Ballistic o = ballisticOf(scene, s.source);
+            const double dt = scene.time.dt;
+            for (int f = 1; f <= x.warmupFrames + x.frames; ++f) {
+                ref.positions.push_back(o.positions(f * dt));
+                ref.energy.push_back(o.energy());
+            }
+            referenceEnergy = o.energy();
+        } else {
+            ConfigEntry refConfig = x.configs.front();
+            Scene base = buildScene(s, refConfig);
+            applySubstepFactor(base, refConfig.substepFactor);
+            const int baseSubsteps = base.time.substeps != 0 ? base.time.substeps : Engine(base, {.gpuTiming = false}).substepInfo().substeps;
+            refConfig.name = "reference";
+            refConfig.substepFactor = 1;
+            progress(s.name + " / reference (" + std::to_string(x.referenceFactor) + " x " + std::to_string(baseSubsteps) + " substeps)");
+            base.time.substeps = baseSubsteps * x.referenceFactor;
+            Engine engine(base);
+            referenceEnergy = engine.energy().total();
+            RunResult r = measureRun(engine, x, recordTrajectory(ref));
+            if (!r.failure.empty()) throw Error(s.source + ": the converged reference run " + r.failure);
+        }
+        for (const ConfigEntry& c : x.configs) {
+            progress(s.name + " / " + c.name);
+            Trajectory t;
+            RunResult r = runScene(x, s, c, recordTrajectory(t));
+            compareTrajectories(t, ref, referenceEnergy, r);
+            r.time = r.gpuMs.median;
+            out.runs.push_back(std::move(r));
+        }
+    }
+    out.notes.push_back(x.reference == IntegrationReference::Ballistic
+                            ? "Ground truth: the closed-form free flight x(t) = x0 + v0 t + g t^2/2 of every node (springs at "
+                              "rest), compared after every frame; energy error relative to the constant exact energy."
+                            : "Ground truth: the same scene at " + std::to_string(x.referenceFactor) +
+                                  " x the first configuration's substeps (converged reference), compared after every frame.");
+    out.notes.push_back("Integrator: symplectic Euler is the only one implemented; the axis is the substep count.");
+}
+
+void contact(const Experiment& x, ExperimentResult& out, const Progress& progress) {
+    out.timeLabel = "GPU ms per frame";
+    out.errorLabel = "deepest penetration (m)";
+    for (const SceneEntry& s : x.scenes)
+        for (const ConfigEntry& c : x.configs) {
+            progress(s.name + " / " + c.name);
+            const FaceData d = faceData(buildScene(s, c));
+            cpu::Penetration deepest;
+            const FrameHook hook = [&](Engine& e, int) {
+                const cpu::Penetration p =
+                    cpu::deepestPenetration(d.model.faceIndices, d.faceObject, d.nodeObject, e.readPositions(), d.closed);
+                if (p.depth > deepest.depth) deepest = p;
+            };
+            Scene built;
+            RunResult r = runScene(x, s, c, hook, &built);
+            r.set("deepest_penetration_m", deepest.depth);
+            r.time = r.gpuMs.median;
+            r.error = deepest.depth;
+            out.runs.push_back(std::move(r));
+        }
+    out.notes.push_back("Penetration: after every frame, the deepest node of one body strictly inside another closed "
+                        "body (generalised winding number), measured as its distance to that body's surface, in "
+                        "double precision on the read-back state. max_intersecting_pairs is the largest count of "
+                        "exactly intersecting face pairs (robust narrow phase) over all substeps.");
+}
+
+} // namespace
+
+ExperimentResult runExperiment(const Experiment& experiment, const Progress& progress) {
+    ExperimentResult out;
+    out.experiment = experiment;
+    std::size_t done = 0;
+    const std::size_t total = experiment.scenes.size() * experiment.configs.size() +
+                              experiment.caseFamilies.size() * experiment.configs.size();
+    const Progress counted = [&](const std::string& what) {
+        if (progress)
+            progress(experiment.name + " " + std::to_string(std::min(++done, total)) + "/" + std::to_string(total) + ": " + what);
+    };
+    switch (experiment.kind) {
+    case ExperimentKind::Scaling: scaling(experiment, out, counted); break;
+    case ExperimentKind::BroadPhase: broadOrNarrow(experiment, out, counted, true); break;
+    case ExperimentKind::NarrowPhase: narrowPhase(experiment, out, counted); break;
+    case ExperimentKind::Integration: integration(experiment, out, counted); break;
+    case ExperimentKind::Contact: contact(experiment, out, counted); break;
+    }
+    return out;
+}
+
+} // namespace glcollide::benchkit

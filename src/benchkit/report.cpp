@@ -1,0 +1,357 @@
+#include "benchkit/report.hpp"
+
+#include "benchkit/svg_plot.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <thread>
+
+namespace glcollide::benchkit {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+/// Three significant digits, no exponent for ordinary magnitudes.
+std::string num(double v) {
+    if (std::isnan(v)) return "n/a";
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    if (v == std::floor(v) && std::abs(v) < 1e9) return std::to_string(static_cast<long long>(v));
+    std::ostringstream s;
+    const double a = std::abs(v);
+    if (a != 0 && (a < 1e-3 || a >= 1e6)) s << std::setprecision(3) << std::scientific << v;
+    else s << std::setprecision(a >= 100 ? 4 : 3) << v;
+    return s.str();
+}
+
+/// JSON numbers must be finite; non-finite values (a diverged run) become null.
+json finiteOrNull(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+std::string slug(const std::string& text) {
+    std::string s;
+    for (char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (std::isalnum(u)) s += static_cast<char>(std::tolower(u));
+        else if (!s.empty() && s.back() != '-') s += '-';
+    }
+    while (!s.empty() && s.back() == '-') s.pop_back();
+    return s.empty() ? "scene" : s;
+}
+
+bool accuracy(const ExperimentResult& r) { return r.experiment.kind != ExperimentKind::Scaling; }
+
+std::vector<std::string> sceneOrder(const ExperimentResult& r) {
+    std::vector<std::string> scenes;
+    for (const RunResult& run : r.runs)
+        if (std::find(scenes.begin(), scenes.end(), run.scene) == scenes.end()) scenes.push_back(run.scene);
+    return scenes;
+}
+
+/// The metrics worth a table column for each kind (all of them are in the JSON).
+std::vector<std::pair<std::string, std::string>> tableMetrics(ExperimentKind kind) {
+    switch (kind) {
+    case ExperimentKind::Scaling: return {};
+    case ExperimentKind::BroadPhase:
+        return {{"candidate_pairs", "candidates"}, {"exact_intersecting_pairs", "exact pairs"},
+                {"candidates_missing_intersections", "missed"}};
+    case ExperimentKind::NarrowPhase:
+        return {{"exact_intersecting_pairs", "exact pairs"}, {"false_positives", "false pos."},
+                {"false_negatives", "false neg."}};
+    case ExperimentKind::Integration:
+        return {{"max_position_error_m", "max error (m)"}, {"max_energy_error_relative", "energy error (rel.)"}};
+    case ExperimentKind::Contact:
+        return {{"deepest_penetration_m", "deepest penetration (m)"}, {"max_intersecting_pairs", "max intersecting pairs"},
+                {"max_contacts", "max contacts"}};
+    }
+    return {};
+}
+
+struct Table {
+    std::vector<std::string> header;
+    std::vector<std::vector<std::string>> rows;
+};
+
+Table tableOf(const ExperimentResult& r) {
+    Table t;
+    t.header = {"scene", "config", "faces", "substeps/frame", "GPU ms/frame (median [q1, q3])", "wall ms/frame"};
+    if (accuracy(r)) t.header.push_back(r.timeLabel);
+    else t.header.push_back("GPU ms/substep");
+    const auto metrics = tableMetrics(r.experiment.kind);
+    for (const auto& m : metrics) t.header.push_back(m.second);
+    for (const RunResult& run : r.runs) {
+        std::vector<std::string> row{run.scene, run.config, run.faces ? num(run.faces) : "-", num(run.substeps)};
+        if (!run.failure.empty()) {
+            row.push_back("failed: " + run.failure);
+            while (row.size() < t.header.size()) row.emplace_back("-");
+        } else {
+            row.push_back(num(run.gpuMs.median) + " [" + num(run.gpuMs.q1) + ", " + num(run.gpuMs.q3) + "]");
+            row.push_back(run.wallMs.samples ? num(run.wallMs.median) : "-");
+            row.push_back(num(run.time));
+            for (const auto& m : metrics) row.push_back(num(run.metric(m.first, std::nan(""))));
+        }
+        t.rows.push_back(std::move(row));
+    }
+    return t;
+}
+
+std::string markdownTable(const Table& t) {
+    std::ostringstream s;
+    s << "|";
+    for (const std::string& h : t.header) s << ' ' << h << " |";
+    s << "\n|";
+    for (std::size_t i = 0; i < t.header.size(); ++i) s << (i < 2 ? "---|" : "---:|");
+    s << "\n";
+    for (const auto& row : t.rows) {
+        s << "|";
+        for (const std::string& cell : row) s << ' ' << cell << " |";
+        s << "\n";
+    }
+    return s.str();
+}
+
+std::string deviceLine(const RunContext& c) {
+    return c.renderer + " (" + c.glVersion + (c.softwareRenderer ? "; software rasteriser, not a GPU" : "") +
+           "), " + c.eglDevice + ", CPU " + c.cpuModel + ", commit " + c.gitCommit + ", " + c.dateUtc;
+}
+
+} // namespace
+
+double logLogSlope(const std::vector<RunResult>& runs) {
+    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (const RunResult& r : runs) {
+        if (!r.failure.empty() || r.faces == 0 || !(r.time > 0) || !std::isfinite(r.time)) continue;
+        const double x = std::log(double(r.faces)), y = std::log(r.time);
+        n += 1;
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        sxy += x * y;
+    }
+    const double d = n * sxx - sx * sx;
+    if (n < 2 || d <= 0) return std::nan("");
+    return (n * sxy - sx * sy) / d;
+}
+
+std::string benchmarkJson(const RunContext& c, const Suite& suite, const std::vector<ExperimentResult>& results) {
+    json context = {
+        {"date", c.dateUtc},
+        {"host_name", ""},
+        {"executable", "glcollide bench"},
+        {"num_cpus", std::thread::hardware_concurrency()},
+        {"mhz_per_cpu", 0},
+        {"cpu_scaling_enabled", false},
+        {"caches", json::array()},
+        {"library_build_type", c.buildType == "Debug" ? "debug" : "release"},
+        {"gl_renderer", c.renderer},
+        {"gl_renderer_slug", c.rendererSlug},
+        {"gl_version", c.glVersion},
+        {"gl_vendor", c.glVendor},
+        {"gl_software_renderer", c.softwareRenderer ? "true" : "false"},
+        {"egl_device", c.eglDevice},
+        {"egl_vendor", c.eglVendor},
+        {"egl_version", c.eglVersion},
+        {"cpu_model", c.cpuModel},
+        {"git_commit", c.gitCommit},
+        {"glcollide_build_type", c.buildType},
+        {"date_utc", c.dateUtc},
+        {"suite", suite.name},
+        {"suite_source", suite.source},
+        {"timing", "GPU ms per frame from GL_TIMESTAMP pairs around each pass (summed over the frame's substeps); "
+                   "median over the measured frames, spread as quartiles and range; wall = CPU time of Engine::step()"},
+    };
+    json benchmarks = json::array();
+    int family = 0;
+    for (const ExperimentResult& r : results)
+        for (const RunResult& run : r.runs) {
+            const std::string base = r.experiment.name + "/" + run.scene + "/" + run.config;
+            auto entry = [&](const std::string& pass, const Summary& s, int instance) {
+                json e = {{"name", base + "/" + pass},
+                          {"family_index", family},
+                          {"per_family_instance_index", instance},
+                          {"run_name", base + "/" + pass},
+                          {"run_type", "iteration"},
+                          {"repetitions", 1},
+                          {"repetition_index", 0},
+                          {"threads", 1},
+                          {"iterations", s.samples},
+                          {"real_time", finiteOrNull(s.median)},
+                          {"cpu_time", finiteOrNull(s.median)},
+                          {"time_unit", "ms"},
+                          {"experiment", r.experiment.name},
+                          {"kind", kindName(r.experiment.kind)},
+                          {"scene", run.scene},
+                          {"config", run.config},
+                          {"pass", pass},
+                          {"min", finiteOrNull(s.min)},
+                          {"max", finiteOrNull(s.max)},
+                          {"q1", finiteOrNull(s.q1)},
+                          {"q3", finiteOrNull(s.q3)},
+                          {"nodes", run.nodes},
+                          {"springs", run.springs},
+                          {"faces", run.faces},
+                          {"substeps_per_frame", run.substeps}};
+                if (!run.failure.empty()) e["error_occurred"] = true, e["error_message"] = run.failure;
+                if (accuracy(r) && pass == "gpu_total") {
+                    e["accuracy_time"] = finiteOrNull(run.time);
+                    e["accuracy_time_label"] = r.timeLabel;
+                    e["accuracy_error"] = finiteOrNull(run.error);
+                    e["accuracy_error_label"] = r.errorLabel;
+                }
+                for (const Metric& m : run.metrics) e[m.key] = finiteOrNull(m.value);
+                benchmarks.push_back(std::move(e));
+            };
+            int instance = 0;
+            for (std::size_t p = 0; p < run.passNames.size() && p < run.passMs.size(); ++p)
+                entry(run.passNames[p], run.passMs[p], instance++);
+            entry("gpu_total", run.gpuMs, instance++);
+            if (run.wallMs.samples) entry("wall", run.wallMs, instance++);
+            ++family;
+        }
+    return json{{"context", context}, {"benchmarks", benchmarks}}.dump(2) + "\n";
+}
+
+std::string textTable(const ExperimentResult& r) {
+    const Table t = tableOf(r);
+    std::vector<std::size_t> width(t.header.size(), 0);
+    for (std::size_t i = 0; i < t.header.size(); ++i) width[i] = t.header[i].size();
+    for (const auto& row : t.rows)
+        for (std::size_t i = 0; i < row.size() && i < width.size(); ++i) width[i] = std::max(width[i], row[i].size());
+    std::ostringstream s;
+    s << "== " << r.experiment.name << ": " << r.experiment.title << "\n";
+    auto line = [&](const std::vector<std::string>& cells) {
+        for (std::size_t i = 0; i < cells.size() && i < width.size(); ++i)
+            s << (i ? "  " : "") << (i < 2 ? std::left : std::right) << std::setw(static_cast<int>(width[i])) << cells[i];
+        s << std::right << "\n";
+    };
+    line(t.header);
+    for (const auto& row : t.rows) line(row);
+    if (r.experiment.kind == ExperimentKind::Scaling)
+        for (const ConfigEntry& c : r.experiment.configs) {
+            std::vector<RunResult> runs;
+            for (const RunResult& run : r.runs)
+                if (run.config == c.name) runs.push_back(run);
+            s << "   " << c.name << ": GPU time per substep grows as faces^" << num(logLogSlope(runs)) << "\n";
+        }
+    for (const std::string& note : r.notes) s << "   note: " << note << "\n";
+    return s.str();
+}
+
+std::vector<PlotFile> plots(const ExperimentResult& r) {
+    std::vector<PlotFile> files;
+    if (!accuracy(r)) {
+        PlotSpec spec;
+        spec.title = r.experiment.title;
+        spec.xLabel = "faces";
+        spec.yLabel = "GPU ms per substep";
+        spec.logX = spec.logY = true;
+        for (const ConfigEntry& c : r.experiment.configs) {
+            PlotSeries series;
+            std::vector<RunResult> runs;
+            for (const RunResult& run : r.runs)
+                if (run.config == c.name && run.failure.empty()) {
+                    series.points.push_back({double(run.faces), run.time, run.scene});
+                    runs.push_back(run);
+                }
+            series.name = c.name + " (slope " + num(logLogSlope(runs)) + ")";
+            std::sort(series.points.begin(), series.points.end(),
+                      [](const PlotPoint& a, const PlotPoint& b) { return a.x < b.x; });
+            spec.series.push_back(std::move(series));
+        }
+        files.push_back({r.experiment.name + ".svg", spec.title, renderSvg(spec)});
+        return files;
+    }
+    for (const std::string& scene : sceneOrder(r)) {
+        PlotSpec spec;
+        spec.title = r.experiment.title + ": " + scene;
+        spec.xLabel = r.timeLabel;
+        spec.yLabel = r.errorLabel;
+        spec.logX = true;
+        spec.logY = true;
+        spec.paretoFront = true;
+        PlotSeries series;
+        series.name = scene;
+        series.connect = false;
+        series.labelAll = true;
+        for (const RunResult& run : r.runs)
+            if (run.scene == scene && run.failure.empty()) series.points.push_back({run.time, run.error, run.config});
+        spec.series.push_back(std::move(series));
+        files.push_back({r.experiment.name + "-" + slug(scene) + ".svg", spec.title, renderSvg(spec)});
+    }
+    return files;
+}
+
+std::string markdownReport(const RunContext& c, const Suite& suite, const std::vector<ExperimentResult>& results,
+                           const std::vector<std::vector<PlotFile>>& plotFiles) {
+    std::ostringstream s;
+    s << "## " << c.renderer << "\n\n";
+    s << "Device: " << deviceLine(c) << ". Suite: `" << suite.name << "` (" << suite.source << ").";
+    if (c.softwareRenderer) s << " **These are llvmpipe (CPU) timings, not GPU timings.**";
+    s << "\n\n";
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        const ExperimentResult& r = results[i];
+        s << "### " << r.experiment.title << " (`" << r.experiment.name << "`, " << kindName(r.experiment.kind)
+          << ")\n\n";
+        s << r.experiment.warmupFrames << " warm-up and " << r.experiment.frames << " measured frames per run.";
+        if (accuracy(r)) s << " Plotted: " << r.timeLabel << " against " << r.errorLabel << ".";
+        s << "\n\n";
+        for (const std::string& note : r.notes) s << "- " << note << "\n";
+        if (r.experiment.kind == ExperimentKind::Scaling)
+            for (const ConfigEntry& cfg : r.experiment.configs) {
+                std::vector<RunResult> runs;
+                for (const RunResult& run : r.runs)
+                    if (run.config == cfg.name) runs.push_back(run);
+                s << "- " << cfg.name << ": GPU time per substep grows as faces^" << num(logLogSlope(runs)) << "\n";
+            }
+        s << "\n" << markdownTable(tableOf(r)) << "\n";
+        if (i < plotFiles.size())
+            for (const PlotFile& f : plotFiles[i]) s << "![" << f.title << "](" << f.name << ")\n";
+        s << "\n";
+    }
+    return s.str();
+}
+
+std::string headlineTable(const RunContext& c, const std::vector<ExperimentResult>& results) {
+    std::ostringstream s;
+    s << "Measured on " << c.renderer << (c.softwareRenderer ? " (software, not a GPU)" : "") << ", commit "
+      << c.gitCommit << ", " << c.dateUtc.substr(0, 10) << ".\n\n";
+    s << "| experiment | scene | fastest config (time, error) | fastest config with zero error (time) |\n";
+    s << "|---|---|---|---|\n";
+    for (const ExperimentResult& r : results) {
+        if (!accuracy(r)) continue;
+        for (const std::string& scene : sceneOrder(r)) {
+            const RunResult* fastest = nullptr;
+            const RunResult* exact = nullptr;
+            for (const RunResult& run : r.runs) {
+                if (run.scene != scene || !run.failure.empty()) continue;
+                if (!fastest || run.time < fastest->time) fastest = &run;
+                if (run.error == 0 && (!exact || run.time < exact->time)) exact = &run;
+            }
+            if (!fastest) continue;
+            s << "| " << r.experiment.title << " | " << scene << " | " << fastest->config << " (" << num(fastest->time)
+              << " " << r.timeLabel << ", " << num(fastest->error) << " " << r.errorLabel << ") | "
+              << (exact ? exact->config + " (" + num(exact->time) + ")" : std::string("none")) << " |\n";
+        }
+    }
+    for (const ExperimentResult& r : results) {
+        if (accuracy(r)) continue;
+        for (const ConfigEntry& cfg : r.experiment.configs) {
+            std::vector<RunResult> runs;
+            double largest = 0, ms = 0;
+            for (const RunResult& run : r.runs)
+                if (run.config == cfg.name && run.failure.empty()) {
+                    runs.push_back(run);
+                    if (run.faces > largest) largest = run.faces, ms = run.time;
+                }
+            s << "| " << r.experiment.title << " | " << cfg.name << " | cost grows as faces^" << num(logLogSlope(runs))
+              << " | " << num(ms) << " GPU ms per substep at " << num(largest) << " faces |\n";
+        }
+    }
+    return s.str();
+}
+
+} // namespace glcollide::benchkit

@@ -1,0 +1,220 @@
+#include "benchkit/suite.hpp"
+
+#include "cpu/tri_tri_cases.hpp"
+
+#include <glcollide/error.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace glcollide::benchkit {
+namespace {
+
+using json = nlohmann::json;
+
+/// Where a value sits: the suite's name and a JSON pointer, for every message.
+struct Where {
+    const std::string& source;
+    std::string pointer;
+    [[nodiscard]] Where operator/(const std::string& key) const { return {source, pointer + "/" + key}; }
+    [[nodiscard]] Where operator/(std::size_t index) const { return {source, pointer + "/" + std::to_string(index)}; }
+    [[noreturn]] void fail(const std::string& what) const {
+        throw Error(source + ": " + (pointer.empty() ? "/" : pointer) + ": " + what);
+    }
+};
+
+void allowOnly(const json& object, const Where& at, std::initializer_list<const char*> keys) {
+    if (!object.is_object()) at.fail("expected an object");
+    for (const auto& [key, value] : object.items())
+        if (std::none_of(keys.begin(), keys.end(), [&](const char* k) { return key == k; })) {
+            std::string expected;
+            for (const char* k : keys) expected += std::string(expected.empty() ? "" : ", ") + k;
+            (at / key).fail("unknown key (expected one of: " + expected + ")");
+        }
+}
+
+std::string stringAt(const json& object, const Where& at, const char* key) {
+    if (!object.contains(key)) (at / key).fail("required string is missing");
+    const json& v = object.at(key);
+    if (!v.is_string() || v.get<std::string>().empty()) (at / key).fail("expected a non-empty string");
+    return v.get<std::string>();
+}
+
+int intAt(const json& object, const Where& at, const char* key, int fallback, int lo, int hi) {
+    if (!object.contains(key)) return fallback;
+    const json& v = object.at(key);
+    if (!v.is_number_integer()) (at / key).fail("expected an integer");
+    const auto n = v.get<long long>();
+    if (n < lo || n > hi)
+        (at / key).fail("expected an integer in " + std::to_string(lo) + " ... " + std::to_string(hi) + ", got " +
+                        std::to_string(n));
+    return static_cast<int>(n);
+}
+
+json parseJson(const std::string& text, const std::string& source) {
+    try {
+        return json::parse(text, nullptr, true, true);
+    } catch (const json::parse_error& e) {
+        throw Error(source + ": invalid JSON: " + e.what());
+    }
+}
+
+std::string readFile(const std::filesystem::path& path, const std::string& what) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path.string() + ": cannot open " + what);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+ExperimentKind parseKind(const json& experiment, const Where& at) {
+    const std::string kind = stringAt(experiment, at, "kind");
+    for (ExperimentKind k : {ExperimentKind::Scaling, ExperimentKind::BroadPhase, ExperimentKind::NarrowPhase,
+                             ExperimentKind::Integration, ExperimentKind::Contact})
+        if (kind == kindName(k)) return k;
+    (at / "kind").fail("unknown kind \"" + kind +
+                       "\" (expected scaling, broad_phase, narrow_phase, integration or contact)");
+}
+
+/// A scene is inline (an object in the scene format) or a path relative to the suite; either may
+/// carry a merge patch.
+SceneEntry parseSceneEntry(const json& entry, const Where& at, const std::filesystem::path& baseDir) {
+    allowOnly(entry, at, {"name", "scene", "patch"});
+    SceneEntry s;
+    s.name = stringAt(entry, at, "name");
+    if (!entry.contains("scene")) (at / "scene").fail("required scene is missing (an object or a file path)");
+    const json& scene = entry.at("scene");
+    json document;
+    if (scene.is_string()) {
+        const std::filesystem::path path = baseDir / scene.get<std::string>();
+        document = parseJson(readFile(path, "scene file (named at " + (at / "scene").pointer + ")"), path.string());
+        s.baseDir = path.parent_path();
+        s.source = path.string();
+    } else if (scene.is_object()) {
+        document = scene;
+        s.baseDir = baseDir;
+        s.source = at.source + "#" + (at / "scene").pointer;
+    } else {
+        (at / "scene").fail("expected a scene object or a file path");
+    }
+    if (entry.contains("patch")) {
+        if (!entry.at("patch").is_object()) (at / "patch").fail("expected an object (a JSON merge patch)");
+        document.merge_patch(entry.at("patch"));
+        s.source += " with " + at.pointer + "/patch";
+    }
+    s.sceneJson = document.dump();
+    return s;
+}
+
+ConfigEntry parseConfig(const json& entry, const Where& at) {
+    allowOnly(entry, at, {"name", "patch", "substep_factor"});
+    ConfigEntry c;
+    c.name = stringAt(entry, at, "name");
+    if (entry.contains("patch")) {
+        if (!entry.at("patch").is_object()) (at / "patch").fail("expected an object (a JSON merge patch)");
+        c.patchJson = entry.at("patch").dump();
+    }
+    c.substepFactor = intAt(entry, at, "substep_factor", 1, 1, 1 << 16);
+    return c;
+}
+
+template <typename T, typename F>
+std::vector<T> parseList(const json& object, const Where& at, const char* key, F parseOne) {
+    if (!object.contains(key)) (at / key).fail("required list is missing");
+    const json& list = object.at(key);
+    if (!list.is_array() || list.empty()) (at / key).fail("expected a non-empty array");
+    std::vector<T> out;
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        out.push_back(parseOne(list[i], at / key / i));
+        if (!names.insert(out.back().name).second) (at / key / i / "name").fail("duplicate name \"" + out.back().name + "\"");
+    }
+    return out;
+}
+
+Experiment parseExperiment(const json& e, const Where& at, const std::filesystem::path& baseDir, int warmup, int frames) {
+    allowOnly(e, at,
+              {"name", "kind", "title", "scenes", "configs", "warmup_frames", "frames", "reference",
+               "reference_factor", "case_families"});
+    Experiment x;
+    x.kind = parseKind(e, at);
+    x.name = stringAt(e, at, "name");
+    if (x.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") != std::string::npos)
+        (at / "name").fail("use lower-case letters, digits, '_' and '-' (it names output files)");
+    x.title = e.contains("title") ? stringAt(e, at, "title") : x.name;
+    x.warmupFrames = intAt(e, at, "warmup_frames", warmup, 0, 1000);
+    x.frames = intAt(e, at, "frames", frames, 1, 100000);
+    x.scenes = parseList<SceneEntry>(e, at, "scenes",
+                                     [&](const json& s, const Where& w) { return parseSceneEntry(s, w, baseDir); });
+    x.configs = parseList<ConfigEntry>(e, at, "configs", parseConfig);
+    const bool integration = x.kind == ExperimentKind::Integration;
+    if (!integration && (e.contains("reference") || e.contains("reference_factor")))
+        (at / (e.contains("reference") ? "reference" : "reference_factor")).fail("only integration experiments have a reference");
+    if (integration) {
+        const std::string ref = e.contains("reference") ? stringAt(e, at, "reference") : "converged";
+        if (ref == "converged") x.reference = IntegrationReference::Converged;
+        else if (ref == "ballistic") x.reference = IntegrationReference::Ballistic;
+        else (at / "reference").fail("unknown reference \"" + ref + "\" (expected converged or ballistic)");
+        x.referenceFactor = intAt(e, at, "reference_factor", 16, 2, 1024);
+    }
+    if (e.contains("case_families")) {
+        if (x.kind != ExperimentKind::NarrowPhase) (at / "case_families").fail("only narrow_phase experiments have case families");
+        const json& list = e.at("case_families");
+        if (!list.is_array()) (at / "case_families").fail("expected an array of family names");
+        const std::vector<std::string> known = knownCaseFamilies();
+        for (std::size_t i = 0; i < list.size(); ++i) {
+            const std::string name = list[i].is_string() ? list[i].get<std::string>() : "";
+            if (std::find(known.begin(), known.end(), name) == known.end()) {
+                std::string all;
+                for (const std::string& k : known) all += (all.empty() ? "" : ", ") + k;
+                (at / "case_families" / i).fail("unknown family (expected one of: " + all + ")");
+            }
+            x.caseFamilies.push_back(name);
+        }
+    }
+    return x;
+}
+
+} // namespace
+
+const char* kindName(ExperimentKind kind) {
+    switch (kind) {
+    case ExperimentKind::Scaling: return "scaling";
+    case ExperimentKind::BroadPhase: return "broad_phase";
+    case ExperimentKind::NarrowPhase: return "narrow_phase";
+    case ExperimentKind::Integration: return "integration";
+    case ExperimentKind::Contact: return "contact";
+    }
+    return "unknown";
+}
+
+std::vector<std::string> knownCaseFamilies() {
+    std::vector<std::string> names{"hard"};
+    for (cpu::TriTriSet set : cpu::kAllTriTriSets) names.emplace_back(cpu::toString(set));
+    return names;
+}
+
+Suite parseSuite(const std::string& jsonText, const std::filesystem::path& baseDir, const std::string& sourceName) {
+    const json root = parseJson(jsonText, sourceName);
+    const Where at{sourceName, ""};
+    allowOnly(root, at, {"name", "warmup_frames", "frames", "experiments"});
+    Suite suite;
+    suite.source = sourceName;
+    suite.name = stringAt(root, at, "name");
+    const int warmup = intAt(root, at, "warmup_frames", 1, 0, 1000);
+    const int frames = intAt(root, at, "frames", 5, 1, 100000);
+    suite.experiments = parseList<Experiment>(root, at, "experiments", [&](const json& e, const Where& w) {
+        return parseExperiment(e, w, baseDir, warmup, frames);
+    });
+    return suite;
+}
+
+Suite loadSuite(const std::filesystem::path& path) {
+    return parseSuite(readFile(path, "suite file"), path.parent_path(), path.string());
+}
+
+} // namespace glcollide::benchkit

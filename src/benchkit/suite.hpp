@@ -1,0 +1,79 @@
+#pragma once
+/// \file A benchmark suite: which scenes `glcollide bench` runs, under which configurations, and
+/// what each experiment measures (docs/benchmarks.md, "Suite files").
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace glcollide::benchkit {
+
+/// What an experiment measures; each kind has its own ground truth (docs/benchmarks.md).
+enum class ExperimentKind {
+    Scaling,     ///< time per frame against the number of faces, per pipeline (no ground truth)
+    BroadPhase,  ///< missed intersecting pairs against the exact oracle on all face pairs
+    NarrowPhase, ///< false positives / negatives of the triangle test against the exact oracle
+    Integration, ///< trajectory error and energy drift against an analytic or converged solution
+    Contact,     ///< deepest penetration and intersecting pairs left after the contact response
+};
+
+const char* kindName(ExperimentKind kind);
+
+/// One scene of an experiment: scene-format JSON (inline or from a file) plus an optional JSON
+/// merge patch (RFC 7386), kept as text so every configuration re-parses it with the scene
+/// reader's own error messages.
+struct SceneEntry {
+    std::string name;
+    std::string sceneJson;          ///< the scene document, merge patch already applied
+    std::filesystem::path baseDir;  ///< resolves the scene's mesh paths
+    std::string source;             ///< "suite.json#/experiments/0/scenes/1" for messages
+};
+
+/// One configuration: a merge patch applied to every scene of the experiment, and a factor on
+/// the scene's substep count (automatic or explicit).
+struct ConfigEntry {
+    std::string name;
+    std::string patchJson = "{}";
+    int substepFactor = 1; ///< >= 1
+};
+
+/// The reference an integration experiment measures trajectories against.
+enum class IntegrationReference {
+    Converged,  ///< the same scene at `referenceFactor` times the first configuration's substeps
+    Ballistic,  ///< the closed form of free flight under gravity (springs at rest)
+};
+
+struct Experiment {
+    ExperimentKind kind = ExperimentKind::Scaling;
+    std::string name;               ///< unique in the suite; names output files
+    std::string title;              ///< one line for tables and plots
+    std::vector<SceneEntry> scenes;
+    std::vector<ConfigEntry> configs;
+    int warmupFrames = 1;           ///< frames stepped before measuring (shader compilation, list growth)
+    int frames = 5;                 ///< measured frames, >= 1
+    IntegrationReference reference = IntegrationReference::Converged;
+    int referenceFactor = 16;       ///< integration: reference substeps / first configuration's
+    std::vector<std::string> caseFamilies; ///< narrow phase: triangle-pair families also measured
+};
+
+struct Suite {
+    std::string name;
+    std::string source; ///< file name or "built-in default suite"
+    std::vector<Experiment> experiments;
+};
+
+/// Parses a suite (format in docs/benchmarks.md). Scene paths resolve relative to `baseDir`.
+/// Throws glcollide::Error naming `sourceName` and the JSON pointer of what is wrong.
+Suite parseSuite(const std::string& jsonText, const std::filesystem::path& baseDir, const std::string& sourceName);
+Suite loadSuite(const std::filesystem::path& path);
+
+/// The suite `glcollide bench` runs without arguments: every accuracy axis and a scaling run up
+/// to the paper's sizes, generated scenes only (no files needed), a few minutes on llvmpipe.
+Suite defaultSuite();
+/// The one-iteration suite CI runs (tiny scenes, every experiment kind).
+Suite smokeSuite();
+
+/// The triangle-pair families a narrow-phase experiment may name ("hard", "uniform", ...).
+std::vector<std::string> knownCaseFamilies();
+
+} // namespace glcollide::benchkit
