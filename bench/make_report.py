@@ -1,0 +1,56 @@
+#!/usr/bin/env python3
+"""Assembles docs/benchmarks.md and the README's headline table from `glcollide bench` outputs.
+
+Every folder bench/results/<device>/ holding a report.md (written by `glcollide bench --out
+bench/results/{device}`) becomes one section of docs/benchmarks.md, between the markers
+<!-- results:begin --> and <!-- results:end -->, with its plot links made relative to docs/.
+The README's block between <!-- bench-headline:begin --> and <!-- bench-headline:end --> gets
+the headline table of a GPU device when one was measured, else llvmpipe's.
+Run by scripts/bench-report.sh; it only rearranges text, it measures nothing.
+"""
+import os
+import re
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RESULTS = os.path.join(ROOT, "bench", "results")
+
+
+def splice(path, begin, end, body):
+    text = open(path, encoding="utf-8").read()
+    pattern = re.compile(re.escape(begin) + r".*?" + re.escape(end), re.S)
+    if not pattern.search(text):
+        sys.exit(f"{path}: markers {begin} ... {end} not found")
+    text = pattern.sub(lambda _: begin + "\n" + body.rstrip() + "\n" + end, text)
+    open(path, "w", encoding="utf-8").write(text)
+
+
+def devices():
+    found = []
+    for name in sorted(os.listdir(RESULTS)):
+        folder = os.path.join(RESULTS, name)
+        if os.path.isfile(os.path.join(folder, "report.md")):
+            found.append(name)
+    # GPUs first: their numbers are the ones that matter; llvmpipe is the CI reference.
+    return sorted(found, key=lambda d: (d == "llvmpipe", d))
+
+
+def main():
+    found = devices()
+    if not found:
+        sys.exit("no bench/results/<device>/report.md: run `glcollide bench --out 'bench/results/{device}'` first")
+    sections = []
+    for device in found:
+        report = open(os.path.join(RESULTS, device, "report.md"), encoding="utf-8").read()
+        report = re.sub(r"\]\(([^)/]+\.svg)\)", lambda m: f"](../bench/results/{device}/{m.group(1)})", report)
+        sections.append(report.rstrip() + f"\n\nRaw results: [bench/results/{device}/bench.json](../bench/results/{device}/bench.json).\n")
+    splice(os.path.join(ROOT, "docs", "benchmarks.md"), "<!-- results:begin -->", "<!-- results:end -->",
+           "\n".join(sections))
+    headline = open(os.path.join(RESULTS, found[0], "headline.md"), encoding="utf-8").read()
+    splice(os.path.join(ROOT, "README.md"), "<!-- bench-headline:begin -->", "<!-- bench-headline:end -->",
+           headline.rstrip() + "\n\nAll tables and plots: [docs/benchmarks.md](docs/benchmarks.md).")
+    print("docs/benchmarks.md: " + ", ".join(found))
+
+
+if __name__ == "__main__":
+    main()

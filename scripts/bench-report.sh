@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Regenerates the published benchmark report with one command: builds, runs a suite on this
+# machine's device (bench/suites/full.json unless another is given) into bench/results/<device>/,
+# then rebuilds docs/benchmarks.md and the README's headline table from every device's results.
+# Extra arguments go to `glcollide bench` (e.g. --device cuda:0, --only broad_phase).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+suite=${1:-bench/suites/full.json}
+shift || true
+GLCOLLIDE_CMAKE_ARGS="${GLCOLLIDE_CMAKE_ARGS:-} -DGLCOLLIDE_BUILD_TESTS=OFF" scripts/build.sh
+build_dir=${GLCOLLIDE_BUILD_DIR:-build}
+"$build_dir/src/glcollide" bench --suite "$suite" --out 'bench/results/{device}' "$@"
+python3 bench/make_report.py
