@@ -7,7 +7,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 suite=${1:-bench/suites/full.json}
 shift || true
+# Its own build folder (no tests), so the test build's cache is left alone.
+export GLCOLLIDE_BUILD_DIR=${GLCOLLIDE_BUILD_DIR:-build-bench}
 GLCOLLIDE_CMAKE_ARGS="${GLCOLLIDE_CMAKE_ARGS:-} -DGLCOLLIDE_BUILD_TESTS=OFF" scripts/build.sh
-build_dir=${GLCOLLIDE_BUILD_DIR:-build}
+build_dir=$GLCOLLIDE_BUILD_DIR
 "$build_dir/src/glcollide" bench --suite "$suite" --out 'bench/results/{device}' "$@"
 python3 bench/make_report.py

@@ -317,24 +317,37 @@ std::string markdownReport(const RunContext& c, const Suite& suite, const std::v
 
 std::string headlineTable(const RunContext& c, const std::vector<ExperimentResult>& results) {
     std::ostringstream s;
-    s << "Measured on " << c.renderer << (c.softwareRenderer ? " (software, not a GPU)" : "") << ", commit "
-      << c.gitCommit << ", " << c.dateUtc.substr(0, 10) << ".\n\n";
-    s << "| experiment | scene | fastest config (time, error) | fastest config with zero error (time) |\n";
+    s << "Measured on " << c.renderer << (c.softwareRenderer ? " (software rasteriser on the CPU, not a GPU)" : "")
+      << ", commit " << c.gitCommit << ", " << c.dateUtc.substr(0, 10) << ".\n\n";
+    s << "| experiment | scene | fastest: config (time, error) | least error: config (time, error) |\n";
     s << "|---|---|---|---|\n";
     for (const ExperimentResult& r : results) {
         if (!accuracy(r)) continue;
-        for (const std::string& scene : sceneOrder(r)) {
-            const RunResult* fastest = nullptr;
-            const RunResult* exact = nullptr;
-            for (const RunResult& run : r.runs) {
-                if (run.scene != scene || !run.failure.empty()) continue;
-                if (!fastest || run.time < fastest->time) fastest = &run;
-                if (run.error == 0 && (!exact || run.time < exact->time)) exact = &run;
+        // Triangle-pair families are summed into one row per configuration: one line for all of them.
+        std::vector<std::string> scenes;
+        std::map<std::string, std::map<std::string, std::pair<double, double>>> points; // scene -> config -> (time, error)
+        for (const RunResult& run : r.runs) {
+            if (!run.failure.empty()) continue;
+            const bool family = run.scene.rfind("pairs: ", 0) == 0;
+            const std::string scene = family ? "all triangle-pair families (sum)" : run.scene;
+            if (std::find(scenes.begin(), scenes.end(), scene) == scenes.end()) scenes.push_back(scene);
+            auto& p = points[scene][run.config];
+            p.first += run.time;
+            p.second += run.error;
+        }
+        for (const std::string& scene : scenes) {
+            const auto& configs = points[scene];
+            auto fastest = configs.begin(), best = configs.begin();
+            for (auto it = configs.begin(); it != configs.end(); ++it) {
+                if (it->second.first < fastest->second.first) fastest = it;
+                if (it->second.second < best->second.second ||
+                    (it->second.second == best->second.second && it->second.first < best->second.first))
+                    best = it;
             }
-            if (!fastest) continue;
-            s << "| " << r.experiment.title << " | " << scene << " | " << fastest->config << " (" << num(fastest->time)
-              << " " << r.timeLabel << ", " << num(fastest->error) << " " << r.errorLabel << ") | "
-              << (exact ? exact->config + " (" + num(exact->time) + ")" : std::string("none")) << " |\n";
+            const auto cell = [&](const auto& it) {
+                return it->first + " (" + num(it->second.first) + ", " + num(it->second.second) + ")";
+            };
+            s << "| " << r.experiment.title << " | " << scene << " | " << cell(fastest) << " | " << cell(best) << " |\n";
         }
     }
     for (const ExperimentResult& r : results) {
@@ -347,10 +360,15 @@ std::string headlineTable(const RunContext& c, const std::vector<ExperimentResul
                     runs.push_back(run);
                     if (run.faces > largest) largest = run.faces, ms = run.time;
                 }
-            s << "| " << r.experiment.title << " | " << cfg.name << " | cost grows as faces^" << num(logLogSlope(runs))
-              << " | " << num(ms) << " GPU ms per substep at " << num(largest) << " faces |\n";
+            s << "| " << r.experiment.title << " | " << cfg.name << " | cost per substep grows as faces^"
+              << num(logLogSlope(runs)) << " | " << num(ms) << " ms per substep at " << num(largest) << " faces |\n";
         }
     }
+    s << "\nTimes and errors in each experiment's units: ";
+    std::string units;
+    for (const ExperimentResult& r : results)
+        if (accuracy(r)) units += (units.empty() ? "" : "; ") + r.experiment.name + ": " + r.timeLabel + ", " + r.errorLabel;
+    s << units << ".\n";
     return s.str();
 }
 

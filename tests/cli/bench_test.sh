@@ -23,7 +23,7 @@ check "{device} became the renderer's name" test -f "$out/bench.json"
 check "table on stdout" grep -q "== broad_phase" "$work/stdout"
 check "progress on stderr" grep -q "glcollide bench: broad_phase 1/3" "$work/stderr"
 check "report.md" grep -q "### Broad phase (smoke)" "$out/report.md"
-check "headline.md" grep -q "fastest config" "$out/headline.md"
+check "headline.md" grep -q "least error: config" "$out/headline.md"
 
 python3 - "$out" <<'PY'
 import json, os, sys, xml.dom.minidom
