@@ -21,9 +21,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
-#include <map>
 #include <optional>
-#include <set>
 
 namespace glcollide::benchkit {
 namespace {
@@ -159,15 +157,13 @@ void compareWithOracle(Engine& engine, const FaceData& d, RunResult& r) {
     r.set("false_positives", double(countMissing(found, truth)));
 }
 
-RunResult runScene(const Experiment& x, const SceneEntry& s, const ConfigEntry& c, const FrameHook& hook,
-                   Scene* built = nullptr) {
+RunResult runScene(const Experiment& x, const SceneEntry& s, const ConfigEntry& c, const FrameHook& hook) {
     Scene scene = buildScene(s, c);
     applySubstepFactor(scene, c.substepFactor);
     Engine engine(scene);
     RunResult r = measureRun(engine, x, hook);
     r.scene = s.name;
     r.config = c.name;
-    if (built) *built = scene;
     return r;
 }
 
@@ -192,7 +188,6 @@ void broadOrNarrow(const Experiment& x, ExperimentResult& out, const Progress& p
     for (const SceneEntry& s : x.scenes)
         for (const ConfigEntry& c : x.configs) {
             progress(s.name + " / " + c.name);
-            Scene scene;
             RunResult r;
             {
                 Scene built = buildScene(s, c);
@@ -446,8 +441,7 @@ void contact(const Experiment& x, ExperimentResult& out, const Progress& progres
                     cpu::deepestPenetration(d.model.faceIndices, d.faceObject, d.nodeObject, e.readPositions(), d.closed);
                 if (p.depth > deepest.depth) deepest = p;
             };
-            Scene built;
-            RunResult r = runScene(x, s, c, hook, &built);
+            RunResult r = runScene(x, s, c, hook);
             r.set("deepest_penetration_m", deepest.depth);
             r.time = r.gpuMs.median;
             r.error = deepest.depth;
