@@ -24,7 +24,8 @@ std::string num(double v) {
     if (v == std::floor(v) && std::abs(v) < 1e9) return std::to_string(static_cast<long long>(v));
     std::ostringstream s;
     const double a = std::abs(v);
-    if (a != 0 && (a < 1e-3 || a >= 1e6)) s << std::setprecision(3) << std::scientific << v;
+    if (a != 0 && (a < 1e-3 || a >= 1e7)) s << std::setprecision(3) << std::scientific << v;
+    else if (a >= 1000) s << std::fixed << std::setprecision(0) << v;
     else s << std::setprecision(a >= 100 ? 4 : 3) << v;
     return s.str();
 }
