@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git python3
   libepoxy-dev libegl-dev libglm-dev nlohmann-json3-dev libcli11-dev libassimp-dev
-  libgtest-dev libgmock-dev glslang-tools libgmp-dev
+  libgtest-dev libgmock-dev glslang-tools libgmp-dev libstb-dev
   libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 libopengl0
 )
 missing=()

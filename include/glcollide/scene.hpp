@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -86,6 +87,14 @@ struct TimeSettings {
     int frames = 240; ///< frames `glcollide run` simulates by default, > 0
 };
 
+/// Where `glcollide render` looks from; a scene without one is framed automatically.
+struct CameraSettings {
+    glm::dvec3 eye{0.0, 0.0, 5.0};  ///< m
+    glm::dvec3 target{0.0};         ///< m, != eye
+    glm::dvec3 up{0.0, 1.0, 0.0};   ///< non-zero, not parallel to target - eye
+    double fovDeg = 45.0;           ///< vertical field of view in degrees, (0, 180)
+};
+
 struct Scene {
     static constexpr int kFormatVersion = 1;
 
@@ -98,6 +107,7 @@ struct Scene {
     GroundPlane ground;                  ///< used when effects has Ground
     CollisionSettings collision;         ///< used when effects has Collisions or SelfCollisions
     TimeSettings time;
+    std::optional<CameraSettings> camera; ///< used by `glcollide render`; none: framed automatically
     std::vector<Body> bodies;
 };
 

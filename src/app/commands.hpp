@@ -53,4 +53,19 @@ struct BenchOptions {
 /// in the output folder, the table on stdout, progress on stderr.
 int benchCommand(const BenchOptions& options);
 
+struct RenderOptions {
+    std::string scenePath;          ///< empty: the built-in default scene
+    std::optional<int> frames;      ///< frames to simulate; overrides the scene's /time/frames
+    int every = 10;                 ///< write frame 0 and every K-th frame
+    std::string size = "800x600";   ///< WIDTHxHEIGHT in pixels
+    int samples = 4;                ///< multisampling (0 or 1: none)
+    std::string outDir = "glcollide-render";
+    std::string device;
+    bool quiet = false;
+};
+
+/// glcollide render: simulates headless and writes OUT/frame_NNNNNN.png snapshots drawn from the
+/// engine's buffers (shaded bodies in distinct colours, intersecting faces in red, a ground grid).
+int renderCommand(const RenderOptions& options);
+
 } // namespace glcollide::app

@@ -448,11 +448,30 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     return s;
 }
 
+CameraSettings parseCamera(const Ctx& c, const json& j, const Ptr& p) {
+    checkObject(c, j, p, {"eye", "target", "up", "fov_deg"});
+    CameraSettings cam;
+    cam.eye = vec3(c, require(c, j, p, "eye"), p / "eye");
+    cam.target = vec3(c, require(c, j, p, "target"), p / "target");
+    if (const json* v = find(j, "up")) cam.up = vec3(c, *v, p / "up");
+    if (const json* v = find(j, "fov_deg")) {
+        cam.fovDeg = number(c, *v, p / "fov_deg", "a number of degrees in (0, 180)");
+        if (!(cam.fovDeg > 0.0 && cam.fovDeg < 180.0))
+            c.fail(p / "fov_deg", "expected a number of degrees in (0, 180), got " + shown(*v));
+    }
+    const glm::dvec3 forward = cam.target - cam.eye;
+    if (!(glm::length(forward) > 0.0)) c.fail(p / "target", "must differ from eye (the camera looks from eye to target)");
+    if (!(glm::length(cam.up) > 0.0)) c.fail(p / "up", "expected a non-zero vector, got " + shown(*find(j, "up")));
+    if (glm::length(glm::cross(glm::normalize(forward), glm::normalize(cam.up))) < 1e-6)
+        c.fail(p / "up", "must not be parallel to the view direction (target - eye)");
+    return cam;
+}
+
 Scene parseRoot(const Ctx& c, const json& root) {
     const Ptr p;
     checkObject(c, root, p,
                 {"format_version", "name", "effects", "time", "gravity", "damping", "wind", "ground", "collision",
-                 "objects"});
+                 "camera", "objects"});
     const json& version = require(c, root, p, "format_version");
     if (!version.is_number_integer() || version.get<long long>() != Scene::kFormatVersion)
         c.fail(p / "format_version", "unsupported format version " + shown(version) + "; supported versions: " +
@@ -495,6 +514,8 @@ Scene parseRoot(const Ctx& c, const json& root) {
                                     "(remove it or add an effect)");
         scene.collision = parseCollision(c, *v, p / "collision");
     }
+
+    if (const json* v = find(root, "camera")) scene.camera = parseCamera(c, *v, p / "camera");
 
     const json& objects = require(c, root, p, "objects");
     if (!objects.is_array() || objects.empty()) c.fail(p / "objects", "expected a non-empty array of objects");

@@ -340,6 +340,44 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
     EXPECT_THAT(errorOf("{\"format_version\": 1,\n \"effects\": [}"), HasSubstr("line 2"));
 }
 
+TEST(SceneJson, CameraIsOptionalWithDefaults) {
+    EXPECT_FALSE(parse(scene(kCloth)).camera.has_value());
+    const Scene full = parse(scene(kCloth, R"("camera": {"eye": [3, 2, 5], "target": [0, 0.5, 0], "up": [0, 0, 1],
+                                                        "fov_deg": 30})"));
+    ASSERT_TRUE(full.camera.has_value());
+    EXPECT_EQ(full.camera->eye, glm::dvec3(3, 2, 5));
+    EXPECT_EQ(full.camera->target, glm::dvec3(0, 0.5, 0));
+    EXPECT_EQ(full.camera->up, glm::dvec3(0, 0, 1));
+    EXPECT_EQ(full.camera->fovDeg, 30.0);
+    const Scene minimal = parse(scene(kCloth, R"("camera": {"eye": [0, 1, 4], "target": [0, 1, 0]})"));
+    ASSERT_TRUE(minimal.camera.has_value());
+    EXPECT_EQ(minimal.camera->up, glm::dvec3(0, 1, 0));
+    EXPECT_EQ(minimal.camera->fovDeg, 45.0);
+}
+
+TEST(SceneJson, CameraErrorsNamePointer) {
+    const auto camera = [](const std::string& body) { return errorOf(scene(kCloth, R"("camera": )" + body)); };
+    EXPECT_THAT(camera("[0, 1, 2]"), HasSubstr("test.json: /camera: expected an object"));
+    EXPECT_THAT(camera(R"({"target": [0, 0, 0]})"), HasSubstr("test.json: /camera/eye: required key is missing"));
+    EXPECT_THAT(camera(R"({"eye": [0, 0, 1]})"), HasSubstr("/camera/target: required key is missing"));
+    EXPECT_THAT(camera(R"({"eye": [0, 0], "target": [0, 0, 0]})"),
+                HasSubstr("/camera/eye: expected an array of 3 numbers, got [0,0]"));
+    EXPECT_THAT(camera(R"({"eye": [0, 0, 1], "target": [0, "x", 0]})"), HasSubstr("/camera/target/1: expected a number"));
+    EXPECT_THAT(camera(R"({"eye": [1, 2, 3], "target": [1, 2, 3]})"), HasSubstr("/camera/target: must differ from eye"));
+    EXPECT_THAT(camera(R"({"eye": [0, 0, 1], "target": [0, 0, 0], "up": [0, 0, 0]})"),
+                HasSubstr("/camera/up: expected a non-zero vector, got [0,0,0]"));
+    EXPECT_THAT(camera(R"({"eye": [0, 5, 0], "target": [0, 0, 0], "up": [0, 1, 0]})"),
+                HasSubstr("/camera/up: must not be parallel to the view direction"));
+    EXPECT_THAT(camera(R"({"eye": [0, 0, 1], "target": [0, 0, 0], "fov_deg": 180})"),
+                HasSubstr("/camera/fov_deg: expected a number of degrees in (0, 180), got 180"));
+    EXPECT_THAT(camera(R"({"eye": [0, 0, 1], "target": [0, 0, 0], "fov_deg": 0})"),
+                HasSubstr("/camera/fov_deg: expected a number of degrees in (0, 180), got 0"));
+    EXPECT_THAT(camera(R"({"eye": [0, 0, 1], "target": [0, 0, 0], "fov_deg": "wide"})"),
+                HasSubstr("/camera/fov_deg: expected a number of degrees in (0, 180), got \"wide\""));
+    EXPECT_THAT(camera(R"({"eye": [0, 0, 1], "target": [0, 0, 0], "fov": 45})"),
+                HasSubstr("/camera/fov: unknown key 'fov'; allowed keys here: eye, target, up, fov_deg"));
+}
+
 TEST(SceneJson, DuplicateKeysAreErrors) {
     EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5]},
         "mass": 0.6, "mass": 0.7, "springs": {"stiffness": 100}})")),

@@ -1,0 +1,4 @@
+#version 430 core
+// Shadow pass: depth only.
+
+void main() {}
