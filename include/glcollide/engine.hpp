@@ -7,15 +7,40 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace glcollide {
 
+/// One KHR_debug message, as EngineOptions::debugCallback receives it. The enums are GL's
+/// (GL_DEBUG_SOURCE_*, GL_DEBUG_TYPE_*, GL_DEBUG_SEVERITY_*) as integers, so this header needs no
+/// GL loader.
+struct GlDebugMessage {
+    std::uint32_t source = 0;
+    std::uint32_t type = 0;
+    std::uint32_t id = 0;
+    std::uint32_t severity = 0;
+    std::string_view text; ///< valid only during the call
+};
+
 struct EngineOptions {
     /// Time each pass with GL timestamp queries. step() then waits for the GPU at its end.
     bool gpuTiming = true;
+    /// Debug output, opt-in. Empty (the default): the engine never reads or changes the context's
+    /// debug callback or debug-output enables (it still labels its objects and pushes a
+    /// GL_DEBUG_SOURCE_THIRD_PARTY group around each pass, which reach whatever callback the host
+    /// installed). Set: for the engine's lifetime it installs a callback that calls this function
+    /// and then the callback that was installed before (the host's, with its user parameter), and
+    /// enables GL_DEBUG_OUTPUT and GL_DEBUG_OUTPUT_SYNCHRONOUS (so messages arrive on the calling
+    /// thread, inside the engine call that caused them); destruction restores the previous
+    /// callback, user parameter and enables. The callback slot is per context: while installed it
+    /// sees every message of the context, the host's included. Must not throw (exceptions are
+    /// swallowed) and must not call the engine. A host that installs its own callback after the
+    /// engine's and chains to it must remove it before the engine is destroyed.
+    std::function<void(const GlDebugMessage&)> debugCallback{};
 };
 
 /// GPU time of one pass over all substeps of a frame.
@@ -64,6 +89,17 @@ struct EnergyReport {
 
 /// Simulates a scene on the current GL ≥ 4.3 context: a HeadlessContext or the caller's own.
 /// Not thread-safe; every call needs the construction context (or a sharing one) current.
+///
+/// GL state contract (README "GL state contract"): every call that issues GL commands (the
+/// constructor, step(), detectCollisions(), the read*() functions, energy(), the destructor and
+/// move assignment) leaves the host's state as it found it: the current program, the generic and
+/// indexed (0..23, with start and size) GL_SHADER_STORAGE_BUFFER bindings, GL_DISPATCH_INDIRECT_BUFFER,
+/// GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER and GL_QUERY_BUFFER are saved and restored; vertex
+/// arrays, GL_ARRAY_BUFFER, GL_ELEMENT_ARRAY_BUFFER, framebuffers, textures and capabilities are
+/// never touched; no query is left active (timing uses glQueryCounter). Exceptions: a pending GL
+/// error flag may be consumed (buffer allocation checks glGetError for GL_OUT_OF_MEMORY), and the
+/// debug callback is changed only when EngineOptions::debugCallback asks for it. Any number of
+/// engines may share a context; they share no state.
 class Engine {
 public:
     /// Validates the scene, composes the pass list from its effects, allocates the buffers those
@@ -75,6 +111,16 @@ public:
     Engine& operator=(Engine&&) noexcept;
 
     /// Advances one frame of Scene::time.dt in `substepInfo().substeps` substeps. Never throws.
+    ///
+    /// Barriers. step() begins with glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT), so host shader
+    /// writes (SSBO or image stores) to positionBuffer() made before the call are seen; writes by
+    /// glBufferSubData / glCopyBufferSubData need no barrier. It ends with
+    /// glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT |
+    /// GL_SHADER_STORAGE_BARRIER_BIT): right after it the host may draw positionBuffer() as a
+    /// GL_ARRAY_BUFFER and faceIndexBuffer() as a GL_ELEMENT_ARRAY_BUFFER, or read them as SSBOs in
+    /// its own shaders, with no barrier of its own. Any other use of the engine's results (uniform
+    /// or texture buffer, glGetBufferSubData, glCopyBufferSubData, mapping, indirect draw) needs the
+    /// host's own glMemoryBarrier with that use's bit first.
     void step();
     [[nodiscard]] const StepStats& lastStep() const;
 
@@ -115,11 +161,16 @@ public:
     /// Kinetic and potential energy of the current state (reads back).
     [[nodiscard]] EnergyReport energy() const;
 
-    /// GL name of the position buffer: vec4 per node (xyz metres, w inverse mass), stride 16,
-    /// usable as GL_ARRAY_BUFFER after glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT).
+    /// GL name of the position buffer: nodeCount() vec4 (xyz metres, w inverse mass in 1/kg, 0 =
+    /// pinned): a GL_ARRAY_BUFFER attribute of 4 GL_FLOAT, stride 16, offset 0, drawable right
+    /// after step() (see its barriers). The name stays valid and the buffer keeps its size for the
+    /// engine's lifetime; 0 only for a scene without nodes.
+    /// The host may write positions (xyz; keep w), e.g. to drag nodes; it must not resize,
+    /// re-specify or delete the buffer.
     [[nodiscard]] std::uint32_t positionBuffer() const;
-    /// GL name of the face buffer: 3 GLuint node indices per face, usable as
-    /// GL_ELEMENT_ARRAY_BUFFER after glMemoryBarrier(GL_ELEMENT_ARRAY_BARRIER_BIT).
+    /// GL name of the face buffer: faceCount() x 3 GLuint node indices (CCW seen from outside), a
+    /// GL_ELEMENT_ARRAY_BUFFER for glDrawElements(GL_TRIANGLES, 3 * faceCount(), GL_UNSIGNED_INT,
+    /// 0). Read-only for the host: the collision structures are built from the faces once.
     [[nodiscard]] std::uint32_t faceIndexBuffer() const;
 
 private:

@@ -6,6 +6,7 @@
 #include "engine/pipeline_plan.hpp"
 #include "gl/debug_output.hpp"
 #include "gl/gpu_timer.hpp"
+#include "gl/host_state.hpp"
 #include "gl/layout.hpp"
 #include "passes/collision_detection.hpp"
 #include "passes/contact_response.hpp"
@@ -50,6 +51,9 @@ std::vector<glm::dvec3> unpackNodes(const gl::Buffer& buffer, std::uint32_t coun
 } // namespace
 
 struct Engine::Impl {
+    // First member, so it is destroyed last: deleting the GL objects still reports to it.
+    std::unique_ptr<gl::DebugOutputScope> debug;
+    gl::HostStateGuard::Features glFeatures;
     Scene scene;
     EngineOptions options;
     cpu::FlatModel model;
@@ -147,10 +151,23 @@ void Engine::Impl::run(std::size_t section, const Pass& pass, Args&&... args) {
     if (options.gpuTiming) timer.end(section);
 }
 
-Engine::Engine(const Scene& scene, const EngineOptions& options) : m_impl(std::make_unique<Impl>()) {
-    Impl& d = *m_impl;
+Engine::Engine(const Scene& scene, const EngineOptions& options) {
     validateScene(scene);
     requireGl43();
+    const gl::HostStateGuard::Features features = gl::HostStateGuard::probe();
+    // Declared before `impl`: if construction throws, the objects made so far are deleted first,
+    // then the host's bindings are restored.
+    const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Compute, features);
+    auto impl = std::make_unique<Impl>();
+    Impl& d = *impl;
+    d.glFeatures = features;
+    if (options.debugCallback)
+        d.debug = std::make_unique<gl::DebugOutputScope>(
+            [callback = options.debugCallback](const gl::DebugMessage& m) {
+                callback(GlDebugMessage{m.source, m.type, m.id, m.severity, m.text});
+            },
+            gl::DebugOutputScope::kEnableOutput | gl::DebugOutputScope::kSynchronous);
+    const gl::DebugGroup group("glcollide::Engine::Engine");
     d.scene = scene;
     d.options = options;
     d.plan = engine::planPipeline(scene);
@@ -175,11 +192,27 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) : m_impl(std::m
     d.stats.substeps = d.substeps.substeps;
     d.stats.collisions = d.plan.collisions;
     for (const std::string& name : d.passNames) d.stats.passes.push_back({name, 0.0});
+    m_impl = std::move(impl);
 }
 
-Engine::~Engine() = default;
+Engine::~Engine() {
+    if (!m_impl) return; // moved from: no GL call, so no context needed
+    const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Teardown, m_impl->glFeatures);
+    m_impl.reset();
+}
+
 Engine::Engine(Engine&&) noexcept = default;
-Engine& Engine::operator=(Engine&&) noexcept = default;
+
+Engine& Engine::operator=(Engine&& other) noexcept {
+    if (this != &other) {
+        if (m_impl) {
+            const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Teardown, m_impl->glFeatures);
+            m_impl.reset();
+        }
+        m_impl = std::move(other.m_impl);
+    }
+    return *this;
+}
 
 void Engine::Impl::substep(bool lastOfFrame) {
     if (nodeForce) run(kNodeForce, *nodeForce, plan.nodeForceParams);
@@ -211,6 +244,9 @@ void Engine::Impl::substep(bool lastOfFrame) {
 void Engine::step() {
     Impl& d = *m_impl;
     const auto start = std::chrono::steady_clock::now();
+    const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Compute, d.glFeatures);
+    // Host shader writes to the position buffer since the last call become visible to the passes.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     if (d.options.gpuTiming) d.timer.beginFrame();
     d.stats.collision = {};
     {
@@ -254,18 +290,22 @@ std::size_t Engine::allocatedBytes() const {
 
 std::vector<std::array<std::uint32_t, 2>> Engine::readIntersectingPairs() const {
     if (!m_impl->collision) return {};
+    const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Transfer, m_impl->glFeatures);
     return m_impl->collision->readIntersections();
 }
 
 std::vector<std::array<std::uint32_t, 2>> Engine::readCandidatePairs() const {
     if (!m_impl->collision) return {};
+    const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Transfer, m_impl->glFeatures);
     return m_impl->collision->readCandidates();
 }
 
 CollisionStats Engine::detectCollisions() {
     CollisionStats c;
     if (!m_impl->collision) return c;
-    gl::DebugGroup group("glcollide::Engine::detectCollisions");
+    const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Compute, m_impl->glFeatures);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); // as in step(): host shader writes are seen
+    const gl::DebugGroup group("glcollide::Engine::detectCollisions");
     const passes::CollisionCounts counts = m_impl->collision->detect(m_impl->buffers, nullptr, 0);
     c.boxPairs = counts.boxPairs;
     c.candidatePairs = counts.candidates;
@@ -296,11 +336,13 @@ std::vector<std::uint32_t> Engine::bodyFirstNodes() const {
 
 std::vector<glm::dvec3> Engine::readPositions() const {
     if (!m_impl->buffers.positions) return m_impl->model.positions;
+    const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Transfer, m_impl->glFeatures);
     return unpackNodes(m_impl->buffers.positions, nodeCount());
 }
 
 std::vector<glm::dvec3> Engine::readVelocities() const {
     if (!m_impl->buffers.velocities) return m_impl->model.velocities;
+    const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Transfer, m_impl->glFeatures);
     return unpackNodes(m_impl->buffers.velocities, nodeCount());
 }
 

@@ -21,14 +21,38 @@ DebugOutputScope::DebugOutputScope(Handler handler, unsigned flags)
 }
 
 DebugOutputScope::~DebugOutputScope() {
-    if ((m_flags & kSynchronous) && !m_previousSynchronousEnabled) glDisable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-    if ((m_flags & kEnableOutput) && !m_previousOutputEnabled) glDisable(GL_DEBUG_OUTPUT);
-    // Restore only if the slot still holds us: if someone replaced it meanwhile, overwriting
-    // theirs would be worse than leaving it.
     void* current = nullptr;
     void* currentParam = nullptr;
     glGetPointerv(GL_DEBUG_CALLBACK_FUNCTION, &current);
     glGetPointerv(GL_DEBUG_CALLBACK_USER_PARAM, &currentParam);
+    // Out of order (an engine destroyed before one created after it): a later scope chains to us.
+    // Scopes above us in the slot are found through the slot itself (our trampoline's user
+    // parameter is always a scope), so unlinking needs no registry: the later scope takes over our
+    // previous callback and the enable states we would have restored.
+    GLDEBUGPROC callback = reinterpret_cast<GLDEBUGPROC>(current);
+    const void* param = currentParam;
+    while (callback == &DebugOutputScope::trampoline && param != nullptr && param != this) {
+        auto* later = const_cast<DebugOutputScope*>(static_cast<const DebugOutputScope*>(param));
+        if (later->m_previousCallback == &DebugOutputScope::trampoline && later->m_previousUserParam == this) {
+            later->m_previousCallback = m_previousCallback;
+            later->m_previousUserParam = m_previousUserParam;
+            if (m_flags & kEnableOutput) {
+                later->m_flags |= kEnableOutput;
+                later->m_previousOutputEnabled = m_previousOutputEnabled;
+            }
+            if (m_flags & kSynchronous) {
+                later->m_flags |= kSynchronous;
+                later->m_previousSynchronousEnabled = m_previousSynchronousEnabled;
+            }
+            return;
+        }
+        callback = later->m_previousCallback;
+        param = later->m_previousUserParam;
+    }
+    if ((m_flags & kSynchronous) && !m_previousSynchronousEnabled) glDisable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    if ((m_flags & kEnableOutput) && !m_previousOutputEnabled) glDisable(GL_DEBUG_OUTPUT);
+    // Restore only if the slot still holds us: if someone else replaced it meanwhile, overwriting
+    // theirs would be worse than leaving it.
     if (reinterpret_cast<GLDEBUGPROC>(current) == &DebugOutputScope::trampoline && currentParam == this)
         glDebugMessageCallback(m_previousCallback, m_previousUserParam);
 }

@@ -22,8 +22,10 @@ struct DebugMessage {
 /// Installs a debug callback on the current context for its lifetime. It forwards every message
 /// to `handler`, then to the callback that was installed before (the host's), with that
 /// callback's user parameter, and puts the previous callback back on destruction.
-/// Scopes must nest (LIFO); the context must be current at construction and destruction.
-/// Not movable: GL holds a pointer to it.
+/// Scopes may end in any order: one that ends while a later scope chains to it is unlinked from
+/// that scope, which inherits its previous callback and enable states (a host callback installed
+/// after a scope and chaining to it cannot be found, so a scope under one must outlive it).
+/// The context must be current at construction and destruction. Not movable: GL holds a pointer to it.
 class DebugOutputScope {
 public:
     using Handler = std::function<void(const DebugMessage&)>;

@@ -1,5 +1,7 @@
 #include "gl/gpu_timer.hpp"
 
+#include "gl/debug_output.hpp"
+
 #include <epoxy/gl.h>
 
 namespace glcollide::gl {
@@ -11,24 +13,27 @@ void GpuTimer::beginFrame() {
     m_brackets.clear();
 }
 
-std::uint32_t GpuTimer::nextQuery() {
-    if (m_used == m_queries.size()) {
+std::uint32_t GpuTimer::stamp() {
+    const bool fresh = m_used == m_queries.size();
+    if (fresh) {
         GLuint q = 0;
         glGenQueries(1, &q);
         m_queries.emplace_back(q);
     }
-    return m_queries[m_used++].name();
+    const std::uint32_t q = m_queries[m_used++].name();
+    glQueryCounter(q, GL_TIMESTAMP);
+    // glGenQueries only reserves a name; the object exists (and can be labelled) once used.
+    if (fresh) labelObject(GL_QUERY, q, "glcollide/timestamp");
+    return q;
 }
 
 void GpuTimer::begin(std::size_t section) {
-    const std::uint32_t q = nextQuery();
-    glQueryCounter(q, GL_TIMESTAMP);
+    const std::uint32_t q = stamp();
     m_brackets.push_back({section, q, 0});
 }
 
 void GpuTimer::end(std::size_t section) {
-    const std::uint32_t q = nextQuery();
-    glQueryCounter(q, GL_TIMESTAMP);
+    const std::uint32_t q = stamp();
     for (auto it = m_brackets.rbegin(); it != m_brackets.rend(); ++it)
         if (it->section == section && it->end == 0) {
             it->end = q;

@@ -23,7 +23,8 @@ public:
     std::vector<double> resolveMilliseconds();
 
 private:
-    std::uint32_t nextQuery();
+    /// Writes a GL_TIMESTAMP into the next free query (made and labelled on first use).
+    std::uint32_t stamp();
 
     std::size_t m_sectionCount;
     std::vector<Handle<deleteQuery>> m_queries;
