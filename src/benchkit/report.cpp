@@ -268,16 +268,16 @@ std::vector<PlotFile> plots(const ExperimentResult& r) {
     }
     for (const std::string& scene : sceneOrder(r)) {
         PlotSpec spec;
-        spec.title = r.experiment.title + ": " + scene;
+        spec.title = r.experiment.name + ": " + scene; // the long title is in the report next to it
         spec.xLabel = r.timeLabel;
         spec.yLabel = r.errorLabel;
         spec.logX = true;
         spec.logY = true;
         spec.paretoFront = true;
         PlotSeries series;
-        series.name = scene;
+        series.name = "configurations";
         series.connect = false;
-        series.labelAll = true;
+        series.labelAll = false; // labels of every point collide; the front is labelled, the table has all
         for (const RunResult& run : r.runs)
             if (run.scene == scene && run.failure.empty()) series.points.push_back({run.time, run.error, run.config});
         spec.series.push_back(std::move(series));
