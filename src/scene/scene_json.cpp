@@ -553,16 +553,41 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& baseD
     const Ctx c{sourceName, baseDir};
     json root;
     // nlohmann keeps the last of two equal keys without a word; a duplicated key is as likely a
-    // mistake as a typo, so it is an error too.
-    std::vector<std::vector<std::string>> keys;
+    // mistake as a typo, so it is an error too. The callback tracks where it is (key or index per
+    // open object/array) so the error names the JSON pointer of the second key.
+    struct Open {
+        bool array = false;
+        std::size_t index = 0;          // arrays: index of the next element
+        std::string key;                // objects: the key being read
+        std::vector<std::string> keys;  // objects: keys seen so far
+    };
+    std::vector<Open> open;
+    const auto elementDone = [&] {
+        if (!open.empty() && open.back().array) ++open.back().index;
+    };
     const json::parser_callback_t noDuplicates = [&](int, json::parse_event_t event, json& parsed) {
-        if (event == json::parse_event_t::object_start) keys.emplace_back();
-        if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
-        if (event == json::parse_event_t::key && !keys.empty()) {
+        switch (event) {
+        case json::parse_event_t::object_start: open.push_back(Open{}); break;
+        case json::parse_event_t::array_start: open.push_back(Open{true, 0, {}, {}}); break;
+        case json::parse_event_t::object_end:
+        case json::parse_event_t::array_end:
+            if (!open.empty()) open.pop_back();
+            elementDone();
+            break;
+        case json::parse_event_t::value: elementDone(); break;
+        case json::parse_event_t::key: {
+            if (open.empty()) break;
             const std::string key = parsed.get<std::string>();
-            if (std::find(keys.back().begin(), keys.back().end(), key) != keys.back().end())
-                throw Error(sourceName + ": duplicate key '" + key + "' in one object (only one is allowed)");
-            keys.back().push_back(key);
+            if (std::find(open.back().keys.begin(), open.back().keys.end(), key) != open.back().keys.end()) {
+                Ptr where;
+                for (std::size_t i = 0; i + 1 < open.size(); ++i)
+                    where = open[i].array ? where / open[i].index : where / open[i].key;
+                c.fail(where / key, "duplicate key '" + key + "' (a key may appear only once in an object)");
+            }
+            open.back().keys.push_back(key);
+            open.back().key = key;
+            break;
+        }
         }
         return true;
     };
@@ -570,6 +595,21 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& baseD
         root = json::parse(jsonText, noDuplicates, true, true);
     } catch (const json::parse_error& e) {
         throw Error(sourceName + ": invalid JSON: " + e.what());
+    } catch (const json::out_of_range& e) {
+        // Number overflow (e.g. 1e999): JSON cannot hold infinities. nlohmann gives no position;
+        // name the line of the first occurrence of the offending token.
+        std::string message = e.what();
+        const std::size_t q0 = message.find('\'');
+        const std::size_t q1 = q0 == std::string::npos ? q0 : message.find('\'', q0 + 1);
+        std::string where;
+        if (q1 != std::string::npos) {
+            const std::string token = message.substr(q0 + 1, q1 - q0 - 1);
+            const std::size_t at = token.empty() ? std::string::npos : jsonText.find(token);
+            if (at != std::string::npos)
+                where = "line " + std::to_string(1 + std::count(jsonText.begin(), jsonText.begin() + static_cast<std::ptrdiff_t>(at), '\n')) + ": ";
+            message = "number " + token + " is outside the range of a double (non-finite values are not allowed)";
+        }
+        throw Error(sourceName + ": invalid JSON: " + where + message);
     }
     Scene scene = parseRoot(c, root);
     if (scene.name.empty()) scene.name = std::filesystem::path(sourceName).stem().string();

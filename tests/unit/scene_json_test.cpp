@@ -381,9 +381,23 @@ TEST(SceneJson, CameraErrorsNamePointer) {
 TEST(SceneJson, DuplicateKeysAreErrors) {
     EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5]},
         "mass": 0.6, "mass": 0.7, "springs": {"stiffness": 100}})")),
-                HasSubstr("test.json: duplicate key 'mass'"));
+                HasSubstr("test.json: /objects/0/mass: duplicate key 'mass'"));
+    // The pointer counts array elements, nested arrays included.
+    EXPECT_THAT(errorOf(scene(kCloth + R"(, {"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5],
+        "size": [1, 2]}, "mass": 0.6, "springs": {"stiffness": 100}})")),
+                HasSubstr("test.json: /objects/1/generator/size: duplicate key 'size'"));
     // The same key in two different objects is fine.
     EXPECT_NO_THROW(parse(scene(kCloth + ", " + kCloth)));
+}
+
+TEST(SceneJson, NumbersOutsideDoubleRangeAreErrors) {
+    // JSON cannot spell infinity; 1e999 overflows the parser and must come out as a scene error.
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5]},
+        "mass": 1e999, "springs": {"stiffness": 100}})")),
+                HasSubstr("test.json: invalid JSON: line "));
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5]},
+        "mass": -1e999, "springs": {"stiffness": 100}})")),
+                HasSubstr("number -1e999 is outside the range of a double"));
 }
 
 TEST(SceneJson, CommentsAreAllowed) {
