@@ -41,6 +41,11 @@ struct EngineOptions {
     /// swallowed) and must not call the engine. A host that installs its own callback after the
     /// engine's and chains to it must remove it before the engine is destroyed.
     std::function<void(const GlDebugMessage&)> debugCallback{};
+    /// Detect non-finite states on the device: NodeUpdate tests every new position and velocity
+    /// and records the first offending node; step() reads that 16-byte record once per frame (a
+    /// wait for the GPU at the frame's end, which gpuTiming waits for anyway) until it is set, and
+    /// reports it in StepStats::nonFinite. Off: no test, no read.
+    bool checkFinite = true;
 };
 
 /// GPU time of one pass over all substeps of a frame.
@@ -60,6 +65,16 @@ struct CollisionStats {
     std::uint32_t listGrowths = 0;       ///< pair lists grown (and passes rerun) during the frame
 };
 
+/// The first non-finite state NodeUpdate produced (EngineOptions::checkFinite).
+struct NonFiniteReport {
+    bool found = false;
+    std::uint64_t frame = 0;   ///< the frame (StepStats::frame numbering, from 1) it happened in
+    int substep = 0;           ///< index within that frame, 0 .. substeps-1
+    std::uint32_t object = 0;  ///< body index in scene order
+    std::uint32_t node = 0;    ///< node index within that body (the lowest one found in that substep)
+    std::uint32_t globalNode = 0; ///< the same node in the global (concatenated) node order
+};
+
 struct StepStats {
     std::uint64_t frame = 0;      ///< frames completed, this one included
     double time = 0.0;            ///< s of simulated time after this frame
@@ -68,6 +83,9 @@ struct StepStats {
     std::vector<PassTiming> passes;
     bool collisions = false;   ///< the collision passes ran (then `collision` is filled)
     CollisionStats collision;
+    /// Set by the first frame whose NodeUpdate produced a non-finite position or velocity (an
+    /// infinity or a NaN: the integration diverged) and kept, unchanged, by every later frame.
+    NonFiniteReport nonFinite;
 };
 
 /// How the substep count was chosen (docs/integration.md).
@@ -93,7 +111,7 @@ struct EnergyReport {
 /// GL state contract (README "GL state contract"): every call that issues GL commands (the
 /// constructor, step(), detectCollisions(), the read*() functions, energy(), the destructor and
 /// move assignment) leaves the host's state as it found it: the current program, the generic and
-/// indexed (0..23, with start and size) GL_SHADER_STORAGE_BUFFER bindings, GL_DISPATCH_INDIRECT_BUFFER,
+/// indexed (0..24, with start and size) GL_SHADER_STORAGE_BUFFER bindings, GL_DISPATCH_INDIRECT_BUFFER,
 /// GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER and GL_QUERY_BUFFER are saved and restored; vertex
 /// arrays, GL_ARRAY_BUFFER, GL_ELEMENT_ARRAY_BUFFER, framebuffers, textures and capabilities are
 /// never touched; no query is left active (timing uses glQueryCounter). Exceptions: a pending GL

@@ -30,6 +30,7 @@
 #define GLC_BIND_QUERY_TRIANGLES 21   // float[18 * pairs]: tri-tri query input, a0 a1 a2 b0 b1 b2 (xyz each)
 #define GLC_BIND_QUERY_RESULTS 22     // uint[pairs]: tri-tri query output, 1 = the closed triangles intersect
 #define GLC_BIND_QUERY_STATS 23       // uint[1]: tri-tri query exact-fallback counter (robust precision)
+#define GLC_BIND_HEALTH 24             // GpuHealth: the first non-finite node NodeUpdate produced
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -94,4 +95,17 @@ struct GpuCollisionCounters {
     uint candidateCapacity;
     uint intersectionCapacity;
     uint contactCount;       // vertex-face and edge-edge contacts that produced a force
+};
+
+// Written by NodeUpdate when a node's new position or velocity is not finite (EngineOptions::
+// checkFinite). Both fields start at GLC_HEALTH_NONE and are never reset: the engine reads them
+// after every frame until they are set, so the first frame that sets them is the one it reports.
+// A substep records only while badSubstep >= its own index, so a later substep of the same frame
+// cannot replace the first one's node.
+#define GLC_HEALTH_NONE 0xFFFFFFFFu
+struct GpuHealth {
+    uint firstBadNode; // lowest global node index found non-finite in substep badSubstep
+    uint badSubstep;   // index within its frame (0 .. substeps-1) of the first such substep
+    uint pad0;
+    uint pad1;
 };

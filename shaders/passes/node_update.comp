@@ -4,6 +4,8 @@
 // The NodeUpdate stage of the AABB-octree pipeline (seeds/002, Table 2).
 // GLC_FORCES: a force buffer exists. GLC_GROUND: the ground plane is on. GLC_CONTACTS: add the
 // fixed-point contact forces of ContactResponse and clear them for the next substep.
+// GLC_CHECK_FINITE: record the first non-finite new position or velocity in GpuHealth (a bit test
+// on the exponent, which no compiler may fold away the way it may fold isnan/isinf).
 // Twin: cpu::nodeUpdate.
 #include "common/layout.glsl"
 
@@ -18,6 +20,11 @@ layout(std430, binding = GLC_BIND_NODE_FORCES) readonly buffer NodeForcesBuf { v
 #ifdef GLC_CONTACTS
 layout(std430, binding = GLC_BIND_CONTACT_FORCES) buffer ContactForcesBuf { ivec4 g_contactForces[]; };
 uniform float u_contactForceScale; // fixed-point units per N
+#endif
+
+#ifdef GLC_CHECK_FINITE
+layout(std430, binding = GLC_BIND_HEALTH) buffer HealthBuf { GpuHealth g_health; };
+uniform uint u_substep; // index of this substep within its frame
 #endif
 
 uniform uint u_nodeCount;
@@ -66,4 +73,17 @@ void main() {
 #endif
     g_positions[i] = vec4(x, w);
     g_velocities[i] = vec4(v, 0.0);
+#ifdef GLC_CHECK_FINITE
+    // Infinity and NaN are the floats whose 8 exponent bits are all ones.
+    const uint exponent = 0x7F800000u;
+    if (any(equal(floatBitsToUint(x) & exponent, uvec3(exponent))) ||
+        any(equal(floatBitsToUint(v) & exponent, uvec3(exponent)))) {
+        // An earlier substep of this frame (or an earlier frame, already reported) wrote a lower
+        // index: keep it. All invocations of this dispatch share u_substep.
+        if (g_health.badSubstep >= u_substep) {
+            atomicMin(g_health.firstBadNode, i);
+            atomicMin(g_health.badSubstep, u_substep);
+        }
+    }
+#endif
 }

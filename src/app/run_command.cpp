@@ -52,6 +52,17 @@ bool allFinite(const std::vector<glm::dvec3>& positions, std::size_t& firstBad) 
     return true;
 }
 
+nlohmann::json nonFiniteRecord(const Engine& engine) {
+    const NonFiniteReport& r = engine.lastStep().nonFinite;
+    if (!r.found) return nullptr;
+    return {{"frame", r.frame},
+            {"substep", r.substep},
+            {"object", r.object},
+            {"object_name", engine.scene().bodies[r.object].name},
+            {"node", r.node},
+            {"global_node", r.globalNode}};
+}
+
 void printSummary(const HeadlessContext& context, const Engine& engine, std::uint64_t frames) {
     const Scene& scene = engine.scene();
     const SubstepInfo& sub = engine.substepInfo();
@@ -107,6 +118,12 @@ int runCommand(const RunOptions& options) {
     std::uint32_t maxIntersecting = 0, maxContacts = 0;
     for (std::uint64_t f = 1; f <= frames; ++f) {
         engine.step();
+        const NonFiniteReport& nonFinite = engine.lastStep().nonFinite;
+        if (nonFinite.found && nonFinite.frame == f)
+            std::cerr << "glcollide: warning: non-finite position at frame " << nonFinite.frame << " substep "
+                      << nonFinite.substep + 1 << " of " << engine.lastStep().substeps << ", object '"
+                      << engine.scene().bodies[nonFinite.object].name << "' (" << nonFinite.object << ") node "
+                      << nonFinite.node << ": the simulation diverged (substeps below the stability limit?)\n";
         wallTotal += engine.lastStep().wallMilliseconds;
         maxIntersecting = std::max(maxIntersecting, engine.lastStep().collision.maxIntersectingPairs);
         maxContacts = std::max(maxContacts, engine.lastStep().collision.contacts);
@@ -118,7 +135,8 @@ int runCommand(const RunOptions& options) {
 
     const std::vector<glm::dvec3> finalPositions = engine.readPositions();
     std::size_t bad = 0;
-    const bool finite = allFinite(finalPositions, bad);
+    const bool diverged = engine.lastStep().nonFinite.found;
+    const bool finite = allFinite(finalPositions, bad) && !diverged;
     if (!options.statsPath.empty()) {
         stats["scene"] = scene.name;
         stats["scene_file"] = scene.sourcePath.string();
@@ -134,6 +152,7 @@ int runCommand(const RunOptions& options) {
         stats["substeps"] = engine.substepInfo().substeps;
         stats["stable_substeps"] = engine.substepInfo().stableSubsteps;
         stats["finite"] = finite;
+        stats["non_finite"] = nonFiniteRecord(engine);
         stats["frames"] = frameList;
         std::ofstream out(options.statsPath);
         if (!out) throw Error(options.statsPath + ": cannot open for writing");
@@ -147,8 +166,12 @@ int runCommand(const RunOptions& options) {
                   << " intersecting face pairs in a substep; " << engine.lastStep().collision.intersectingPairs
                   << " intersecting at the end\n";
     if (!finite) {
-        std::cerr << "glcollide: error: the state became non-finite (first at node " << bad
-                  << "); lower /time/dt or use automatic substeps\n";
+        std::cerr << "glcollide: error: the state became non-finite (first at ";
+        if (diverged)
+            std::cerr << "frame " << engine.lastStep().nonFinite.frame << ", node " << engine.lastStep().nonFinite.globalNode;
+        else
+            std::cerr << "node " << bad;
+        std::cerr << "); lower /time/dt or use automatic substeps\n";
         return 3;
     }
     return 0;

@@ -32,6 +32,7 @@ struct NodeUpdateParams {
     double groundHeight = 0.0;
     double restitution = 0.0;
     double friction = 0.0;
+    bool checkFinite = false; ///< record the first non-finite node in the health buffer (GPU only)
 };
 
 } // namespace glcollide

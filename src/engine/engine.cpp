@@ -75,7 +75,8 @@ struct Engine::Impl {
 
     void chooseSubsteps();
     void allocate();
-    void substep(bool lastOfFrame);
+    void substep(int index, bool lastOfFrame);
+    void readHealth();
     template <typename Pass, typename... Args>
     void run(std::size_t section, const Pass& pass, Args&&... args);
 };
@@ -139,6 +140,10 @@ void Engine::Impl::allocate() {
         buffers.nodeFaceOffsets = makeBuffer("nodeFaceOffsets", m.nodeFaces.offsets);
         buffers.nodeFaceList = makeBuffer("nodeFaceList", m.nodeFaces.items);
     }
+    if (plan.nodeUpdateParams.checkFinite) {
+        const gpu::GpuHealth none{GLC_HEALTH_NONE, GLC_HEALTH_NONE, 0u, 0u};
+        buffers.health = gl::Buffer("health", sizeof none, &none);
+    }
     if (plan.collisions)
         buffers.contactForces = makeBuffer("contactForces", std::vector<glm::ivec4>(m.nodeCount(), glm::ivec4(0)));
 }
@@ -172,6 +177,7 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
     d.options = options;
     d.plan = engine::planPipeline(scene);
     d.model = cpu::flatten(scene);
+    d.plan.nodeUpdateParams.checkFinite = options.checkFinite;
     d.chooseSubsteps();
     d.allocate();
     if (d.plan.nodeForce) d.nodeForce.emplace(d.plan.nodeForceParams);
@@ -214,7 +220,7 @@ Engine& Engine::operator=(Engine&& other) noexcept {
     return *this;
 }
 
-void Engine::Impl::substep(bool lastOfFrame) {
+void Engine::Impl::substep(int index, bool lastOfFrame) {
     if (nodeForce) run(kNodeForce, *nodeForce, plan.nodeForceParams);
     if (springUpdate) run(kSpringUpdate, *springUpdate);
     if (collision) {
@@ -238,7 +244,26 @@ void Engine::Impl::substep(bool lastOfFrame) {
                                            sizeof c.contacts, &c.contacts);
         }
     }
-    if (nodeUpdate) run(kNodeUpdate, *nodeUpdate, plan.nodeUpdateParams);
+    if (nodeUpdate) run(kNodeUpdate, *nodeUpdate, plan.nodeUpdateParams, static_cast<std::uint32_t>(index));
+}
+
+void Engine::Impl::readHealth() {
+    if (!buffers.health || stats.nonFinite.found) return;
+    gpu::GpuHealth health{};
+    buffers.health.download(0, sizeof health, &health); // issues GL_BUFFER_UPDATE_BARRIER_BIT
+    if (health.badSubstep == GLC_HEALTH_NONE) return;
+    NonFiniteReport& r = stats.nonFinite;
+    r.found = true;
+    r.frame = stats.frame;
+    r.substep = static_cast<int>(health.badSubstep);
+    r.globalNode = health.firstBadNode;
+    for (std::size_t o = 0; o < model.objects.size(); ++o) {
+        const cpu::ObjectRange& range = model.objects[o];
+        if (health.firstBadNode >= range.firstNode && health.firstBadNode - range.firstNode < range.nodeCount) {
+            r.object = static_cast<std::uint32_t>(o);
+            r.node = health.firstBadNode - range.firstNode;
+        }
+    }
 }
 
 void Engine::step() {
@@ -251,13 +276,14 @@ void Engine::step() {
     d.stats.collision = {};
     {
         gl::DebugGroup frame("glcollide::Engine::step");
-        for (int s = 0; s < d.substeps.substeps; ++s) d.substep(s + 1 == d.substeps.substeps);
+        for (int s = 0; s < d.substeps.substeps; ++s) d.substep(s, s + 1 == d.substeps.substeps);
     }
     // A host draws positions as vertices and faces as indices right after step().
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT |
                     GL_SHADER_STORAGE_BARRIER_BIT);
     d.stats.frame += 1;
     d.stats.time = static_cast<double>(d.stats.frame) * d.scene.time.dt;
+    d.readHealth();
     if (d.options.gpuTiming) {
         const std::vector<double> ms = d.timer.resolveMilliseconds();
         // Pass names in pipeline order map to timer sections.

@@ -50,5 +50,8 @@ static_assert(offsetof(GpuCollisionCounters, boxPairCapacity) == 16);
 static_assert(offsetof(GpuCollisionCounters, candidateCapacity) == 20);
 static_assert(offsetof(GpuCollisionCounters, intersectionCapacity) == 24);
 static_assert(offsetof(GpuCollisionCounters, contactCount) == 28);
+static_assert(sizeof(GpuHealth) == 16);
+static_assert(offsetof(GpuHealth, firstBadNode) == 0);
+static_assert(offsetof(GpuHealth, badSubstep) == 4);
 
 } // namespace glcollide::gpu

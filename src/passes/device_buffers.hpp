@@ -25,6 +25,7 @@ struct DeviceBuffers {
     gl::Buffer nodeFaceOffsets;   ///< uint[nodeCount + 1] (NodeForce with wind)
     gl::Buffer nodeFaceList;      ///< uint[3 * faceCount] (NodeForce with wind)
     gl::Buffer contactForces;     ///< ivec4 fixed point (collisions: ContactResponse → NodeUpdate)
+    gl::Buffer health;            ///< GpuHealth (NodeUpdate with EngineOptions::checkFinite)
 
     /// Labels of the allocated buffers, in declaration order.
     [[nodiscard]] std::vector<std::string> allocatedLabels() const;

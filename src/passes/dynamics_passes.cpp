@@ -20,6 +20,7 @@ std::vector<std::string> nodeUpdateDefines(const NodeUpdateParams& c) {
     if (c.forces) d.emplace_back("GLC_FORCES");
     if (c.ground) d.emplace_back("GLC_GROUND");
     if (c.contacts) d.emplace_back("GLC_CONTACTS");
+    if (c.checkFinite) d.emplace_back("GLC_CHECK_FINITE");
     return d;
 }
 
@@ -68,13 +69,17 @@ void SpringUpdatePass::dispatch(const DeviceBuffers& b) const {
 NodeUpdatePass::NodeUpdatePass(const NodeUpdateParams& config)
     : m_config(config), m_program("node_update", nodeUpdateDefines(config)) {}
 
-void NodeUpdatePass::dispatch(const DeviceBuffers& b, const NodeUpdateParams& params) const {
+void NodeUpdatePass::dispatch(const DeviceBuffers& b, const NodeUpdateParams& params, std::uint32_t substep) const {
     bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
     if (m_config.forces) bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
     if (m_config.contacts) {
         bindRequired(b.contactForces, GLC_BIND_CONTACT_FORCES, kName, "contactForces");
         m_program.set("u_contactForceScale", static_cast<float>(params.contactForceScale));
+    }
+    if (m_config.checkFinite) {
+        bindRequired(b.health, GLC_BIND_HEALTH, kName, "health");
+        m_program.set("u_substep", substep);
     }
     m_program.set("u_h", static_cast<float>(params.h));
     if (m_config.ground) {

@@ -35,7 +35,8 @@ class NodeUpdatePass {
 public:
     static constexpr const char* kName = "NodeUpdate";
     explicit NodeUpdatePass(const NodeUpdateParams& config);
-    void dispatch(const DeviceBuffers& buffers, const NodeUpdateParams& params) const;
+    /// `substep`: index within the frame, recorded with a non-finite node when checkFinite is on.
+    void dispatch(const DeviceBuffers& buffers, const NodeUpdateParams& params, std::uint32_t substep = 0) const;
 
 private:
     NodeUpdateParams m_config;

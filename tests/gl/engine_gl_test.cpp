@@ -45,7 +45,9 @@ TEST(EngineGl, PassesAndBuffersFollowTheEffects) {
     for (const Case& c : cases) {
         Engine engine(sceneWith(c.effects, c.extra));
         EXPECT_EQ(engine.pipeline(), c.passes) << c.effects;
-        EXPECT_EQ(engine.allocatedBuffers(), c.buffers) << c.effects;
+        Names buffers = c.buffers;
+        buffers.emplace_back("health"); // EngineOptions::checkFinite (default on)
+        EXPECT_EQ(engine.allocatedBuffers(), buffers) << c.effects;
         engine.step(); // every composition runs
         EXPECT_EQ(engine.lastStep().passes.size(), c.passes.size());
     }
@@ -77,7 +79,7 @@ TEST(EngineGl, CollisionEffectsAddTheirPassesAndBuffers) {
     EXPECT_EQ(engine.pipeline(), (Names{"SpringUpdate", "BBUpdate", "BBCollision", "TriTri", "ContactResponse",
                                         "NodeUpdate"}));
     Names buffers = {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList",
-                     "contactForces"};
+                     "contactForces", "health"};
     buffers.insert(buffers.end(), collisionBuffers.begin(), collisionBuffers.end());
     EXPECT_EQ(engine.allocatedBuffers(), buffers);
     engine.step();

@@ -42,6 +42,9 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"BoxPairsBuf", GLC_BIND_BOX_PAIRS},
     {"CollisionCountersBuf", GLC_BIND_COLLISION_COUNTERS},
     {"DispatchArgsBuf", GLC_BIND_DISPATCH_ARGS},
+    // non-finite check of NodeUpdate (EngineOptions::checkFinite)
+    {"ContactForcesBuf", GLC_BIND_CONTACT_FORCES},
+    {"HealthBuf", GLC_BIND_HEALTH},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {
@@ -59,6 +62,7 @@ std::vector<gl::ComputeProgram> allPrograms() {
     p.emplace_back("node_force", std::vector<std::string>{"GLC_GRAVITY", "GLC_DAMPING", "GLC_WIND"});
     p.emplace_back("spring_update", std::vector<std::string>{"GLC_ACCUMULATE"});
     p.emplace_back("node_update", std::vector<std::string>{"GLC_FORCES", "GLC_GROUND"});
+    p.emplace_back("node_update", std::vector<std::string>{"GLC_FORCES", "GLC_CONTACTS", "GLC_CHECK_FINITE"});
     // Collision detection: every variant (precision adds no block, so the fast ones suffice).
     p.emplace_back("bb_update");
     p.emplace_back("bb_collision");
@@ -180,6 +184,16 @@ TEST(LayoutGl, CollisionStructsMatchCpp) {
     };
     for (const auto& [name, offset] : members)
         EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset)) << name;
+}
+
+TEST(LayoutGl, HealthStructMatchesCpp) {
+    gl::ComputeProgram program("node_update", {"GLC_CHECK_FINITE"});
+    const GLuint p = program.name();
+    EXPECT_EQ(resourceProperty(p, GL_SHADER_STORAGE_BLOCK, "HealthBuf", GL_BUFFER_BINDING), GLC_BIND_HEALTH);
+    EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, "g_health.firstBadNode", GL_OFFSET),
+              static_cast<GLint>(offsetof(gpu::GpuHealth, firstBadNode)));
+    EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, "g_health.badSubstep", GL_OFFSET),
+              static_cast<GLint>(offsetof(gpu::GpuHealth, badSubstep)));
 }
 
 TEST(LayoutGl, CompileErrorsNameTheFileAndLine) {
