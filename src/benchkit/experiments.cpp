@@ -46,12 +46,6 @@ void applySubstepFactor(Scene& scene, int factor) {
     scene.time.substeps = base * factor;
 }
 
-bool allFinite(const std::vector<glm::dvec3>& positions) {
-    return std::all_of(positions.begin(), positions.end(), [](const glm::dvec3& p) {
-        return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-    });
-}
-
 /// Called after every frame (warm-up included) with the 1-based frame number.
 using FrameHook = std::function<void(Engine&, int frame)>;
 
@@ -98,7 +92,10 @@ RunResult measureRun(Engine& engine, const Experiment& experiment, const FrameHo
         r.set("max_contacts", maxContacts);
         r.set("list_growths", growths);
     }
-    if (!allFinite(engine.readPositions())) r.failure = "diverged: non-finite positions";
+    const NonFiniteReport& bad = engine.lastStep().nonFinite; // detected on the device, no readback
+    if (bad.found)
+        r.failure = "diverged: non-finite state at frame " + std::to_string(bad.frame) + ", object " +
+                    std::to_string(bad.object) + ", node " + std::to_string(bad.node);
     return r;
 }
 
@@ -157,13 +154,19 @@ void compareWithOracle(Engine& engine, const FaceData& d, RunResult& r) {
     r.set("false_positives", double(countMissing(found, truth)));
 }
 
-RunResult runScene(const Experiment& x, const SceneEntry& s, const ConfigEntry& c, const FrameHook& hook) {
+/// Called once after the measured frames, while the engine still holds the final state.
+using AfterRun = std::function<void(Engine&, const Scene&, RunResult&)>;
+
+/// One scene under one configuration: built, measured, then `after` (ground truth on the state).
+RunResult runScene(const Experiment& x, const SceneEntry& s, const ConfigEntry& c, const FrameHook& hook,
+                   const AfterRun& after = nullptr) {
     Scene scene = buildScene(s, c);
     applySubstepFactor(scene, c.substepFactor);
     Engine engine(scene);
     RunResult r = measureRun(engine, x, hook);
     r.scene = s.name;
     r.config = c.name;
+    if (after && r.failure.empty()) after(engine, scene, r);
     return r;
 }
 
@@ -188,19 +191,12 @@ void broadOrNarrow(const Experiment& x, ExperimentResult& out, const Progress& p
     for (const SceneEntry& s : x.scenes)
         for (const ConfigEntry& c : x.configs) {
             progress(s.name + " / " + c.name);
-            RunResult r;
-            {
-                Scene built = buildScene(s, c);
-                applySubstepFactor(built, c.substepFactor);
-                if (!built.effects.has(Effect::Collisions) && !built.effects.has(Effect::SelfCollisions))
+            RunResult r = runScene(x, s, c, nullptr, [&](Engine& engine, const Scene& scene, RunResult& run) {
+                if (!scene.effects.has(Effect::Collisions) && !scene.effects.has(Effect::SelfCollisions))
                     throw Error(s.source + " (config \"" + c.name + "\"): a " + kindName(x.kind) +
                                 " experiment needs the collisions or self_collisions effect");
-                Engine engine(built);
-                r = measureRun(engine, x, nullptr);
-                r.scene = s.name;
-                r.config = c.name;
-                if (r.failure.empty()) compareWithOracle(engine, faceData(built), r);
-            }
+                compareWithOracle(engine, faceData(scene), run);
+            });
             if (broad) {
                 r.time = passMedian(r, {"BBUpdate", "BBCollision", "TriTri"}) / r.substeps;
                 r.error = r.metric("candidates_missing_intersections");

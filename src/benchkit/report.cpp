@@ -44,6 +44,14 @@ std::string slug(const std::string& text) {
     return s.empty() ? "scene" : s;
 }
 
+/// The measured (not failed) runs of one configuration, in suite order.
+std::vector<RunResult> runsOf(const ExperimentResult& r, const std::string& config) {
+    std::vector<RunResult> runs;
+    for (const RunResult& run : r.runs)
+        if (run.config == config && run.failure.empty()) runs.push_back(run);
+    return runs;
+}
+
 bool accuracy(const ExperimentResult& r) { return r.experiment.kind != ExperimentKind::Scaling; }
 
 std::vector<std::string> sceneOrder(const ExperimentResult& r) {
@@ -233,10 +241,7 @@ std::string textTable(const ExperimentResult& r) {
     for (const auto& row : t.rows) line(row);
     if (r.experiment.kind == ExperimentKind::Scaling)
         for (const ConfigEntry& c : r.experiment.configs) {
-            std::vector<RunResult> runs;
-            for (const RunResult& run : r.runs)
-                if (run.config == c.name) runs.push_back(run);
-            s << "   " << c.name << ": GPU time per substep grows as faces^" << num(logLogSlope(runs)) << "\n";
+            s << "   " << c.name << ": GPU time per substep grows as faces^" << num(logLogSlope(runsOf(r, c.name))) << "\n";
         }
     for (const std::string& note : r.notes) s << "   note: " << note << "\n";
     return s.str();
@@ -252,12 +257,8 @@ std::vector<PlotFile> plots(const ExperimentResult& r) {
         spec.logX = spec.logY = true;
         for (const ConfigEntry& c : r.experiment.configs) {
             PlotSeries series;
-            std::vector<RunResult> runs;
-            for (const RunResult& run : r.runs)
-                if (run.config == c.name && run.failure.empty()) {
-                    series.points.push_back({double(run.faces), run.time, run.scene});
-                    runs.push_back(run);
-                }
+            const std::vector<RunResult> runs = runsOf(r, c.name);
+            for (const RunResult& run : runs) series.points.push_back({double(run.faces), run.time, run.scene});
             series.name = c.name + " (slope " + num(logLogSlope(runs)) + ")";
             std::sort(series.points.begin(), series.points.end(),
                       [](const PlotPoint& a, const PlotPoint& b) { return a.x < b.x; });
@@ -303,10 +304,8 @@ std::string markdownReport(const RunContext& c, const Suite& suite, const std::v
         for (const std::string& note : r.notes) s << "- " << note << "\n";
         if (r.experiment.kind == ExperimentKind::Scaling)
             for (const ConfigEntry& cfg : r.experiment.configs) {
-                std::vector<RunResult> runs;
-                for (const RunResult& run : r.runs)
-                    if (run.config == cfg.name) runs.push_back(run);
-                s << "- " << cfg.name << ": GPU time per substep grows as faces^" << num(logLogSlope(runs)) << "\n";
+                s << "- " << cfg.name << ": GPU time per substep grows as faces^" << num(logLogSlope(runsOf(r, cfg.name)))
+                  << "\n";
             }
         s << "\n" << markdownTable(tableOf(r)) << "\n";
         if (i < plotFiles.size())
@@ -354,13 +353,10 @@ std::string headlineTable(const RunContext& c, const std::vector<ExperimentResul
     for (const ExperimentResult& r : results) {
         if (accuracy(r)) continue;
         for (const ConfigEntry& cfg : r.experiment.configs) {
-            std::vector<RunResult> runs;
+            const std::vector<RunResult> runs = runsOf(r, cfg.name);
             double largest = 0, ms = 0;
-            for (const RunResult& run : r.runs)
-                if (run.config == cfg.name && run.failure.empty()) {
-                    runs.push_back(run);
-                    if (run.faces > largest) largest = run.faces, ms = run.time;
-                }
+            for (const RunResult& run : runs)
+                if (run.faces > largest) largest = run.faces, ms = run.time;
             s << "| " << r.experiment.title << " | " << cfg.name << " | cost per substep grows as faces^"
               << num(logLogSlope(runs)) << " | " << num(ms) << " ms per substep at " << num(largest) << " faces |\n";
         }

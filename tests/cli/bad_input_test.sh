@@ -9,9 +9,7 @@ bin=$1
 src=$2
 dir=$src/tests/data/bad
 manifest=$dir/expected.txt
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
+. "$(dirname "$0")/check_lib.sh" # $work and the failure counter (this script reports with fail())
 cases=0
 fail() { echo "FAIL $1: $2"; failures=$((failures + 1)); }
 

@@ -6,13 +6,7 @@
 # usage: bench_test.sh GLCOLLIDE_BINARY
 set -u
 bin=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-check() { # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then echo "ok   $name"; else echo "FAIL $name"; failures=$((failures + 1)); fi
-}
+. "$(dirname "$0")/check_lib.sh"
 
 "$bin" bench --suite smoke --out "$work/{device}" >"$work/stdout" 2>"$work/stderr"
 rc=$?

@@ -5,13 +5,7 @@
 set -u
 bin=$1
 src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-check() { # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then echo "ok   $name"; else echo "FAIL $name"; failures=$((failures + 1)); fi
-}
+. "$(dirname "$0")/check_lib.sh"
 
 # run with no scene: the built-in default scene, exporting OBJ and stats.
 "$bin" run --frames 4 --export "$work/obj" --every 2 --stats "$work/stats.json" --quiet >"$work/out.txt" 2>"$work/err.txt"

@@ -8,13 +8,7 @@ set -u
 bin=$1
 src=$2
 scene=$src/tests/data/scene/colliding_spheres.json
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-check() { # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then echo "ok   $name"; else echo "FAIL $name"; failures=$((failures + 1)); fi
-}
+. "$(dirname "$0")/check_lib.sh"
 
 for run in 1 2; do
   timeout 120 "$bin" run "$scene" --frames 6 --export "$work/run$run" --every 3 --stats "$work/stats$run.json" --quiet \

@@ -5,13 +5,7 @@
 set -u
 bin=$1
 src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-check() { # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then echo "ok   $name"; else echo "FAIL $name"; failures=$((failures + 1)); fi
-}
+. "$(dirname "$0")/check_lib.sh"
 # png_size FILE: prints "WIDTH HEIGHT" when FILE starts with the PNG signature and an IHDR chunk.
 png_size() {
   local hex
