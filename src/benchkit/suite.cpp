@@ -29,12 +29,14 @@ struct Where {
 
 void allowOnly(const json& object, const Where& at, std::initializer_list<const char*> keys) {
     if (!object.is_object()) at.fail("expected an object");
-    for (const auto& [key, value] : object.items())
+    for (const auto& item : object.items()) {
+        const std::string& key = item.key(); // not a structured binding: clang 14 cannot capture one
         if (std::none_of(keys.begin(), keys.end(), [&](const char* k) { return key == k; })) {
             std::string expected;
             for (const char* k : keys) expected += std::string(expected.empty() ? "" : ", ") + k;
             (at / key).fail("unknown key (expected one of: " + expected + ")");
         }
+    }
 }
 
 std::string stringAt(const json& object, const Where& at, const char* key) {

@@ -20,10 +20,14 @@ Buffer::Buffer(std::string_view label, std::size_t bytes, const void* data)
     glGenBuffers(1, &name);
     m_handle = Handle<deleteBuffer>(name);
     glBindBuffer(GL_COPY_WRITE_BUFFER, name);
-    // A zero-sized SSBO cannot be bound; keep a small placeholder so passes stay valid.
+    // A zero-sized SSBO cannot be bound; keep a small placeholder so passes stay valid. The
+    // placeholder may be larger than `data`: upload only the caller's `bytes` (found by ASan).
     const std::size_t allocated = std::max<std::size_t>(bytes, 16);
-    glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(allocated), bytes ? data : nullptr,
+    const bool exact = allocated == bytes;
+    glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(allocated), exact ? data : nullptr,
                  GL_DYNAMIC_COPY);
+    if (!exact && data && bytes)
+        glBufferSubData(GL_COPY_WRITE_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data);
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
     if (glGetError() == GL_OUT_OF_MEMORY)
         throw Error("GL out of memory allocating buffer '" + m_label + "' of " +

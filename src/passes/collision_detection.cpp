@@ -28,10 +28,9 @@ constexpr std::uint32_t kFacePairTile = 16;    // tri_tri.comp GLC_TRITRI_ALL_PA
 constexpr std::uint32_t kMaxGroups = 65535;    // GL 4.3 minimum of GL_MAX_COMPUTE_WORK_GROUP_COUNT
 constexpr std::size_t kPairBytes = 2 * sizeof(std::uint32_t); // uvec2
 
-// Counter words of GpuCollisionCounters.
+// Counter words of GpuCollisionCounters; the three list capacities follow from kBoxPairCapacity.
 constexpr std::size_t kBoxPairCount = 0, kCandidateCount = 1, kIntersectionCount = 2,
-                      kExactFallbackCount = 3, kBoxPairCapacity = 4, kCandidateCapacity = 5,
-                      kIntersectionCapacity = 6;
+                      kExactFallbackCount = 3, kBoxPairCapacity = 4;
 
 template <typename T>
 gl::Buffer makeBuffer(const char* label, const std::vector<T>& data) {
@@ -75,6 +74,7 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const cpu:
       m_layout(cpu::buildOctree(model, config.settings.octreeDepth)) {
     const CollisionSettings& s = config.settings;
     if (s.initialCapacity < 1) throw Error("collision: initialCapacity must be at least 1");
+    const auto initial = [&](std::uint32_t listCapacity) { return listCapacity ? listCapacity : s.initialCapacity; };
     if (!(s.thickness > 0.0)) throw Error("collision: thickness must be positive");
     const BroadPhase mode = s.broadPhase;
 
@@ -118,7 +118,7 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const cpu:
         m_boxPairs = gl::ComputeProgram("bb_collision");
         m_expand = gl::ComputeProgram("bb_collision", {"GLC_BB_EXPAND"});
         m_args = gl::ComputeProgram("collision_dispatch_args");
-        m_boxPairCapacity = s.initialCapacity;
+        m_boxPairCapacity = initial(config.boxPairCapacity);
         m_boxPairList = gl::Buffer("boxPairs", std::size_t{m_boxPairCapacity} * kPairBytes);
         m_dispatchArgs = gl::Buffer("dispatchArgs", 2 * 3 * sizeof(std::uint32_t));
     }
@@ -135,8 +135,8 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const cpu:
     m_triTri.set("u_halfThickness", m_halfThickness);
     m_triTri.set("u_boxCount", m_layout.boxCount);
 
-    m_candidateCapacity = s.initialCapacity;
-    m_intersectionCapacity = s.initialCapacity;
+    m_candidateCapacity = initial(config.candidateCapacity);
+    m_intersectionCapacity = initial(config.intersectionCapacity);
     m_candidates = gl::Buffer("candidates", std::size_t{m_candidateCapacity} * kPairBytes);
     m_intersections = gl::Buffer("intersections", std::size_t{m_intersectionCapacity} * kPairBytes);
     m_counters = gl::Buffer("collisionCounters", sizeof(gpu::GpuCollisionCounters));
@@ -207,7 +207,9 @@ void CollisionDetection::readCounters() {
     m_counts.exactFallbacks = m_rawCounters[kExactFallbackCount];
 }
 
-void CollisionDetection::grow(gl::Buffer& list, std::uint32_t& capacity, std::uint32_t count, const char* label) {
+void CollisionDetection::grow(gl::Buffer& list, std::uint32_t& capacity, std::uint32_t count, const char* label,
+                              std::uint32_t& growths) {
+    ++growths;
     capacity = std::bit_ceil(count);
     list = gl::Buffer(label, std::size_t{capacity} * kPairBytes);
     writeCapacities();
@@ -288,20 +290,20 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
         timed(timer, triTri, kTriTri, [&] { runTriTriCandidates(); });
         for (readCounters();; readCounters()) {
             if (m_counts.boxPairs > m_boxPairCapacity) {
-                grow(m_boxPairList, m_boxPairCapacity, m_counts.boxPairs, "boxPairs");
+                grow(m_boxPairList, m_boxPairCapacity, m_counts.boxPairs, "boxPairs", m_counts.boxPairGrowths);
                 bindInputs(buffers);
                 resetCounts(true, true, true);
                 timed(timer, bbCollision, kBBCollision, [&] { runBoxPairs(); runExpand(); });
                 timed(timer, triTri, kTriTri, [&] { runTriTriCandidates(); });
             } else if (m_counts.candidates > m_candidateCapacity) {
-                grow(m_candidates, m_candidateCapacity, m_counts.candidates, "candidates");
+                grow(m_candidates, m_candidateCapacity, m_counts.candidates, "candidates", m_counts.candidateGrowths);
                 bindInputs(buffers);
                 resetCounts(false, true, true);
                 // The box pairs are intact: rerun from their expansion.
                 timed(timer, bbCollision, kBBCollision, [&] { runExpand(); });
                 timed(timer, triTri, kTriTri, [&] { runTriTriCandidates(); });
             } else if (m_counts.intersections > m_intersectionCapacity) {
-                grow(m_intersections, m_intersectionCapacity, m_counts.intersections, "intersections");
+                grow(m_intersections, m_intersectionCapacity, m_counts.intersections, "intersections", m_counts.intersectionGrowths);
                 bindInputs(buffers);
                 resetCounts(false, false, true);
                 timed(timer, triTri, kTriTri, [&] { runTriTriCandidates(); });
@@ -323,9 +325,9 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
                              m_counts.intersections > m_intersectionCapacity;
              readCounters()) {
             if (m_counts.candidates > m_candidateCapacity)
-                grow(m_candidates, m_candidateCapacity, m_counts.candidates, "candidates");
+                grow(m_candidates, m_candidateCapacity, m_counts.candidates, "candidates", m_counts.candidateGrowths);
             if (m_counts.intersections > m_intersectionCapacity)
-                grow(m_intersections, m_intersectionCapacity, m_counts.intersections, "intersections");
+                grow(m_intersections, m_intersectionCapacity, m_counts.intersections, "intersections", m_counts.intersectionGrowths);
             bindInputs(buffers);
             resetCounts(false, true, true);
             timed(timer, triTri, kTriTri, [&] { runTriTriAllPairs(faces); });

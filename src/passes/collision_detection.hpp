@@ -29,6 +29,9 @@ struct CollisionConfig {
     bool betweenObjects = false; ///< effect `collisions`: faces of different objects
     bool selfCollisions = false; ///< effect `self_collisions`: faces of one object sharing no node
     CollisionSettings settings;
+    /// First size of one pair list; 0 = settings.initialCapacity. Lets a test overflow one list
+    /// at a time.
+    std::uint32_t boxPairCapacity = 0, candidateCapacity = 0, intersectionCapacity = 0;
 };
 
 /// Exact sizes found by the last detect() (after any reruns).
@@ -38,6 +41,8 @@ struct CollisionCounts {
     std::uint32_t intersections = 0;  ///< candidates (or valid pairs) whose triangles intersect
     std::uint32_t exactFallbacks = 0; ///< robust TriTri: predicates decided in double
     std::uint32_t reruns = 0;         ///< stages rerun after a list overflowed and was grown
+    /// Growths per list in this call (a rerun may grow two lists at once in masked/all-pairs mode).
+    std::uint32_t boxPairGrowths = 0, candidateGrowths = 0, intersectionGrowths = 0;
 };
 
 class CollisionDetection {
@@ -90,7 +95,8 @@ private:
     void resetCounts(bool boxPairs, bool candidates, bool intersections);
     void writeCapacities();
     void readCounters();
-    void grow(gl::Buffer& list, std::uint32_t& capacity, std::uint32_t count, const char* label);
+    void grow(gl::Buffer& list, std::uint32_t& capacity, std::uint32_t count, const char* label,
+              std::uint32_t& growths);
     void runBBUpdate() const;
     void runBoxPairs() const;
     void runExpand() const;

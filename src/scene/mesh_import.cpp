@@ -8,6 +8,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -49,6 +50,9 @@ SurfaceMesh importSurfaceMesh(const std::filesystem::path& path) {
     const std::string file = path.string();
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) throw Error(file + ": cannot open file");
+    std::string extension = path.extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (extension == ".ply") checkPlyHeader(path);
 
     Assimp::Importer importer;
     // Simulation meshes need one node per position: drop every attribute that makes assimp split

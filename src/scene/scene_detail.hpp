@@ -38,6 +38,11 @@ struct TetMesh {
 /// exactly equal positions welded, point and line primitives ignored.
 SurfaceMesh importSurfaceMesh(const std::filesystem::path& path);
 
+/// Checks a PLY header strictly (grammar, scalar types, element counts that fit in the file)
+/// before assimp reads it; throws Error naming the file and header line. Called by
+/// importSurfaceMesh for `.ply` files.
+void checkPlyHeader(const std::filesystem::path& path);
+
 /// Gmsh MSH 4.1 or 2.2 ASCII: 4-node tetrahedra (type 4); other element types and unknown
 /// sections (IPC's `$Surface` included) are skipped. Node tags may be sparse.
 TetMesh readGmsh(const std::filesystem::path& path);

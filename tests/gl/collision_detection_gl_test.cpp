@@ -248,6 +248,35 @@ TEST(CollisionDetectionGlCases, CapacityOneGrowsAndFindsTheSameSets) {
     }
 }
 
+// One list at a time: only that list starts with room for one entry, so only it overflows, is
+// grown and rerun, and the sets equal those of a run with room for everything (and the twin's).
+TEST(CollisionDetectionGlCases, EachListOverflowingAloneGrowsAndFindsTheSameSets) {
+    const Soup soup = makeSoup(1009, 3, seedFor(1009));
+    const passes::DeviceBuffers buffers = upload(soup);
+    const cpu::PairRules rules{true, true};
+    const Expected& want = expected(soup, 1009, rules);
+    ASSERT_GT(want.intersections.size(), 1u); // every list has more than one entry to lose
+    enum class List { BoxPairs, Candidates, Intersections };
+    for (const Mode& mode : kModes) {
+        for (const List list : {List::BoxPairs, List::Candidates, List::Intersections}) {
+            if (list == List::BoxPairs && mode.broadPhase != BroadPhase::Octree) continue; // no such list
+            passes::CollisionConfig config = configFor(mode, rules, TriTriPrecision::Robust, 1u << 20);
+            config.boxPairCapacity = list == List::BoxPairs ? 1u : 0u;
+            config.candidateCapacity = list == List::Candidates ? 1u : 0u;
+            config.intersectionCapacity = list == List::Intersections ? 1u : 0u;
+            passes::CollisionDetection detection(config, soup.model);
+            const passes::CollisionCounts counts = detection.detect(buffers, nullptr, 0);
+            const std::string what = modeName(mode) + " list " + std::to_string(static_cast<int>(list));
+            EXPECT_EQ(counts.boxPairGrowths, list == List::BoxPairs ? 1u : 0u) << what;
+            EXPECT_EQ(counts.candidateGrowths, list == List::Candidates ? 1u : 0u) << what;
+            EXPECT_EQ(counts.intersectionGrowths, list == List::Intersections ? 1u : 0u) << what;
+            EXPECT_EQ(counts.reruns, 1u) << what;
+            EXPECT_EQ(detection.readCandidates(), want.candidates) << what;
+            EXPECT_EQ(detection.readIntersections(), want.intersections) << what;
+        }
+    }
+}
+
 TEST(CollisionDetectionGlCases, LeafBoxesMatchTheTwin) {
     const Soup soup = makeSoup(1009, 3, seedFor(1009));
     const passes::DeviceBuffers buffers = upload(soup);

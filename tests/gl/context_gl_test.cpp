@@ -361,6 +361,20 @@ TEST(HeadlessContext, NoEglVendorGivesAClearErrorNotAnAbort) {
     EXPECT_EQ(child.output.find("No provider of"), std::string::npos) << "libepoxy aborted on a missing provider";
 }
 
+TEST(HeadlessContext, NoGl43GivesAClearErrorNamingTheVersionAndThePackages) {
+    // Mesa capped at GL 4.2 stands in for a driver without compute shaders.
+    const ChildResult child = runSelfAsChild("NoEglChild.DISABLED_CreateContext", {"MESA_GL_VERSION_OVERRIDE=4.2"});
+    SCOPED_TRACE(child.output);
+    ASSERT_TRUE(child.exited) << "child killed by signal " << child.signal;
+    EXPECT_NE(child.exitCode, 0);
+    const std::size_t at = child.output.find(kNoEglMarker);
+    ASSERT_NE(at, std::string::npos);
+    const std::string message = child.output.substr(at); // several lines: one per EGL display tried
+    EXPECT_NE(message.find("cannot create an OpenGL 4.3 core context"), std::string::npos) << message;
+    EXPECT_NE(message.find("the driver offers no OpenGL 4.3 core context"), std::string::npos) << message;
+    EXPECT_NE(message.find("libgl1-mesa-dri"), std::string::npos) << "no install hint";
+}
+
 TEST(HeadlessContext, ChildWithWorkingEglCreatesAContext) {
     // The same child without the broken vendor list: proves the child harness itself works, so the
     // test above fails for the right reason.

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# The whole test suite built with clang, AddressSanitizer and UndefinedBehaviorSanitizer (GL
+# tests on llvmpipe included), then every fuzz target for a short run (scripts/fuzz.sh).
+# scripts/test.sh runs it after the normal build; alone: scripts/test-sanitizers.sh [FUZZ_SECONDS].
+# The install test is left to the normal build (a consumer built without the sanitizer flags
+# cannot link sanitized static libraries). Leaks inside the GL driver are suppressed by library name (tests/sanitizers/lsan.supp); leaks
+# in glcollide's code are not.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+fuzz_seconds=${1:-${GLCOLLIDE_FUZZ_SECONDS:-15}}
+build_dir=${GLCOLLIDE_SANITIZE_BUILD_DIR:-build-sanitize}
+CC=clang CXX=clang++ cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DGLCOLLIDE_SANITIZE=address,undefined -DGLCOLLIDE_BUILD_FUZZERS=ON \
+  -DGLCOLLIDE_WARNINGS_AS_ERRORS=ON -DGLCOLLIDE_INSTALL=OFF
+cmake --build "$build_dir" -j "$(nproc)"
+supp="$PWD/tests/sanitizers"
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:check_initialization_order=1"
+export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$supp/ubsan.supp"
+ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)"
+scripts/fuzz.sh "$fuzz_seconds" "$build_dir"
