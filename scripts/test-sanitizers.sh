@@ -17,5 +17,8 @@ supp="$PWD/tests/sanitizers"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:check_initialization_order=1"
 export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$supp/ubsan.supp"
-ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)"
+# Keep Mesa's driver loaded until the leak check so its allocations are named (lsan.supp).
+mesa_driver=$(ls /usr/lib/*/dri/swrast_dri.so 2>/dev/null | head -1 || true)
+LD_PRELOAD="${mesa_driver}${LD_PRELOAD:+:$LD_PRELOAD}" \
+  ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)"
 scripts/fuzz.sh "$fuzz_seconds" "$build_dir"

@@ -53,6 +53,7 @@ SurfaceMesh importSurfaceMesh(const std::filesystem::path& path) {
     std::string extension = path.extension().string();
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (extension == ".ply") checkPlyHeader(path);
+    if (extension == ".glb") checkGlbContainer(path);
 
     Assimp::Importer importer;
     // Simulation meshes need one node per position: drop every attribute that makes assimp split

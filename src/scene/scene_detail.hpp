@@ -43,6 +43,10 @@ SurfaceMesh importSurfaceMesh(const std::filesystem::path& path);
 /// importSurfaceMesh for `.ply` files.
 void checkPlyHeader(const std::filesystem::path& path);
 
+/// Checks a GLB container (header, version 2, length, chunk lengths within the file) before
+/// assimp reads it; throws Error naming the file and byte offset. Called for `.glb` files.
+void checkGlbContainer(const std::filesystem::path& path);
+
 /// Gmsh MSH 4.1 or 2.2 ASCII: 4-node tetrahedra (type 4); other element types and unknown
 /// sections (IPC's `$Surface` included) are skipped. Node tags may be sparse.
 TetMesh readGmsh(const std::filesystem::path& path);

@@ -10,6 +10,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cstdint>
+#include <iterator>
 #include <string>
 
 using namespace glcollide;
@@ -140,4 +142,50 @@ TEST(PlyHeader, CountsMustFitInTheFile) {
                                "property list uchar int vertex_indices\nend_header\n";
     EXPECT_THAT(plyErrorOf("binary_count", binary + std::string(24 + 1, '\0')),
                 HasSubstr(".ply:7: element 'face' declares 2 entries, more than the 25 bytes"));
+}
+
+namespace {
+
+std::string readBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Imports `bytes` written as a .glb; returns the error (or "no error").
+std::string glbErrorOf(const std::string& name, const std::string& bytes) {
+    const std::filesystem::path path = std::filesystem::temp_directory_path() / ("glcollide_" + name + ".glb");
+    std::ofstream(path, std::ios::binary) << bytes;
+    const std::string error = errorOf(path.string());
+    std::filesystem::remove(path);
+    return error;
+}
+
+void putLittleEndian32(std::string& bytes, std::size_t at, std::uint32_t v) {
+    for (std::size_t i = 0; i < 4; ++i) bytes[at + i] = static_cast<char>((v >> (8 * i)) & 0xFFu);
+}
+
+} // namespace
+
+// two_instances.glb is two_instances.gltf in a GLB container (JSON chunk + BIN chunk).
+TEST(GlbContainer, ValidFileImportsLikeItsGltf) {
+    const SurfaceMesh glb = importSurfaceMesh(kData + "two_instances.glb");
+    const SurfaceMesh gltf = importSurfaceMesh(kData + "two_instances.gltf");
+    EXPECT_EQ(glb.faces, gltf.faces);
+    EXPECT_EQ(glb.positions, gltf.positions);
+}
+
+TEST(GlbContainer, BrokenContainersNameTheByte) {
+    const std::string good = readBytes(kData + "two_instances.glb");
+    ASSERT_GT(good.size(), 28u);
+    EXPECT_THAT(glbErrorOf("short", good.substr(0, 8)), HasSubstr(".glb: byte 0: a GLB file starts with a 12-byte header"));
+    std::string magic = good;
+    magic[0] = 'x';
+    EXPECT_THAT(glbErrorOf("magic", magic), HasSubstr(".glb: byte 0: not a GLB file"));
+    std::string version = good;
+    putLittleEndian32(version, 4, 1);
+    EXPECT_THAT(glbErrorOf("version", version), HasSubstr(".glb: byte 4: GLB version 1 (expected 2"));
+    EXPECT_THAT(glbErrorOf("truncated", good.substr(0, good.size() - 4)), HasSubstr(".glb: byte 8: the header's length"));
+    std::string chunk = good;
+    putLittleEndian32(chunk, 12, 0xEC000001u); // the fuzzer's input: assimp allocated this much
+    EXPECT_THAT(glbErrorOf("chunk", chunk), HasSubstr(".glb: byte 12: JSON chunk of 3959422977 bytes runs past the end"));
 }

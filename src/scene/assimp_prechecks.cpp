@@ -1,7 +1,9 @@
-// A strict check of a PLY file's header before assimp reads the file. Assimp 5.2's PLY reader
-// loops forever on some malformed headers (found by fuzz/mesh_ply_fuzz.cpp; the inputs are in
-// fuzz/regressions/mesh_ply/), so the header grammar is checked here with line numbers, and the
-// declared element counts must fit in the bytes that follow the header.
+// Checks that run before assimp reads a file, where assimp 5.2 (Debian 12) misbehaves on malformed
+// input instead of failing (found by the fuzz targets; the inputs are in fuzz/regressions/):
+// - PLY: some malformed headers make its reader loop forever. The header grammar is checked here
+//   with line numbers, and the declared element counts must fit in the bytes after the header.
+// - GLB: a chunk length larger than the file makes it allocate that much (4 GB from a 564-byte
+//   file). The binary container's header and chunk lengths are checked against the file size.
 #include "scene/scene_detail.hpp"
 
 #include <glcollide/error.hpp>
@@ -25,6 +27,18 @@ const std::map<std::string, std::uint64_t>& scalarSizes() {
     return sizes;
 }
 
+std::string readAll(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path.string() + ": cannot open file");
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::uint32_t littleEndian32(const std::string& bytes, std::size_t at) {
+    std::uint32_t v = 0;
+    for (std::size_t i = 0; i < 4; ++i) v |= std::uint32_t{static_cast<unsigned char>(bytes[at + i])} << (8 * i);
+    return v;
+}
+
 bool isIntegral(const std::string& type) { return type.find("float") == std::string::npos && type != "double"; }
 
 struct Element {
@@ -39,9 +53,7 @@ struct Element {
 
 void checkPlyHeader(const std::filesystem::path& path) {
     const std::string file = path.string();
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(file + ": cannot open file");
-    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::string text = readAll(path);
     const auto fail = [&](std::size_t line, const std::string& what) {
         throw Error(file + ":" + std::to_string(line) + ": " + what);
     };
@@ -115,6 +127,35 @@ void checkPlyHeader(const std::filesystem::path& path) {
                              std::to_string(remaining) + " bytes after the header can hold");
         needed += e.count * each;
     }
+}
+
+void checkGlbContainer(const std::filesystem::path& path) {
+    const std::string file = path.string();
+    const std::string bytes = readAll(path);
+    const auto fail = [&](std::size_t offset, const std::string& what) {
+        throw Error(file + ": byte " + std::to_string(offset) + ": " + what);
+    };
+    constexpr std::uint32_t kMagic = 0x46546C67; // "glTF"
+    constexpr std::uint32_t kJson = 0x4E4F534A, kBin = 0x004E4942;
+    if (bytes.size() < 12) fail(0, "a GLB file starts with a 12-byte header; the file has " + std::to_string(bytes.size()) + " bytes");
+    if (littleEndian32(bytes, 0) != kMagic) fail(0, "not a GLB file (the magic is not 'glTF')");
+    if (littleEndian32(bytes, 4) != 2) fail(4, "GLB version " + std::to_string(littleEndian32(bytes, 4)) + " (expected 2: glTF 2.0)");
+    if (littleEndian32(bytes, 8) != bytes.size())
+        fail(8, "the header's length " + std::to_string(littleEndian32(bytes, 8)) + " differs from the file size " +
+                    std::to_string(bytes.size()));
+    std::size_t at = 12;
+    for (int chunk = 0; at < bytes.size(); ++chunk) {
+        if (bytes.size() - at < 8) fail(at, "truncated chunk header");
+        const std::uint32_t length = littleEndian32(bytes, at), type = littleEndian32(bytes, at + 4);
+        if (chunk == 0 && type != kJson) fail(at + 4, "the first chunk must be JSON");
+        if (chunk > 0 && type == kJson) fail(at + 4, "a second JSON chunk");
+        if (length > bytes.size() - at - 8)
+            fail(at, std::string(type == kJson ? "JSON" : type == kBin ? "BIN" : "a") + " chunk of " +
+                         std::to_string(length) + " bytes runs past the end of the file (" +
+                         std::to_string(bytes.size() - at - 8) + " bytes left)");
+        at += 8 + std::size_t{length};
+    }
+    if (at == 12) fail(12, "no JSON chunk");
 }
 
 } // namespace glcollide::detail
