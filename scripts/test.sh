@@ -1,9 +1,14 @@
 #!/usr/bin/env bash
 # Sets up and runs every test: installs the Debian packages, builds, runs ctest (unit tests and
-# the GL tests, on llvmpipe when there is no GPU: a GL test that gets no context fails).
+# the GL tests, on llvmpipe when there is no GPU: a GL test that gets no context fails), then the
+# same suite built with clang + ASan + UBSan and a short run of every fuzz target
+# (scripts/test-sanitizers.sh; GLCOLLIDE_SKIP_SANITIZERS=1 skips that part for a quick local loop).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 GLCOLLIDE_CMAKE_ARGS="${GLCOLLIDE_CMAKE_ARGS:-} -DGLCOLLIDE_WARNINGS_AS_ERRORS=ON" scripts/build.sh
 build_dir=${GLCOLLIDE_BUILD_DIR:-build}
 ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)"
+if [ "${GLCOLLIDE_SKIP_SANITIZERS:-0}" != 1 ]; then
+  scripts/test-sanitizers.sh
+fi

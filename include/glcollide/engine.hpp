@@ -128,7 +128,11 @@ public:
     Engine(Engine&&) noexcept;
     Engine& operator=(Engine&&) noexcept;
 
-    /// Advances one frame of Scene::time.dt in `substepInfo().substeps` substeps. Never throws.
+    /// Advances one frame of Scene::time.dt in `substepInfo().substeps` substeps. Throws only
+    /// when a collision pair list must grow beyond what the device can hold (more than
+    /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE bytes, or GL out of memory): glcollide::Error names the
+    /// list and the limit, rather than dropping pairs. The frame is then incomplete; destroy the
+    /// engine (the host's GL state is restored as on every return).
     ///
     /// Barriers. step() begins with glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT), so host shader
     /// writes (SSBO or image stores) to positionBuffer() made before the call are seen; writes by

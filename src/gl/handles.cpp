@@ -14,8 +14,27 @@ void deleteBuffer(GLname name) { glDeleteBuffers(1, &name); }
 void deleteProgram(GLname name) { glDeleteProgram(name); }
 void deleteQuery(GLname name) { glDeleteQueries(1, &name); }
 
+namespace {
+
+// Every glcollide buffer is bound whole as a shader storage block, and a shader cannot address
+// more than GL_MAX_SHADER_STORAGE_BLOCK_SIZE bytes of one (2^24 at least; llvmpipe 2^27). A
+// larger buffer would allocate but be read wrongly: refuse it by name instead.
+void checkStorageBlockSize(const std::string& label, std::size_t bytes) {
+    constexpr std::size_t kGuaranteed = std::size_t{1} << 24; // GL 4.3's minimum: no query needed below
+    if (bytes <= kGuaranteed) return;
+    GLint64 limit = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &limit);
+    if (limit > 0 && bytes > static_cast<std::uint64_t>(limit))
+        throw Error("buffer '" + label + "' needs " + std::to_string(bytes) + " bytes, more than this device's " +
+                    "GL_MAX_SHADER_STORAGE_BLOCK_SIZE of " + std::to_string(limit) +
+                    " bytes (`glcollide info` shows it): use fewer or smaller bodies, or a device with a larger limit");
+}
+
+} // namespace
+
 Buffer::Buffer(std::string_view label, std::size_t bytes, const void* data)
     : m_bytes(bytes), m_label(label) {
+    checkStorageBlockSize(m_label, bytes);
     GLuint name = 0;
     glGenBuffers(1, &name);
     m_handle = Handle<deleteBuffer>(name);

@@ -210,7 +210,8 @@ void CollisionDetection::readCounters() {
 void CollisionDetection::grow(gl::Buffer& list, std::uint32_t& capacity, std::uint32_t count, const char* label,
                               std::uint32_t& growths) {
     ++growths;
-    capacity = std::bit_ceil(count);
+    // Next power of two (fewer regrowths); above 2^31 it does not exist in 32 bits: exact size.
+    capacity = count <= (1u << 31) ? std::bit_ceil(count) : count;
     list = gl::Buffer(label, std::size_t{capacity} * kPairBytes);
     writeCapacities();
 }

@@ -4,9 +4,13 @@
 //   with line numbers, and the declared element counts must fit in the bytes after the header.
 // - GLB: a chunk length larger than the file makes it allocate that much (4 GB from a 564-byte
 //   file). The binary container's header and chunk lengths are checked against the file size.
+// - glTF/GLB JSON: its JSON parser read freed memory on some invalid JSON. The JSON (the .gltf
+//   file, or the GLB's JSON chunk) must parse with nlohmann-json first; its error has the line.
 #include "scene/scene_detail.hpp"
 
 #include <glcollide/error.hpp>
+
+#include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <fstream>
@@ -37,6 +41,15 @@ std::uint32_t littleEndian32(const std::string& bytes, std::size_t at) {
     std::uint32_t v = 0;
     for (std::size_t i = 0; i < 4; ++i) v |= std::uint32_t{static_cast<unsigned char>(bytes[at + i])} << (8 * i);
     return v;
+}
+
+void checkJson(const std::string& text, const std::string& where) {
+    try {
+        const auto json = nlohmann::json::parse(text);
+        if (!json.is_object()) throw Error(where + ": the glTF JSON is not an object");
+    } catch (const nlohmann::json::parse_error& e) {
+        throw Error(where + ": invalid glTF JSON: " + e.what());
+    }
 }
 
 bool isIntegral(const std::string& type) { return type.find("float") == std::string::npos && type != "double"; }
@@ -153,9 +166,12 @@ void checkGlbContainer(const std::filesystem::path& path) {
             fail(at, std::string(type == kJson ? "JSON" : type == kBin ? "BIN" : "a") + " chunk of " +
                          std::to_string(length) + " bytes runs past the end of the file (" +
                          std::to_string(bytes.size() - at - 8) + " bytes left)");
+        if (chunk == 0) checkJson(bytes.substr(at + 8, length), file + ": JSON chunk");
         at += 8 + std::size_t{length};
     }
     if (at == 12) fail(12, "no JSON chunk");
 }
+
+void checkGltfJson(const std::filesystem::path& path) { checkJson(readAll(path), path.string()); }
 
 } // namespace glcollide::detail

@@ -54,6 +54,7 @@ SurfaceMesh importSurfaceMesh(const std::filesystem::path& path) {
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (extension == ".ply") checkPlyHeader(path);
     if (extension == ".glb") checkGlbContainer(path);
+    if (extension == ".gltf") checkGltfJson(path);
 
     Assimp::Importer importer;
     // Simulation meshes need one node per position: drop every attribute that makes assimp split
@@ -64,10 +65,19 @@ SurfaceMesh importSurfaceMesh(const std::filesystem::path& path) {
                                     aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
                                     aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS |
                                     aiComponent_MATERIALS);
-    const aiScene* scene = importer.ReadFile(
-        file, aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+    // Read first, post-process after validating: without aiProcess_ValidateDataStructure a face
+    // index beyond the vertex count (a fuzzed PLY) crashed assimp's own post-processing.
+    const aiScene* read = importer.ReadFile(file, 0);
+    if (read == nullptr) throw Error(file + ": cannot import mesh: " + importer.GetErrorString());
+    if (read->mRootNode == nullptr || read->mNumMeshes == 0) throw Error(file + ": the file contains no mesh");
+    bool anyPolygon = false;
+    for (unsigned m = 0; m < read->mNumMeshes && !anyPolygon; ++m)
+        for (unsigned f = 0; f < read->mMeshes[m]->mNumFaces && !anyPolygon; ++f)
+            anyPolygon = read->mMeshes[m]->mFaces[f].mNumIndices >= 3;
+    if (!anyPolygon) throw Error(file + ": the mesh has no triangles");
+    const aiScene* scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_RemoveComponent |
+                                                        aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
     if (scene == nullptr) throw Error(file + ": cannot import mesh: " + importer.GetErrorString());
-    if (scene->mRootNode == nullptr || scene->mNumMeshes == 0) throw Error(file + ": the file contains no mesh");
 
     std::vector<glm::dvec3> raw;
     std::vector<Face> rawFaces;

@@ -47,6 +47,10 @@ void checkPlyHeader(const std::filesystem::path& path);
 /// assimp reads it; throws Error naming the file and byte offset. Called for `.glb` files.
 void checkGlbContainer(const std::filesystem::path& path);
 
+/// Checks that a `.gltf` file is valid JSON with an object at the top before assimp reads it;
+/// throws Error with nlohmann-json's line and column. (GLB: checkGlbContainer checks its chunk.)
+void checkGltfJson(const std::filesystem::path& path);
+
 /// Gmsh MSH 4.1 or 2.2 ASCII: 4-node tetrahedra (type 4); other element types and unknown
 /// sections (IPC's `$Surface` included) are skipped. Node tags may be sparse.
 TetMesh readGmsh(const std::filesystem::path& path);
