@@ -6,9 +6,15 @@
 //    thickness h it is pushed away from its closest point on the face. For a face of a closed
 //    object (outward normals) a vertex whose projection lies inside the face and that is at most
 //    h below it is pushed out along the normal, so a shallow penetration is undone, not deepened.
+//    A vertex near an edge or a vertex of the other mesh is near every face around that feature:
+//    the contact counts only for the face that owns the closest feature (GLC_OWN_* bits), and a
+//    vertex-vertex contact only from its lower node, so a vertex meeting a vertex of valence 6
+//    gets one contact, not twelve (the stiffness the substep
+//    rule assumes; six gave the soak scene's energy gain, docs/collisions.md).
 //  * edge-edge: each edge owned by one face against each owned edge of the other, pushed apart
-//    along the line of their closest points when closer than h (crossing edges, distance 0, have
-//    no direction and are left to the vertex-face contacts).
+//    along the line of their closest points when closer than h, when both closest points are
+//    inside their edges (an endpoint is a vertex: the vertex-face contacts have it; crossing
+//    edges, distance 0, have no direction and are left to the vertex-face contacts too).
 // Force per contact: clamp(k·depth − c·v_n, 0, cap) along the contact normal, opposite forces on
 // the other side spread by barycentric weights: momentum is conserved exactly up to rounding.
 // Forces are summed per node with integer atomics in fixed point (u_forceScale units per N):
@@ -50,8 +56,23 @@ float normalForce(float depth, float normalSpeed) {
     return clamp(u_stiffness * depth - u_damping * normalSpeed, 0.0, u_forceCap);
 }
 
-// Vertex `p` against face (a, b, c). Returns 1 when a force was applied.
-uint vertexFace(uint p, uvec3 face, bool closed) {
+// Whether vertex p's contact with the face (nodes `face`, ownership bits `owned`) at barycentric
+// weights `w` (exact zeros from closestOnTriangle's vertex and edge regions) counts here: the
+// interior always; the edge opposite vertex k (w[k] = 0) if the face owns it; vertex k (w[k] = 1)
+// if the face owns it and p < that node — the same vertex-vertex contact is also found from the
+// other side (that node against p's face), and counts once.
+bool ownsClosestFeature(uint p, uvec3 face, vec3 w, uint owned) {
+    uint zeros = uint(w.x == 0.0) + uint(w.y == 0.0) + uint(w.z == 0.0);
+    if (zeros == 0u) return true;
+    for (uint k = 0u; k < 3u; ++k) {
+        if (zeros == 2u && w[k] == 1.0) return (owned & (GLC_OWN_VERTEX0 << k)) != 0u && p < face[k];
+        if (zeros == 1u && w[k] == 0.0) return (owned & (GLC_OWN_EDGE01 << ((k + 1u) % 3u))) != 0u;
+    }
+    return true; // not reached: two zeros make the third weight 1
+}
+
+// Vertex `p` against face (a, b, c) with ownership bits `faceOwned`. Returns 1 when a force was applied.
+uint vertexFace(uint p, uvec3 face, uint faceOwned, bool closed) {
     vec3 x = g_positions[p].xyz;
     vec3 xa = g_positions[face.x].xyz, xb = g_positions[face.y].xyz, xc = g_positions[face.z].xyz;
     vec3 n = cross(xb - xa, xc - xa);
@@ -59,6 +80,7 @@ uint vertexFace(uint p, uvec3 face, bool closed) {
     if (!(area2 > 0.0)) return 0u; // zero-area face: its edges still take part in edge-edge
     n /= area2;
     vec3 w = closestOnTriangle(x, xa, xb, xc);
+    if (!ownsClosestFeature(p, face, w, faceOwned)) return 0u;
     vec3 diff = x - (w.x * xa + w.y * xb + w.z * xc);
     float d = length(diff);
     float s = dot(n, x - xa);
@@ -90,6 +112,7 @@ uint edgeEdge(uint p0, uint p1, uint q0, uint q1) {
     vec3 x0 = g_positions[p0].xyz, x1 = g_positions[p1].xyz;
     vec3 y0 = g_positions[q0].xyz, y1 = g_positions[q1].xyz;
     vec2 st = closestSegmentParams(x0, x1, y0, y1);
+    if (!(st.x > 0.0 && st.x < 1.0 && st.y > 0.0 && st.y < 1.0)) return 0u;
     vec3 diff = mix(x0, x1, st.x) - mix(y0, y1, st.y);
     float d = length(diff);
     if (!(d < u_thickness) || !(d > 0.0)) return 0u;
@@ -118,8 +141,8 @@ void main() {
     bool closedB = g_objects[ib.object].closed != 0u;
     uint contacts = 0u;
     for (uint k = 0u; k < 3u; ++k) {
-        if ((ia.owned & (GLC_OWN_VERTEX0 << k)) != 0u) contacts += vertexFace(fa[k], fb, closedB);
-        if ((ib.owned & (GLC_OWN_VERTEX0 << k)) != 0u) contacts += vertexFace(fb[k], fa, closedA);
+        if ((ia.owned & (GLC_OWN_VERTEX0 << k)) != 0u) contacts += vertexFace(fa[k], fb, ib.owned, closedB);
+        if ((ib.owned & (GLC_OWN_VERTEX0 << k)) != 0u) contacts += vertexFace(fb[k], fa, ia.owned, closedA);
     }
     for (uint e = 0u; e < 3u; ++e) {
         if ((ia.owned & (GLC_OWN_EDGE01 << e)) == 0u) continue;

@@ -10,6 +10,20 @@ namespace {
 // GLC_OWN_* of shaders/common/layout.glsl (cpu does not include the GL layout header).
 constexpr std::uint32_t kOwnVertex0 = 1u, kOwnEdge01 = 8u;
 
+// contact_response.comp's ownsClosestFeature: the interior always counts, the edge opposite vertex
+// k (w[k] = 0) with its ownership bit, vertex k (w[k] = 1) with its bit and only from the lower
+// node of the vertex-vertex pair.
+bool ownsClosestFeature(std::uint32_t p, const std::array<std::uint32_t, 3>& face, const glm::dvec3& w,
+                        std::uint32_t owned) {
+    const int zeros = (w.x == 0.0) + (w.y == 0.0) + (w.z == 0.0);
+    if (zeros == 0) return true;
+    for (int k = 0; k < 3; ++k) {
+        if (zeros == 2 && w[k] == 1.0) return (owned & (kOwnVertex0 << k)) != 0 && p < face[static_cast<std::size_t>(k)];
+        if (zeros == 1 && w[k] == 0.0) return (owned & (kOwnEdge01 << ((k + 1) % 3))) != 0;
+    }
+    return true;
+}
+
 struct Solver {
     const ContactParams& p;
     const ContactInput& in;
@@ -21,13 +35,14 @@ struct Solver {
         return std::clamp(p.stiffness * depth - p.damping * normalSpeed, 0.0, p.forceCap);
     }
 
-    void vertexFace(std::uint32_t node, const std::array<std::uint32_t, 3>& f, bool closed) {
+    void vertexFace(std::uint32_t node, const std::array<std::uint32_t, 3>& f, std::uint32_t faceOwned, bool closed) {
         const glm::dvec3 &xp = x(node), &xa = x(f[0]), &xb = x(f[1]), &xc = x(f[2]);
         glm::dvec3 n = glm::cross(xb - xa, xc - xa);
         const double area2 = glm::length(n);
         if (!(area2 > 0.0)) return;
         n /= area2;
         const glm::dvec3 w = closestOnTriangle(xp, xa, xb, xc);
+        if (!ownsClosestFeature(node, f, w, faceOwned)) return;
         const glm::dvec3 diff = xp - (w.x * xa + w.y * xb + w.z * xc);
         const double d = glm::length(diff), s = glm::dot(n, xp - xa), h = p.thickness;
         const bool inside = w.x > 0.0 && w.y > 0.0 && w.z > 0.0;
@@ -57,6 +72,7 @@ struct Solver {
 
     void edgeEdge(std::uint32_t p0, std::uint32_t p1, std::uint32_t q0, std::uint32_t q1) {
         const auto [s, t] = closestSegmentParams(x(p0), x(p1), x(q0), x(q1));
+        if (!(s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0)) return; // an endpoint: a vertex-face contact
         const glm::dvec3 diff = (x(p0) + s * (x(p1) - x(p0))) - (x(q0) + t * (x(q1) - x(q0)));
         const double d = glm::length(diff);
         if (!(d < p.thickness) || !(d > 0.0)) return;
@@ -150,8 +166,8 @@ ContactResult contactForces(const ContactParams& params, const ContactInput& in,
         const std::uint32_t oa = (*in.faceOwned)[a], ob = (*in.faceOwned)[b];
         const bool closedA = (*in.faceClosed)[a] != 0, closedB = (*in.faceClosed)[b] != 0;
         for (std::uint32_t k = 0; k < 3; ++k) {
-            if (oa & (kOwnVertex0 << k)) solver.vertexFace(fa[k], fb, closedB);
-            if (ob & (kOwnVertex0 << k)) solver.vertexFace(fb[k], fa, closedA);
+            if (oa & (kOwnVertex0 << k)) solver.vertexFace(fa[k], fb, ob, closedB);
+            if (ob & (kOwnVertex0 << k)) solver.vertexFace(fb[k], fa, oa, closedA);
         }
         for (std::uint32_t e = 0; e < 3; ++e) {
             if (!(oa & (kOwnEdge01 << e))) continue;

@@ -26,7 +26,7 @@ StabilityLimit stableSubstep(const FlatModel& model, bool springs, const NodeFor
 
 /// Simultaneous contacts per node the substep rule assumes (a vertex on a face, or an edge
 /// crossing near another: one or two; deeper stacks than that stiffen the node further).
-inline constexpr double kContactsPerNodeForStability = 2.0;
+inline constexpr double kContactsPerNodeForStability = 4.0;
 
 /// Substeps per frame: ceil(dt / maxSubstep), at least 1.
 int substepsFor(double dt, const StabilityLimit& limit);

@@ -212,5 +212,68 @@ TEST(ContactResponseGl, AVertexSharedByTwoCandidateFacesActsOnce) {
     EXPECT_NEAR(gpu.forces[3].y, params.stiffness * 0.05, 1e-2);
 }
 
+// A probe vertex near a vertex or an edge of a mesh is near every face around that feature; the
+// contact counts once, for the face owning the feature (ownership as the octree assigns it: every
+// vertex and edge owned by exactly one face). Before this rule a vertex meeting a vertex of
+// valence 6 got six contacts, six times the stiffness the substep rule assumes.
+Soup probeAboveFan(double probeHeight, int sides) {
+    Soup s;
+    s.positions.push_back({0, 0, 0}); // apex, node 0
+    for (int i = 0; i < sides; ++i) {
+        const double a = 2.0 * 3.14159265358979 * i / sides;
+        s.positions.push_back(glm::dvec3(glm::vec3(static_cast<float>(std::cos(a)), -0.5f, static_cast<float>(std::sin(a)))));
+    }
+    for (int i = 0; i < sides; ++i) {
+        const auto b = static_cast<std::uint32_t>(1 + i), c = static_cast<std::uint32_t>(1 + (i + 1) % sides);
+        s.faces.insert(s.faces.end(), {0u, c, b}); // outward (upward) normals
+        // Face i owns its edge apex-c (edge 01) and its ring edge c-b (edge 12); face 0 owns the apex.
+        s.owned.push_back(GLC_OWN_EDGE01 | GLC_OWN_EDGE12 | GLC_OWN_VERTEX1 | (i == 0 ? GLC_OWN_VERTEX0 : 0u));
+        s.faceObject.push_back(0);
+    }
+    const auto probe = static_cast<std::uint32_t>(s.positions.size());
+    s.positions.push_back(glm::dvec3(glm::vec3(0.0f, static_cast<float>(probeHeight), 0.0f)));
+    s.positions.push_back(glm::dvec3(glm::vec3(0.0f, static_cast<float>(probeHeight) + 5.0f, 0.0f)));
+    s.positions.push_back(glm::dvec3(glm::vec3(1e-3f, static_cast<float>(probeHeight) + 5.0f, 0.0f)));
+    s.faces.insert(s.faces.end(), {probe, probe + 1, probe + 2});
+    s.owned.push_back(kOwnAll);
+    s.faceObject.push_back(1);
+    s.velocities.assign(s.positions.size(), glm::dvec3(0.0));
+    s.objectClosed = {0, 0};
+    for (std::uint32_t f = 0; f < static_cast<std::uint32_t>(sides); ++f) s.candidates.push_back({f, static_cast<std::uint32_t>(sides)});
+    return s;
+}
+
+TEST(ContactResponseGl, AVertexNearAVertexOfAFanGetsOneContact) {
+    const ContactParams params = testParams(0.1);
+    const double height = static_cast<float>(0.04);
+    const Soup s = probeAboveFan(height, 6);
+    const GpuResult gpu = runGpu(s, params);
+    const cpu::ContactResult cpu = runCpu(s, params);
+    const double expected = params.stiffness * (params.thickness - height); // one k (h - d), not six
+    EXPECT_EQ(gpu.contacts, 1u);
+    EXPECT_EQ(cpu.contacts, 1u);
+    EXPECT_NEAR(gpu.forces[7].y, expected, expected * 1e-5); // float rounding of h - d
+    EXPECT_NEAR(gpu.forces[0].y, -expected, expected * 1e-5); // all on the apex
+    EXPECT_NEAR(cpu.forces[7].y, expected, expected * 1e-12);
+}
+
+TEST(ContactResponseGl, AVertexNearAnEdgeOfTwoFacesGetsOneContact) {
+    // Above the midpoint of the ridge apex-node1, shared by faces 0 and 5 of the fan; face 5 owns it.
+    const ContactParams params = testParams(0.1);
+    Soup s = probeAboveFan(0.0, 6);
+    const glm::dvec3 ridgeMid = 0.5 * (s.positions[0] + s.positions[1]);
+    const glm::dvec3 up = glm::normalize(glm::dvec3(ridgeMid.x, 1.0, ridgeMid.z)); // roughly outward
+    const double gap = static_cast<float>(0.03);
+    for (std::size_t k = 7; k < 10; ++k) s.positions[k] += ridgeMid + gap * up - s.positions[7];
+    for (glm::dvec3& p : s.positions) p = glm::dvec3(glm::vec3(p));
+    const GpuResult gpu = runGpu(s, params);
+    const cpu::ContactResult cpu = runCpu(s, params);
+    EXPECT_EQ(gpu.contacts, 1u);
+    EXPECT_EQ(cpu.contacts, 1u);
+    const double force = glm::length(gpu.forces[7]);
+    EXPECT_NEAR(force, glm::length(cpu.forces[7]), 1e-3 * force);
+    EXPECT_LT(force, params.stiffness * params.thickness); // one contact's force at most
+}
+
 } // namespace
 } // namespace glcollide
