@@ -2,6 +2,7 @@
 #include "scene/line_reader.hpp"
 #include "scene/scene_detail.hpp"
 
+#include <algorithm>
 #include <unordered_map>
 
 namespace glcollide::detail {
@@ -71,7 +72,8 @@ struct Reader {
             const long long n = in.toInt(bh[3], "node count of the block");
             if (n < 0) in.fail("negative node count in a block");
             std::vector<long long> tags;
-            tags.reserve(static_cast<std::size_t>(n));
+            // n comes from the file: never reserve from it unchecked (a fuzzed header asked for 24 TB).
+            tags.reserve(static_cast<std::size_t>(std::min<long long>(n, 1 << 16)));
             for (long long i = 0; i < n; ++i) {
                 auto t = in.require("a node tag");
                 in.expectTokens(t, 1, "a node tag");

@@ -1,4 +1,4 @@
-// Surface mesh import through assimp (OBJ, PLY, glTF, GLB).
+// Surface mesh import: OBJ, glTF and GLB through assimp, PLY by ply_reader.cpp; welding.
 #include "scene/scene_detail.hpp"
 
 #include <glcollide/error.hpp>
@@ -52,7 +52,7 @@ SurfaceMesh importSurfaceMesh(const std::filesystem::path& path) {
     if (!std::filesystem::is_regular_file(path, ec)) throw Error(file + ": cannot open file");
     std::string extension = path.extension().string();
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (extension == ".ply") checkPlyHeader(path);
+    if (extension == ".ply") return readPly(path);
     if (extension == ".glb") checkGlbContainer(path);
     if (extension == ".gltf") checkGltfJson(path);
 
@@ -66,7 +66,7 @@ SurfaceMesh importSurfaceMesh(const std::filesystem::path& path) {
                                     aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS |
                                     aiComponent_MATERIALS);
     // Read first, post-process after validating: without aiProcess_ValidateDataStructure a face
-    // index beyond the vertex count (a fuzzed PLY) crashed assimp's own post-processing.
+    // index beyond the vertex count (a fuzzed PLY, when assimp still read PLY) crashed its post-processing.
     const aiScene* read = importer.ReadFile(file, 0);
     if (read == nullptr) throw Error(file + ": cannot import mesh: " + importer.GetErrorString());
     if (read->mRootNode == nullptr || read->mNumMeshes == 0) throw Error(file + ": the file contains no mesh");
@@ -82,6 +82,10 @@ SurfaceMesh importSurfaceMesh(const std::filesystem::path& path) {
     std::vector<glm::dvec3> raw;
     std::vector<Face> rawFaces;
     appendNode(*scene, *scene->mRootNode, aiMatrix4x4(), raw, rawFaces, file);
+    return weldSurface(std::move(raw), rawFaces, file);
+}
+
+SurfaceMesh weldSurface(std::vector<glm::dvec3> raw, const std::vector<Face>& rawFaces, const std::string& file) {
     for (std::size_t v = 0; v < raw.size(); ++v)
         if (!std::isfinite(raw[v].x) || !std::isfinite(raw[v].y) || !std::isfinite(raw[v].z))
             throw Error(file + ": vertex " + std::to_string(v) + " has a non-finite coordinate");

@@ -34,14 +34,19 @@ struct TetMesh {
 
 // ---- readers (each throws glcollide::Error naming the file, and the line where there is one) ----
 
-/// OBJ, PLY, glTF or GLB through assimp: all meshes of the file merged, node transforms applied,
-/// exactly equal positions welded, point and line primitives ignored.
+/// OBJ, glTF or GLB through assimp (PLY: readPly): all meshes of the file merged, node
+/// transforms applied, exactly equal positions welded, point and line primitives ignored.
 SurfaceMesh importSurfaceMesh(const std::filesystem::path& path);
 
-/// Checks a PLY header strictly (grammar, scalar types, element counts that fit in the file)
-/// before assimp reads it; throws Error naming the file and header line. Called by
-/// importSurfaceMesh for `.ply` files.
-void checkPlyHeader(const std::filesystem::path& path);
+/// PLY (ASCII, binary little/big-endian) by our own reader: vertex x, y, z and face
+/// vertex_indices, polygons split into fans; then weldSurface. Errors name the file and the line
+/// (ASCII, header) or byte offset (binary).
+SurfaceMesh readPly(const std::filesystem::path& path);
+
+/// Welds exactly equal positions (+0 = -0), drops faces that welding collapsed, throws Error
+/// naming `file` for a non-finite position or when no triangle is left. Shared by the readers
+/// of surface meshes.
+SurfaceMesh weldSurface(std::vector<glm::dvec3> positions, const std::vector<Face>& faces, const std::string& file);
 
 /// Checks a GLB container (header, version 2, length, chunk lengths within the file) before
 /// assimp reads it; throws Error naming the file and byte offset. Called for `.glb` files.

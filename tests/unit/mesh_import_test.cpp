@@ -189,3 +189,52 @@ TEST(GlbContainer, BrokenContainersNameTheByte) {
     putLittleEndian32(chunk, 12, 0xEC000001u); // the fuzzer's input: assimp allocated this much
     EXPECT_THAT(glbErrorOf("chunk", chunk), HasSubstr(".glb: byte 12: JSON chunk of 3959422977 bytes runs past the end"));
 }
+
+// PLY bodies (our reader, src/scene/ply_reader.cpp): the three encodings give the same mesh, and
+// every count or index from the file is checked before use.
+TEST(PlyBody, AsciiAndBothBinaryEncodingsReadTheSameTetrahedron) {
+    const std::string corpus = GLCOLLIDE_SOURCE_DIR "/fuzz/corpus/mesh_ply/";
+    const SurfaceMesh ascii = importSurfaceMesh(corpus + "tetra_ascii.ply");
+    const SurfaceMesh little = importSurfaceMesh(corpus + "tetra_binary.ply");    // doubles
+    const SurfaceMesh big = importSurfaceMesh(corpus + "tetra_binary_be.ply");    // big-endian floats
+    ASSERT_EQ(ascii.faces.size(), 4u);
+    EXPECT_EQ(ascii.positions.size(), 4u);
+    EXPECT_EQ(little.faces, ascii.faces);
+    EXPECT_EQ(little.positions, ascii.positions);
+    EXPECT_EQ(big.faces, ascii.faces);
+    EXPECT_EQ(big.positions, ascii.positions);
+}
+
+TEST(PlyBody, PolygonsAreSplitIntoFansAndShortListsIgnored) {
+    const std::string text = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                             "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n2 0 1\n";
+    const std::filesystem::path path = std::filesystem::temp_directory_path() / "glcollide_quad.ply";
+    std::ofstream(path, std::ios::binary) << text;
+    const SurfaceMesh m = importSurfaceMesh(path.string());
+    std::filesystem::remove(path);
+    ASSERT_EQ(m.faces.size(), 2u);
+    EXPECT_EQ(m.faces[0], (Face{0, 1, 2}));
+    EXPECT_EQ(m.faces[1], (Face{0, 2, 3}));
+}
+
+TEST(PlyBody, BadBodiesNameTheLineOrByte) {
+    const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                               "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
+    EXPECT_THAT(plyErrorOf("index", header + vertices + "3 0 1 3\n"), HasSubstr(".ply:13: face 0 uses vertex 3 of 3"));
+    EXPECT_THAT(plyErrorOf("negative", header + vertices + "3 0 -1 2\n"), HasSubstr(".ply:13: face 0 uses vertex -1 of 3"));
+    EXPECT_THAT(plyErrorOf("list_length", header + vertices + "255 0 1 2\n"),
+                HasSubstr(".ply:13: list 'vertex_indices' of face 0 has 255 entries, more than the rest of the file"));
+    EXPECT_THAT(plyErrorOf("uchar_range", header + vertices + "256 0 1 2\n"), HasSubstr("256 is outside its PLY type's range"));
+    EXPECT_THAT(plyErrorOf("float_index", header + vertices + "3 0 1.5 2\n"), HasSubstr(".ply:13: expected an integer entry"));
+    EXPECT_THAT(plyErrorOf("nan", header + "0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"), HasSubstr("vertex 1 has a non-finite coordinate"));
+    EXPECT_THAT(plyErrorOf("huge", header + "0 0 0\n1e999 0 0\n0 1 0\n3 0 1 2\n"), HasSubstr(".ply:11: property 'x' of vertex 1 '1e999' is outside double range"));
+    EXPECT_THAT(plyErrorOf("no_xyz", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n0\n"),
+                HasSubstr(".ply:3: element 'vertex' needs properties x, y and z"));
+    const std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\n"
+                               "property float y\nproperty float z\nelement face 1\n"
+                               "property list uchar int vertex_indices\nend_header\n";
+    EXPECT_THAT(plyErrorOf("binary_truncated", binary + std::string(12, '\0') + "\x03" + std::string(4, '\0')),
+                HasSubstr(": byte "));
+}
