@@ -86,14 +86,17 @@ TEST(MeshImport, BrokenFilesNameTheFile) {
 
 namespace {
 
-/// Writes `text` to a .ply in the test's temp folder and returns the import error (or "no error").
-std::string plyErrorOf(const std::string& name, const std::string& text) {
-    const std::filesystem::path path = std::filesystem::temp_directory_path() / ("glcollide_" + name + ".ply");
-    std::ofstream(path, std::ios::binary) << text;
+/// Writes `bytes` to glcollide_<name><extension> in the temp folder and returns the import error
+/// (or "no error").
+std::string errorOfBytes(const std::string& name, const std::string& extension, const std::string& bytes) {
+    const std::filesystem::path path = std::filesystem::temp_directory_path() / ("glcollide_" + name + extension);
+    std::ofstream(path, std::ios::binary) << bytes;
     const std::string error = errorOf(path.string());
     std::filesystem::remove(path);
     return error;
 }
+
+std::string plyErrorOf(const std::string& name, const std::string& text) { return errorOfBytes(name, ".ply", text); }
 
 const std::string kPlyTetraHeader =
     "ply\nformat ascii 1.0\ncomment a tetrahedron\nelement vertex 4\nproperty float x\nproperty float y\n"
@@ -151,14 +154,7 @@ std::string readBytes(const std::string& path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-/// Imports `bytes` written as a .glb; returns the error (or "no error").
-std::string glbErrorOf(const std::string& name, const std::string& bytes) {
-    const std::filesystem::path path = std::filesystem::temp_directory_path() / ("glcollide_" + name + ".glb");
-    std::ofstream(path, std::ios::binary) << bytes;
-    const std::string error = errorOf(path.string());
-    std::filesystem::remove(path);
-    return error;
-}
+std::string glbErrorOf(const std::string& name, const std::string& bytes) { return errorOfBytes(name, ".glb", bytes); }
 
 void putLittleEndian32(std::string& bytes, std::size_t at, std::uint32_t v) {
     for (std::size_t i = 0; i < 4; ++i) bytes[at + i] = static_cast<char>((v >> (8 * i)) & 0xFFu);
