@@ -1,4 +1,5 @@
-// Surface mesh import: OBJ, glTF and GLB through assimp, PLY by ply_reader.cpp; welding.
+// Surface mesh import: glTF and GLB through assimp, OBJ and PLY by obj_reader.cpp and
+// ply_reader.cpp; welding.
 #include "scene/scene_detail.hpp"
 
 #include <glcollide/error.hpp>
@@ -53,6 +54,7 @@ SurfaceMesh importSurfaceMesh(const std::filesystem::path& path) {
     std::string extension = path.extension().string();
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (extension == ".ply") return readPly(path);
+    if (extension == ".obj") return readObj(path);
     if (extension == ".glb") checkGlbContainer(path);
     if (extension == ".gltf") checkGltfJson(path);
 
@@ -109,6 +111,19 @@ SurfaceMesh weldSurface(std::vector<glm::dvec3> raw, const std::vector<Face>& ra
         out.faces.push_back(g);
     }
     if (out.faces.empty()) throw Error(file + ": the mesh has no triangles");
+    // Positions no face uses (stray vertices, points and lines) would be nodes without mass.
+    std::vector<std::uint32_t> compact(out.positions.size(), 0);
+    for (const Face& f : out.faces)
+        for (std::uint32_t v : f) compact[v] = 1;
+    std::vector<glm::dvec3> used;
+    for (std::size_t v = 0; v < out.positions.size(); ++v)
+        if (compact[v]) {
+            compact[v] = static_cast<std::uint32_t>(used.size());
+            used.push_back(out.positions[v]);
+        }
+    for (Face& f : out.faces)
+        for (std::uint32_t& v : f) v = compact[v];
+    out.positions = std::move(used);
     return out;
 }
 

@@ -34,17 +34,22 @@ struct TetMesh {
 
 // ---- readers (each throws glcollide::Error naming the file, and the line where there is one) ----
 
-/// OBJ, glTF or GLB through assimp (PLY: readPly): all meshes of the file merged, node
+/// OBJ (readObj), PLY (readPly), glTF or GLB (through assimp): all meshes of the file merged, node
 /// transforms applied, exactly equal positions welded, point and line primitives ignored.
 SurfaceMesh importSurfaceMesh(const std::filesystem::path& path);
+
+/// Wavefront OBJ by our own reader: v and f statements (any index form, negative indices,
+/// polygons split into fans); errors name the file and line. Then weldSurface.
+SurfaceMesh readObj(const std::filesystem::path& path);
 
 /// PLY (ASCII, binary little/big-endian) by our own reader: vertex x, y, z and face
 /// vertex_indices, polygons split into fans; then weldSurface. Errors name the file and the line
 /// (ASCII, header) or byte offset (binary).
 SurfaceMesh readPly(const std::filesystem::path& path);
 
-/// Welds exactly equal positions (+0 = -0), drops faces that welding collapsed, throws Error
-/// naming `file` for a non-finite position or when no triangle is left. Shared by the readers
+/// Welds exactly equal positions (+0 = -0), drops faces that welding collapsed and positions no
+/// face uses (keeping the order of first appearance), throws Error naming `file` for a non-finite
+/// position or when no triangle is left. Shared by the readers
 /// of surface meshes.
 SurfaceMesh weldSurface(std::vector<glm::dvec3> positions, const std::vector<Face>& faces, const std::string& file);
 

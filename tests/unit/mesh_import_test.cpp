@@ -78,9 +78,10 @@ TEST(MeshImport, GltfNodeTransformsAndMergedInstances) {
 
 TEST(MeshImport, BrokenFilesNameTheFile) {
     EXPECT_THAT(errorOf(kData + "empty.obj"), HasSubstr("empty.obj: "));
-    EXPECT_THAT(errorOf(kData + "bad_index.obj"), HasSubstr("bad_index.obj: "));
-    EXPECT_THAT(errorOf(kData + "inf.obj"), HasSubstr("inf.obj: "));
-    EXPECT_THAT(errorOf(kData + "nan.obj"), HasSubstr("nan.obj: "));
+    // OBJ errors name the line (our reader, src/scene/obj_reader.cpp).
+    EXPECT_THAT(errorOf(kData + "bad_index.obj"), HasSubstr("bad_index.obj:4: face uses vertex 9, but 3 vertices"));
+    EXPECT_THAT(errorOf(kData + "inf.obj"), HasSubstr("inf.obj:2: vertex 2 coordinate '1e999' is outside double range"));
+    EXPECT_THAT(errorOf(kData + "nan.obj"), HasSubstr("nan.obj:2: vertex 2 has a non-finite coordinate"));
     EXPECT_THAT(errorOf(kData + "missing.obj"), HasSubstr("missing.obj: cannot open file"));
 }
 
@@ -233,4 +234,33 @@ TEST(PlyBody, BadBodiesNameTheLineOrByte) {
                                "property list uchar int vertex_indices\nend_header\n";
     EXPECT_THAT(plyErrorOf("binary_truncated", binary + std::string(12, '\0') + "\x03" + std::string(4, '\0')),
                 HasSubstr(": byte "));
+}
+
+// OBJ statements beyond plain triangles: index forms, negative indices, polygons, continuation
+// lines, and the statements that carry no surface.
+TEST(ObjReader, IndexFormsPolygonsAndIgnoredStatements) {
+    const std::string text = "mtllib x.mtl\no quad\nv 0 0 0\nv 1 0 0 1.0\nv 1 1 0 0.5 0.5 0.5\nvt 0 0\nvn 0 0 1\n"
+                             "v 0 1 0\ng g1\ns off\nusemtl m\nf 1/1/1 2//1 \\\n -2/1 -1\nl 1 3\np 2\nv 5 5 5\n";
+    const std::filesystem::path path = std::filesystem::temp_directory_path() / "glcollide_quad.obj";
+    std::ofstream(path, std::ios::binary) << text;
+    const SurfaceMesh m = importSurfaceMesh(path.string());
+    std::filesystem::remove(path);
+    ASSERT_EQ(m.faces.size(), 2u); // the quad as a fan
+    EXPECT_EQ(m.faces[0], (Face{0, 1, 2}));
+    EXPECT_EQ(m.faces[1], (Face{0, 2, 3}));
+    EXPECT_EQ(m.positions.size(), 4u); // the stray vertex (5, 5, 5) is not a node
+}
+
+TEST(ObjReader, BadStatementsNameTheLine) {
+    const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    const auto objErrorOf = [](const std::string& name, const std::string& text) { return errorOfBytes(name, ".obj", text); };
+    EXPECT_THAT(objErrorOf("zero", v + "f 0 1 2\n"), HasSubstr(".obj:4: expected a vertex index"));
+    EXPECT_THAT(objErrorOf("two", v + "f 1 2\n"), HasSubstr(".obj:4: a face needs at least 3 vertices, got 2"));
+    EXPECT_THAT(objErrorOf("negative", v + "f -1 -2 -4\n"), HasSubstr(".obj:4: face uses vertex -4, but 3 vertices"));
+    EXPECT_THAT(objErrorOf("forward", "v 0 0 0\nf 1 2 3\nv 1 0 0\nv 0 1 0\n"), HasSubstr(".obj:2: face uses vertex 2, but 1 vertices"));
+    EXPECT_THAT(objErrorOf("short_v", "v 0 0\n"), HasSubstr(".obj:1: expected 'v x y z'"));
+    EXPECT_THAT(objErrorOf("text", "v 0 zero 0\n"), HasSubstr(".obj:1: expected a number as vertex coordinate, got 'zero'"));
+    EXPECT_THAT(objErrorOf("curve", v + "cstype bspline\n"), HasSubstr(".obj:4: free-form geometry ('cstype') is not supported"));
+    EXPECT_THAT(objErrorOf("empty", "# nothing\n"), HasSubstr(": the file contains no mesh"));
+    EXPECT_THAT(objErrorOf("points", v + "p 1 2 3\n"), HasSubstr(": the mesh has no triangles"));
 }
