@@ -75,6 +75,13 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const cpu:
     const CollisionSettings& s = config.settings;
     if (s.initialCapacity < 1) throw Error("collision: initialCapacity must be at least 1");
     const auto initial = [&](std::uint32_t listCapacity) { return listCapacity ? listCapacity : s.initialCapacity; };
+    if (config.listByteLimit != 0) {
+        m_listByteLimit = config.listByteLimit;
+    } else {
+        GLint64 limit = 0;
+        glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &limit);
+        m_listByteLimit = static_cast<std::uint64_t>(std::max<GLint64>(limit, GLint64{1} << 24)); // 2^24: GL 4.3's minimum
+    }
     if (!(s.thickness > 0.0)) throw Error("collision: thickness must be positive");
     const BroadPhase mode = s.broadPhase;
 
@@ -210,8 +217,17 @@ void CollisionDetection::readCounters() {
 void CollisionDetection::grow(gl::Buffer& list, std::uint32_t& capacity, std::uint32_t count, const char* label,
                               std::uint32_t& growths) {
     ++growths;
-    // Next power of two (fewer regrowths); above 2^31 it does not exist in 32 bits: exact size.
+    // A list is bound whole as one shader storage block: past the limit the pairs cannot be
+    // stored, and dropping them silently is not an option.
+    const std::uint64_t maxEntries = m_listByteLimit / kPairBytes;
+    if (count > maxEntries)
+        throw Error(std::string("collision list '") + label + "' needs " + std::to_string(count) + " pairs (" +
+                    std::to_string(std::uint64_t{count} * kPairBytes) + " bytes), more than one shader storage "
+                    "block can hold on this device (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, " + std::to_string(m_listByteLimit) +
+                    " bytes); no pair was dropped: use fewer or smaller bodies, a smaller thickness or a deeper octree");
+    // Next power of two (fewer regrowths) when it fits; 2^31 and up: exact size.
     capacity = count <= (1u << 31) ? std::bit_ceil(count) : count;
+    if (capacity > maxEntries) capacity = count;
     list = gl::Buffer(label, std::size_t{capacity} * kPairBytes);
     writeCapacities();
 }

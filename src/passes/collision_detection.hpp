@@ -32,6 +32,9 @@ struct CollisionConfig {
     /// First size of one pair list; 0 = settings.initialCapacity. Lets a test overflow one list
     /// at a time.
     std::uint32_t boxPairCapacity = 0, candidateCapacity = 0, intersectionCapacity = 0;
+    /// Bytes one pair list may grow to; 0 = the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE. A list
+    /// that must grow beyond it makes detect() throw instead of dropping pairs. Tests lower it.
+    std::uint64_t listByteLimit = 0;
 };
 
 /// Exact sizes found by the last detect() (after any reruns).
@@ -62,7 +65,7 @@ public:
     [[nodiscard]] std::vector<std::string> passNames() const;
 
     /// Runs the passes on buffers.positions (binding 0) and buffers.faces (7); grows the lists and
-    /// reruns stages on overflow. Brackets pass k of passNames() with timer->begin/end(timerBase + k)
+    /// reruns stages on overflow; throws Error when a list would outgrow config.listByteLimit. Brackets pass k of passNames() with timer->begin/end(timerBase + k)
     /// when `timer` is not null (a rerun adds to its pass's time). Ends with a storage barrier, so
     /// later passes may read the lists. Reads the counters back once (one CPU-GPU sync per call,
     /// plus one per rerun).
@@ -116,6 +119,7 @@ private:
     gl::Buffer m_faceInfo, m_objects, m_boxes, m_boxFaceOffsets, m_boxFaceList, m_boxMaskBuffer;
     gl::Buffer m_boxPairList, m_candidates, m_intersections, m_counters, m_dispatchArgs;
     std::uint32_t m_boxPairCapacity = 0, m_candidateCapacity = 0, m_intersectionCapacity = 0;
+    std::uint64_t m_listByteLimit = 0;
     std::uint32_t m_expandSlices = 1; ///< z groups per box pair in the expansion (bb_collision.comp)
     std::array<std::uint32_t, 8> m_rawCounters{};
     CollisionCounts m_counts;

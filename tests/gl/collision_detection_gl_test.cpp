@@ -13,6 +13,9 @@
 #include "gl/layout.hpp"
 #include "passes/collision_detection.hpp"
 
+#include <glcollide/error.hpp>
+
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <glm/common.hpp>
@@ -274,6 +277,26 @@ TEST(CollisionDetectionGlCases, EachListOverflowingAloneGrowsAndFindsTheSameSets
             EXPECT_EQ(detection.readCandidates(), want.candidates) << what;
             EXPECT_EQ(detection.readIntersections(), want.intersections) << what;
         }
+    }
+}
+
+// A list that cannot grow any further (here a 64-byte limit: 8 pairs; on a device,
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE) is an error naming the list, never a silent drop.
+TEST(CollisionDetectionGlCases, AListBeyondTheBlockLimitIsAnErrorNotADrop) {
+    const Soup soup = makeSoup(1009, 3, seedFor(1009));
+    const passes::DeviceBuffers buffers = upload(soup);
+    const Expected& want = expected(soup, 1009, {true, true});
+    ASSERT_GT(want.candidates.size(), 8u);
+    passes::CollisionConfig config = configFor({BroadPhase::AllPairs, 2}, {true, true}, TriTriPrecision::Robust, 1u);
+    config.listByteLimit = 64;
+    passes::CollisionDetection detection(config, soup.model);
+    try {
+        detection.detect(buffers, nullptr, 0);
+        FAIL() << "no error for " << want.candidates.size() << " candidates in a 64-byte list";
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), ::testing::HasSubstr("collision list 'candidates' needs " +
+                                                   std::to_string(want.candidates.size()) + " pairs"));
+        EXPECT_THAT(e.what(), ::testing::HasSubstr("GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 64 bytes); no pair was dropped"));
     }
 }
 
