@@ -9,6 +9,10 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <map>
@@ -87,7 +91,13 @@ SurfaceMesh importSurfaceMesh(const std::filesystem::path& path) {
     return weldSurface(std::move(raw), rawFaces, file);
 }
 
-SurfaceMesh weldSurface(std::vector<glm::dvec3> raw, const std::vector<Face>& rawFaces, const std::string& file) {
+SurfaceMesh weldSurface(std::vector<glm::dvec3> raw, const std::vector<Face>& rawFaces, const std::string& file,
+                        const std::vector<std::size_t>& faceLines) {
+    // Where a triangle came from, for messages: "file:line: face" or "file: triangle k".
+    const auto where = [&](std::size_t f) {
+        return f < faceLines.size() && faceLines[f] != 0 ? file + ":" + std::to_string(faceLines[f]) + ": face"
+                                                         : file + ": triangle " + std::to_string(f);
+    };
     for (std::size_t v = 0; v < raw.size(); ++v)
         if (!std::isfinite(raw[v].x) || !std::isfinite(raw[v].y) || !std::isfinite(raw[v].z))
             throw Error(file + ": vertex " + std::to_string(v) + " has a non-finite coordinate");
@@ -104,10 +114,25 @@ SurfaceMesh weldSurface(std::vector<glm::dvec3> raw, const std::vector<Face>& ra
         if (inserted) out.positions.push_back(raw[v]);
         remap[v] = it->second;
     }
-    for (const Face& f : rawFaces) {
+    std::map<std::array<std::uint32_t, 3>, std::size_t> seen; // sorted vertices -> first raw face
+    for (std::size_t r = 0; r < rawFaces.size(); ++r) {
+        const Face& f = rawFaces[r];
         const Face g{remap[f[0]], remap[f[1]], remap[f[2]]};
         // A triangle that welding collapsed to an edge has no area and no orientation.
         if (g[0] == g[1] || g[1] == g[2] || g[0] == g[2]) continue;
+        // Three distinct but collinear positions: no normal, no area, no mass; a modelling error.
+        const glm::dvec3 &a = out.positions[g[0]], &b = out.positions[g[1]], &c = out.positions[g[2]];
+        if (glm::cross(b - a, c - a) == glm::dvec3(0.0))
+            throw Error(where(r) + " has zero area (its three vertices are collinear)");
+        // The same three vertices twice (either winding) would double the mass there and make a
+        // face collide with its copy.
+        std::array<std::uint32_t, 3> key = g;
+        std::sort(key.begin(), key.end());
+        if (const auto [it, inserted] = seen.emplace(key, r); !inserted)
+            throw Error(where(r) + " uses the same three vertices as " +
+                        (faceLines.empty() ? "triangle " + std::to_string(it->second)
+                                           : "the face of line " + std::to_string(faceLines[it->second])) +
+                        " (a duplicated face)");
         out.faces.push_back(g);
     }
     if (out.faces.empty()) throw Error(file + ": the mesh has no triangles");

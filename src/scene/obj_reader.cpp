@@ -34,6 +34,7 @@ SurfaceMesh readObj(const std::filesystem::path& path) {
     const std::string& file = in.file();
     std::vector<glm::dvec3> positions;
     std::vector<Face> faces;
+    std::vector<std::size_t> faceLines;
     std::string_view raw;
     std::string joined;
     bool anyGeometry = false;
@@ -85,7 +86,10 @@ SurfaceMesh readObj(const std::filesystem::path& path) {
                             " vertices are defined before it");
                 polygon.push_back(static_cast<std::uint32_t>(resolved));
             }
-            for (std::size_t j = 2; j < polygon.size(); ++j) faces.push_back({polygon[0], polygon[j - 1], polygon[j]});
+            for (std::size_t j = 2; j < polygon.size(); ++j) {
+                faces.push_back({polygon[0], polygon[j - 1], polygon[j]});
+                faceLines.push_back(in.line());
+            }
             anyGeometry = true;
         } else if (isFreeForm(keyword)) {
             in.fail("free-form geometry ('" + std::string(keyword) + "') is not supported; export triangles or polygons");
@@ -93,7 +97,7 @@ SurfaceMesh readObj(const std::filesystem::path& path) {
         // vt vn vp p l o g s mg usemtl mtllib and unknown statements carry no surface.
     }
     if (!anyGeometry) throw Error(file + ": the file contains no mesh");
-    return weldSurface(std::move(positions), faces, file);
+    return weldSurface(std::move(positions), faces, file, faceLines);
 }
 
 } // namespace glcollide::detail

@@ -184,6 +184,9 @@ public:
         return m_format == Format::Ascii ? readAscii(type, what) : readBinary(type, what);
     }
 
+    /// The current line (ASCII), 0 for binary bodies.
+    [[nodiscard]] std::size_t line() const { return m_format == Format::Ascii ? m_line : 0; }
+
     /// Bytes (binary) or characters (ASCII) not read yet: a list longer than this cannot be there.
     [[nodiscard]] std::size_t remaining() const { return m_text.size() - m_pos; }
 
@@ -278,6 +281,7 @@ SurfaceMesh readPly(const std::filesystem::path& path) {
 
     std::vector<glm::dvec3> positions;
     std::vector<Face> faces;
+    std::vector<std::size_t> faceLines; // ASCII only
     bool haveVertices = false;
     BodyReader body(text, header, file);
     for (const Element& e : header.elements) {
@@ -334,11 +338,14 @@ SurfaceMesh readPly(const std::filesystem::path& path) {
                     body.fail("vertex " + std::to_string(i) + " has a non-finite coordinate");
                 positions.push_back(position);
             }
-            for (std::size_t j = 2; j < polygon.size(); ++j) faces.push_back({polygon[0], polygon[j - 1], polygon[j]});
+            for (std::size_t j = 2; j < polygon.size(); ++j) {
+                faces.push_back({polygon[0], polygon[j - 1], polygon[j]});
+                if (body.line() != 0) faceLines.push_back(body.line());
+            }
         }
     }
     if (!haveVertices) throw Error(file + ": the PLY file has no element 'vertex'");
-    return weldSurface(std::move(positions), faces, file);
+    return weldSurface(std::move(positions), faces, file, faceLines);
 }
 
 } // namespace glcollide::detail

@@ -48,10 +48,12 @@ SurfaceMesh readObj(const std::filesystem::path& path);
 SurfaceMesh readPly(const std::filesystem::path& path);
 
 /// Welds exactly equal positions (+0 = -0), drops faces that welding collapsed and positions no
-/// face uses (keeping the order of first appearance), throws Error naming `file` for a non-finite
-/// position or when no triangle is left. Shared by the readers
-/// of surface meshes.
-SurfaceMesh weldSurface(std::vector<glm::dvec3> positions, const std::vector<Face>& faces, const std::string& file);
+/// face uses (keeping the order of first appearance). Throws Error naming `file` (and the face's
+/// source line from `faceLines`, when given) for a non-finite position, a zero-area face (three
+/// collinear vertices), a duplicated face (the same three vertices, either winding) or when no
+/// triangle is left. Shared by the readers of surface meshes.
+SurfaceMesh weldSurface(std::vector<glm::dvec3> positions, const std::vector<Face>& faces, const std::string& file,
+                        const std::vector<std::size_t>& faceLines = {});
 
 /// Checks a GLB container (header, version 2, length, chunk lengths within the file) before
 /// assimp reads it; throws Error naming the file and byte offset. Called for `.glb` files.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <tuple>
 
 namespace glcollide::detail {
@@ -21,6 +22,7 @@ void orientTets(TetMesh& mesh, const std::string& file) {
         return file + ": tet " + std::to_string(t);
     };
     const std::size_t n = mesh.positions.size();
+    std::map<Tet, std::size_t> seen; // sorted nodes -> first tet
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         Tet& tet = mesh.tets[t];
         for (int i = 0; i < 4; ++i) {
@@ -31,6 +33,13 @@ void orientTets(TetMesh& mesh, const std::string& file) {
                 if (tet[i] == tet[j])
                     throw Error(where(t) + ": tetrahedron repeats node " + std::to_string(tet[i]));
         }
+        Tet key = tet;
+        std::sort(key.begin(), key.end());
+        if (const auto [it, inserted] = seen.emplace(key, t); !inserted)
+            throw Error(where(t) + ": tetrahedron uses the same four nodes as " +
+                        (it->second < mesh.tetLines.size() ? "the one of line " + std::to_string(mesh.tetLines[it->second])
+                                                           : "tet " + std::to_string(it->second)) +
+                        " (a duplicated tetrahedron)");
         const glm::dvec3& a = mesh.positions[tet[0]];
         const glm::dvec3& b = mesh.positions[tet[1]];
         const glm::dvec3& c = mesh.positions[tet[2]];

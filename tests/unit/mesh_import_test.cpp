@@ -264,3 +264,24 @@ TEST(ObjReader, BadStatementsNameTheLine) {
     EXPECT_THAT(objErrorOf("empty", "# nothing\n"), HasSubstr(": the file contains no mesh"));
     EXPECT_THAT(objErrorOf("points", v + "p 1 2 3\n"), HasSubstr(": the mesh has no triangles"));
 }
+
+// Duplicated faces (either winding) and zero-area faces are modelling errors, named by line where
+// the format has lines and by triangle otherwise.
+TEST(SurfaceChecks, DuplicatedAndZeroAreaFacesAreErrors) {
+    const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+    EXPECT_THAT(errorOfBytes("dup", ".obj", v + "f 1 2 3\nf 1 2 4\nf 3 2 1\n"),
+                HasSubstr(".obj:7: face uses the same three vertices as the face of line 5 (a duplicated face)"));
+    EXPECT_THAT(errorOfBytes("flat", ".obj", v + "v 2 0 0\nf 1 2 3\nf 1 2 5\n"),
+                HasSubstr(".obj:7: face has zero area (its three vertices are collinear)"));
+    const std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                               "property float y\nproperty float z\nelement face 2\n"
+                               "property list uchar int vertex_indices\nend_header\n";
+    std::string body;
+    for (const float f : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) body.append(reinterpret_cast<const char*>(&f), 4);
+    for (int face = 0; face < 2; ++face) {
+        body += '\x03';
+        for (const int i : {0, 1, 2}) body.append(reinterpret_cast<const char*>(&i), 4);
+    }
+    EXPECT_THAT(errorOfBytes("dup_binary", ".ply", binary + body),
+                HasSubstr(".ply: triangle 1 uses the same three vertices as triangle 0 (a duplicated face)"));
+}
