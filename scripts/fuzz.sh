@@ -11,7 +11,7 @@ seconds=${1:-20}
 build_dir=${2:-${GLCOLLIDE_SANITIZE_BUILD_DIR:-build-sanitize}}
 shift $(( $# > 2 ? 2 : $# ))
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scene_json mesh_obj mesh_ply mesh_gltf mesh_glb mesh_msh mesh_tetgen tri_pair_csv)
+[ ${#targets[@]} -gt 0 ] || targets=(scene_json mesh_obj mesh_ply mesh_gltf mesh_glb mesh_msh mesh_tetgen tri_pair_csv bench_suite)
 out=${GLCOLLIDE_FUZZ_OUT:-$build_dir/fuzz-findings}
 mkdir -p "$out"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}

@@ -1,5 +1,7 @@
 #include "benchkit/suite.hpp"
 
+#include "scene/json_errors.hpp"
+
 #include "cpu/tri_tri_cases.hpp"
 
 #include <glcollide/error.hpp>
@@ -60,8 +62,8 @@ int intAt(const json& object, const Where& at, const char* key, int fallback, in
 json parseJson(const std::string& text, const std::string& source) {
     try {
         return json::parse(text, nullptr, true, true);
-    } catch (const json::parse_error& e) {
-        throw Error(source + ": invalid JSON: " + e.what());
+    } catch (const json::exception& e) { // parse errors, and numbers beyond double range (1e999)
+        throw Error(detail::invalidJsonMessage(e, text, source));
     }
 }
 

@@ -1,4 +1,5 @@
 // JSON scene reader: loadScene, parseScene, defaultScene. Format: docs/scene-format.md.
+#include "scene/json_errors.hpp"
 #include "scene/scene_detail.hpp"
 
 #include <glcollide/error.hpp>
@@ -593,23 +594,8 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& baseD
     };
     try {
         root = json::parse(jsonText, noDuplicates, true, true);
-    } catch (const json::parse_error& e) {
-        throw Error(sourceName + ": invalid JSON: " + e.what());
-    } catch (const json::out_of_range& e) {
-        // Number overflow (e.g. 1e999): JSON cannot hold infinities. nlohmann gives no position;
-        // name the line of the first occurrence of the offending token.
-        std::string message = e.what();
-        const std::size_t q0 = message.find('\'');
-        const std::size_t q1 = q0 == std::string::npos ? q0 : message.find('\'', q0 + 1);
-        std::string where;
-        if (q1 != std::string::npos) {
-            const std::string token = message.substr(q0 + 1, q1 - q0 - 1);
-            const std::size_t at = token.empty() ? std::string::npos : jsonText.find(token);
-            if (at != std::string::npos)
-                where = "line " + std::to_string(1 + std::count(jsonText.begin(), jsonText.begin() + static_cast<std::ptrdiff_t>(at), '\n')) + ": ";
-            message = "number " + token + " is outside the range of a double (non-finite values are not allowed)";
-        }
-        throw Error(sourceName + ": invalid JSON: " + where + message);
+    } catch (const json::exception& e) { // parse errors, and numbers beyond double range (1e999)
+        throw Error(detail::invalidJsonMessage(e, jsonText, sourceName));
     }
     Scene scene = parseRoot(c, root);
     if (scene.name.empty()) scene.name = std::filesystem::path(sourceName).stem().string();

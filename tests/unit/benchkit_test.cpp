@@ -63,6 +63,10 @@ TEST(BenchkitSuite, MergePatchesApplyToTheScene) {
 TEST(BenchkitSuite, ErrorsNameTheJsonPointer) {
     const std::string configs = R"("configs": [{"name": "c"}])";
     EXPECT_THAT(errorOf("{"), HasSubstr("t.json: invalid JSON"));
+    // A number beyond double range is nlohmann's out_of_range, not a parse error (found by
+    // fuzz/bench_suite_fuzz.cpp): still one clear error, with the line.
+    EXPECT_THAT(errorOf("{\n\"name\": 1e999}"),
+                HasSubstr("t.json: invalid JSON: line 2: number 1e999 is outside the range of a double"));
     EXPECT_THAT(errorOf(R"({"name": "t", "experiments": [], "extra": 1})"), HasSubstr("/extra: unknown key"));
     EXPECT_THAT(errorOf(R"({"name": "t", "experiments": []})"), HasSubstr("/experiments: expected a non-empty array"));
     EXPECT_THAT(errorOf(suiteWith(R"("kind": "speed", )" + sceneList() + ", " + configs)),
