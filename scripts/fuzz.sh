@@ -5,6 +5,8 @@
 # A finding stops that target with its input saved under $GLCOLLIDE_FUZZ_OUT (default
 # build-sanitize/fuzz-findings); fix it, then keep the input in fuzz/regressions/<target>/ so
 # ctest replays it (fuzz.replay.<target>) in every build.
+# GLCOLLIDE_FUZZ_RUNS=N makes the run repeatable (CI): seed 1 and N mutated inputs per target
+# (SECONDS stays a cap), so the same source always meets the same inputs and a red CI is never luck.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-20}
@@ -17,6 +19,8 @@ mkdir -p "$out"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressions=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+repeatable=()
+[ -n "${GLCOLLIDE_FUZZ_RUNS:-}" ] && repeatable=(-seed=1 -runs="$GLCOLLIDE_FUZZ_RUNS")
 failed=()
 for t in "${targets[@]}"; do
   bin="$build_dir/fuzz/fuzz_$t"
@@ -24,10 +28,10 @@ for t in "${targets[@]}"; do
   work=$(mktemp -d)
   cp -r "fuzz/corpus/$t/." "$work/"
   [ -d "fuzz/regressions/$t" ] && cp -r "fuzz/regressions/$t/." "$work/"
-  echo "== fuzz $t: ${seconds}s from $(ls "$work" | wc -l) inputs"
+  echo "== fuzz $t: ${GLCOLLIDE_FUZZ_RUNS:+$GLCOLLIDE_FUZZ_RUNS runs (seed 1), at most }${seconds}s from $(ls "$work" | wc -l) inputs"
   # -timeout: one input may take 10 s (a sanitized 7-subdivision sphere takes < 1 s);
   # -rss_limit_mb: libFuzzer's default 2 GiB (the scene fuzzer skips huge generators).
-  if ! "$bin" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=8192 \
+  if ! "$bin" "${repeatable[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=8192 \
        -artifact_prefix="$out/$t-" -print_final_stats=1 "$work" >"$out/$t.log" 2>&1; then
     failed+=("$t")
     tail -40 "$out/$t.log" >&2
