@@ -16,6 +16,14 @@
 
 namespace glcollide::detail {
 
+/// std::from_chars rejects the leading '+' that C's strtod (and many exporters) accept: drop one
+/// when a digit or '.' follows, so "+1.5" reads as 1.5 and "+" or "++1" stay errors.
+inline std::string_view withoutLeadingPlus(std::string_view token) {
+    if (token.size() >= 2 && token[0] == '+' && (token[1] == '.' || (token[1] >= '0' && token[1] <= '9')))
+        token.remove_prefix(1);
+    return token;
+}
+
 class LineReader {
 public:
     /// Reads the whole file; throws Error if it cannot be opened.
@@ -81,16 +89,18 @@ public:
     /// Parses a whole token as an integer; `what` names it in the error.
     long long toInt(std::string_view token, const std::string& what) const {
         long long v = 0;
-        const auto [p, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-        if (ec != std::errc() || p != token.data() + token.size())
+        const std::string_view digits = withoutLeadingPlus(token);
+        const auto [p, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+        if (ec != std::errc() || p != digits.data() + digits.size())
             fail("expected an integer " + what + ", got '" + std::string(token) + "'");
         return v;
     }
     /// Parses a whole token as a finite floating-point number.
     double toDouble(std::string_view token, const std::string& what) const {
         double v = 0.0;
-        const auto [p, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-        if (ec != std::errc() || p != token.data() + token.size())
+        const std::string_view digits = withoutLeadingPlus(token);
+        const auto [p, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+        if (ec != std::errc() || p != digits.data() + digits.size())
             fail("expected a number " + what + ", got '" + std::string(token) + "'");
         if (!std::isfinite(v)) fail("non-finite " + what + " '" + std::string(token) + "'");
         return v;

@@ -58,11 +58,12 @@ SurfaceMesh readObj(const std::filesystem::path& path) {
             glm::dvec3 p;
             for (int k = 0; k < 3; ++k) {
                 const std::string_view token = t[static_cast<std::size_t>(k) + 1];
-                const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), p[k]);
+                const std::string_view digits = withoutLeadingPlus(token);
+                const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), p[k]);
                 if (ec == std::errc::result_out_of_range)
                     in.fail("vertex " + std::to_string(positions.size() + 1) + " coordinate '" + std::string(token) +
                             "' is outside double range");
-                if (ec != std::errc() || end != token.data() + token.size())
+                if (ec != std::errc() || end != digits.data() + digits.size())
                     in.fail("expected a number as vertex coordinate, got '" + std::string(token) + "'");
                 if (!std::isfinite(p[k]))
                     in.fail("vertex " + std::to_string(positions.size() + 1) + " has a non-finite coordinate");

@@ -8,6 +8,7 @@
 // 26 GB on a garbage list count. Every error here names the file and the line (ASCII, header) or
 // byte offset (binary body), and no count from the file is trusted before it is checked against
 // what the file can hold.
+#include "scene/line_reader.hpp"
 #include "scene/scene_detail.hpp"
 
 #include <glcollide/error.hpp>
@@ -205,18 +206,19 @@ private:
         std::size_t end = m_pos;
         while (end < m_text.size() && !std::isspace(static_cast<unsigned char>(m_text[end]))) ++end;
         const std::string_view token(m_text.data() + m_pos, end - m_pos);
+        const std::string_view digits = withoutLeadingPlus(token);
         double value = 0.0;
         if (type.integral) {
             long long v = 0;
-            const auto [p, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-            if (ec != std::errc() || p != token.data() + token.size())
+            const auto [p, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+            if (ec != std::errc() || p != digits.data() + digits.size())
                 fail("expected an integer " + what + ", got '" + printable(token) + "'");
             value = static_cast<double>(v);
         } else {
-            const auto [p, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+            const auto [p, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
             if (ec == std::errc::result_out_of_range)
                 fail(what + " '" + printable(token) + "' is outside double range");
-            if (ec != std::errc() || p != token.data() + token.size())
+            if (ec != std::errc() || p != digits.data() + digits.size())
                 fail("expected a number " + what + ", got '" + printable(token) + "'");
         }
         checkRange(type, value, what);

@@ -285,3 +285,13 @@ TEST(SurfaceChecks, DuplicatedAndZeroAreaFacesAreErrors) {
     EXPECT_THAT(errorOfBytes("dup_binary", ".ply", binary + body),
                 HasSubstr(".ply: triangle 1 uses the same three vertices as triangle 0 (a duplicated face)"));
 }
+
+// A leading '+' (accepted by strtod and written by some exporters) reads as the number.
+TEST(ObjReader, LeadingPlusSignsAreNumbers) {
+    EXPECT_EQ(errorOfBytes("plus", ".obj", "v +0 0 0\nv +1.0 0 0\nv 0 +.5e1 0\nf 1 2 3\n"), "no error");
+    EXPECT_THAT(errorOfBytes("plus_plus", ".obj", "v ++1 0 0\n"), HasSubstr(".obj:1: expected a number"));
+    EXPECT_EQ(plyErrorOf("plus", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                                 "+0 0 0\n1 0 0\n0 +1 0\n+3 0 1 +2\n"),
+              "no error");
+}
