@@ -2,6 +2,7 @@
 
 #include "gl/debug_output.hpp"
 #include "support/gl_test_environment.hpp"
+#include "support/host_debug_callback.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,36 +14,15 @@
 namespace glcollide {
 namespace {
 
-struct HostLog {
-    std::vector<std::string> messages;
-};
-
-// Stands in for a host application's callback that was installed before glcollide's.
-void GLAPIENTRY hostCallback(GLenum, GLenum, GLuint, GLenum, GLsizei length, const GLchar* message,
-                             const void* userParam) {
-    auto* log = static_cast<HostLog*>(const_cast<void*>(userParam));
-    log->messages.emplace_back(message, static_cast<std::size_t>(length < 0 ? std::strlen(message) : length));
-}
+using test::hostCallback;
 
 // Installs hostCallback for the test and puts the environment's callback back afterwards.
-class DebugOutput : public ::testing::Test {
+class DebugOutput : public test::HostDebugCallbackTest {
 protected:
-    void SetUp() override {
-        glGetPointerv(GL_DEBUG_CALLBACK_FUNCTION, &m_envCallback);
-        glGetPointerv(GL_DEBUG_CALLBACK_USER_PARAM, &m_envParam);
-        glDebugMessageCallback(&hostCallback, &m_host);
-    }
-    void TearDown() override {
-        glDebugMessageCallback(reinterpret_cast<GLDEBUGPROC>(m_envCallback), m_envParam);
-    }
     void insert(const std::string& text, GLuint id = 42) {
         glDebugMessageInsert(GL_DEBUG_SOURCE_THIRD_PARTY, GL_DEBUG_TYPE_OTHER, id, GL_DEBUG_SEVERITY_MEDIUM,
                              static_cast<GLsizei>(text.size()), text.c_str());
     }
-
-    HostLog m_host;
-    void* m_envCallback = nullptr;
-    void* m_envParam = nullptr;
 };
 
 TEST_F(DebugOutput, ScopeReceivesAndChainsToPreviousCallback) {

@@ -4,6 +4,7 @@
 
 #include "gl/host_state.hpp"
 #include "support/gl_test_environment.hpp"
+#include "support/host_debug_callback.hpp"
 
 #include <glcollide/engine.hpp>
 #include <glcollide/error.hpp>
@@ -276,15 +277,7 @@ TEST(HostContextGl, ACurrentProgramTheHostDeletedIsNotRestored) {
     EXPECT_FALSE(glIsProgram(program));
 }
 
-// The host's own debug callback, with its user parameter.
-struct HostLog {
-    std::vector<std::string> messages;
-};
-void GLAPIENTRY hostCallback(GLenum, GLenum, GLuint, GLenum, GLsizei length, const GLchar* message,
-                             const void* userParam) {
-    auto* log = static_cast<HostLog*>(const_cast<void*>(userParam));
-    log->messages.emplace_back(message, static_cast<std::size_t>(length < 0 ? std::strlen(message) : length));
-}
+using test::hostCallback;
 
 bool contains(const std::vector<std::string>& messages, const std::string& text) {
     for (const std::string& m : messages)
@@ -292,17 +285,8 @@ bool contains(const std::vector<std::string>& messages, const std::string& text)
     return false;
 }
 
-class HostDebugCallback : public ::testing::Test {
+class HostDebugCallback : public test::HostDebugCallbackTest {
 protected:
-    void SetUp() override {
-        glGetPointerv(GL_DEBUG_CALLBACK_FUNCTION, &m_envCallback);
-        glGetPointerv(GL_DEBUG_CALLBACK_USER_PARAM, &m_envParam);
-        glDebugMessageCallback(&hostCallback, &m_host);
-    }
-    void TearDown() override {
-        glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS); // the test environment's setting
-        glDebugMessageCallback(reinterpret_cast<GLDEBUGPROC>(m_envCallback), m_envParam);
-    }
     static void insert(const std::string& text) {
         glDebugMessageInsert(GL_DEBUG_SOURCE_APPLICATION, GL_DEBUG_TYPE_MARKER, 1, GL_DEBUG_SEVERITY_NOTIFICATION,
                              static_cast<GLsizei>(text.size()), text.c_str());
@@ -315,10 +299,6 @@ protected:
         EXPECT_EQ(reinterpret_cast<GLDEBUGPROC>(callback), &hostCallback) << when;
         EXPECT_EQ(param, &m_host) << when;
     }
-
-    HostLog m_host;
-    void* m_envCallback = nullptr;
-    void* m_envParam = nullptr;
 };
 
 TEST_F(HostDebugCallback, EngineCallbackChainsToTheHostsAndIsRemovedWithTheEngine) {
