@@ -1,0 +1,117 @@
+// Orientation predicates on float points, exact by construction:
+//   orient3d(a, b, c, d) = sign of det[b-a, c-a, d-a] (d above (+), on (0), below (-) the plane abc
+//                          seen with abc counter-clockwise),
+//   orient2d(a, b, c)    = the same for the 2D points that drop coordinate `drop` (0: keep y,z;
+//                          1: keep x,z; 2: keep x,y).
+// Each has a float FILTER, which returns the sign only when a bound that survives any relaxed
+// compilation certifies it (else GLC_UNDECIDED; it never returns 0), and an EXACT evaluation in
+// integer arithmetic (common/exact_int.glsl) that is always right. Compiled as GLSL and as C++
+// (src/cpu/shader_library.hpp). The soundness argument of the filter is in docs/narrow-phase.md,
+// "Why the filter is sound on any conforming device"; in short:
+//   - every + - * is assumed only faithfully rounded (relative error <= u = 2^-23, any rounding
+//     mode), may be contracted into an FMA (one rounding fewer) or carried in higher precision;
+//   - the compiler may reassociate and factor the polynomial in the coordinate differences in any
+//     way: each of its monomials then passes through at most all 26 (orient3d) operations of the
+//     expression, so |computed - exact| <= gamma_26 * permanent, gamma_26 = 26u / (1 - 26u);
+//   - inputs and results below 2^-126 may be flushed to zero: at most 2^-126 per input and per
+//     operation, amplified by at most max(M,1)^2 (M the largest |difference|);
+//   - so the sign is certified when |det| > 2^-18 * permanent + 2^-118 * max(M,1)^2 (2^-18 >
+//     gamma_26 / (1 - gamma_26) * (1 + u) = 3.11e-6; 2^-118 = 256 * 2^-126 > 71 * 2^-126 with
+//     room to spare), both sides computed in float by the same relaxed rules;
+//   - coordinates above 2^40 go straight to the exact path: nothing can overflow, so there is no
+//     infinity or NaN for a fast-math compiler to assume away.
+
+#ifndef GLC_ORIENT_GLSL
+#define GLC_ORIENT_GLSL
+
+#include "common/exact_int.glsl"
+
+const int GLC_UNDECIDED = 2;
+
+const float GLC_FILTER_RELATIVE = 3.814697265625e-6f; // 2^-18
+const float GLC_FILTER_FLUSH = 3.0092655e-36f;        // 2^-118 (rounded up: 3.00926553e-36 > 2^-118)
+const float GLC_FILTER_RANGE = 1099511627776.0f;      // 2^40
+
+bool glcInFilterRange(vec3 v) {
+    return abs(v.x) <= GLC_FILTER_RANGE && abs(v.y) <= GLC_FILTER_RANGE && abs(v.z) <= GLC_FILTER_RANGE;
+}
+
+float glcMaxComponent(vec3 v) { return max(max(v.x, v.y), v.z); }
+
+int glcOrient3dFilter(vec3 a, vec3 b, vec3 c, vec3 d) {
+    if (!(glcInFilterRange(a) && glcInFilterRange(b) && glcInFilterRange(c) && glcInFilterRange(d)))
+        return GLC_UNDECIDED;
+    vec3 ba = b - a;
+    vec3 ca = c - a;
+    vec3 da = d - a;
+    float det = ba.x * (ca.y * da.z - ca.z * da.y) + ba.y * (ca.z * da.x - ca.x * da.z) +
+                ba.z * (ca.x * da.y - ca.y * da.x);
+    float permanent = abs(ba.x) * (abs(ca.y * da.z) + abs(ca.z * da.y)) +
+                      abs(ba.y) * (abs(ca.z * da.x) + abs(ca.x * da.z)) +
+                      abs(ba.z) * (abs(ca.x * da.y) + abs(ca.y * da.x));
+    float m = max(glcMaxComponent(max(max(abs(ba), abs(ca)), abs(da))), 1.0f);
+    float bound = GLC_FILTER_RELATIVE * permanent + GLC_FILTER_FLUSH * (m * m);
+    if (det > bound) return 1;
+    if (-det > bound) return -1;
+    return GLC_UNDECIDED;
+}
+
+// The coordinates a 2D view keeps: (u, w) = (y, z), (x, z) or (x, y).
+int glcKeptU(int drop) { return drop == 0 ? 1 : 0; }
+int glcKeptW(int drop) { return drop == 2 ? 1 : 2; }
+
+int glcOrient2dFilter(vec3 a, vec3 b, vec3 c, int drop) {
+    int u = glcKeptU(drop), w = glcKeptW(drop);
+    float bu = b[u] - a[u], bw = b[w] - a[w];
+    float cu = c[u] - a[u], cw = c[w] - a[w];
+    if (!(glcInFilterRange(a) && glcInFilterRange(b) && glcInFilterRange(c))) return GLC_UNDECIDED;
+    float l = bu * cw;
+    float r = bw * cu;
+    float det = l - r;
+    float permanent = abs(l) + abs(r);
+    float m = max(max(max(abs(bu), abs(bw)), max(abs(cu), abs(cw))), 1.0f);
+    float bound = GLC_FILTER_RELATIVE * permanent + GLC_FILTER_FLUSH * m;
+    if (det > bound) return 1;
+    if (-det > bound) return -1;
+    return GLC_UNDECIDED;
+}
+
+// Exact sign of orient3d(a, b, c, d) (drop < 0) or of orient2d(a, b, c) dropping coordinate
+// `drop` (d unused), in integers: the rows of the determinant are the exact differences b-a, c-a,
+// d-a (2D: (b-a, 0), (c-a, 0), (0, 0, 1)), expanded along the first row. Degree 3 (2D: 2) in
+// differences of one bit more than the inputs; the expansion's values stay below
+// 3 * 2 * (2 * 2^(high-low))^3 < 2^(3(high-low) + 6) (2D: 2 * (2 * 2^(high-low))^2 < 2^(2(high-low) + 3)).
+int glcOrientExact(vec3 a, vec3 b, vec3 c, vec3 d, int drop) {
+    bool planar = drop >= 0;
+    int u = glcKeptU(drop), w = glcKeptW(drop);
+    GlcFrame f = glcFrameEmpty();
+    for (int k = 0; k < 3; ++k) {
+        if (planar && k != u && k != w) continue;
+        f = glcFrameInclude(f, a[k]);
+        f = glcFrameInclude(f, b[k]);
+        f = glcFrameInclude(f, c[k]);
+        if (!planar) f = glcFrameInclude(f, d[k]);
+    }
+    int n = planar ? glcFrameLimbs(f, 2, 3) : glcFrameLimbs(f, 3, 6);
+    GlcBig rows[9]; // rows[3 * r + k]: row r, column k
+    for (int r = 0; r < 3; ++r) {
+        vec3 p = r == 0 ? b : (r == 1 ? c : d);
+        for (int k = 0; k < 3; ++k) {
+            if (planar && (r == 2 || k == 2)) {
+                rows[3 * r + k] = glcBigFromUint(r == k ? 1u : 0u);
+            } else {
+                int axis = planar ? (k == 0 ? u : w) : k;
+                rows[3 * r + k] = glcBigSub(glcBigFromFloat(p[axis], f, n), glcBigFromFloat(a[axis], f, n), n);
+            }
+        }
+    }
+    GlcBig det = glcBigZero();
+    for (int k = 0; k < 3; ++k) {
+        int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+        GlcBig minor = glcBigSub(glcBigMul(rows[3 + k1], rows[6 + k2], n), glcBigMul(rows[3 + k2], rows[6 + k1], n), n);
+        det = glcBigAdd(det, glcBigMul(rows[k], minor, n), n);
+    }
+    return glcBigSign(det, n);
+}
+
+#endif // GLC_ORIENT_GLSL

@@ -1,0 +1,295 @@
+// The exact-predicate shader library (shaders/common/exact_int.glsl, orient.glsl,
+// tri_tri_robust.glsl) compiled as C++, against the GMP rational oracle:
+//  - integer arithmetic: every float converts to the exact integer of its frame; orient3d and
+//    orient2d in integers equal the rational determinant's sign on random floats of the whole
+//    float range (denormals, +-0, 2^127) and on near-degenerate constructions;
+//  - the float filters: whenever they certify a sign it is the exact one, and they never
+//    certify 0;
+//  - robust triangle-triangle (filtered pass, then the exact pass on what it left undecided)
+//    equals the oracle on the hard cases and on every random family.
+// This file is compiled twice: into glcollide_unit_tests with the project's flags, and into
+// glcollide_relaxed_float_tests with -ffast-math -ffp-contract=fast and FMA instructions
+// (tests/CMakeLists.txt), which lets the compiler contract, reassociate and flush denormals as a
+// relaxed GPU compiler may. A floating-point step whose result mattered would disagree there.
+
+#include "cpu/shader_library.hpp"
+#include "cpu/tri_tri_cases.hpp"
+
+#include <gmpxx.h>
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+#include <cstdint>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#ifdef GLCOLLIDE_RELAXED_FLOAT
+#define LIBRARY_TEST(name) TEST(ShaderLibraryRelaxedFloat, name)
+#else
+#define LIBRARY_TEST(name) TEST(ShaderLibrary, name)
+#endif
+
+namespace glcollide {
+namespace {
+
+using glm::vec3;
+namespace sh = shader;
+
+// The float's exact value, from its bits: in the relaxed build the process runs with DAZ, which
+// would read a denormal as 0 in any float -> double conversion.
+mpq_class q(float f) {
+    const std::uint32_t b = std::bit_cast<std::uint32_t>(f);
+    const std::uint32_t e = (b >> 23) & 0xffu, m = (b & 0x7fffffu) | (e != 0 ? 0x800000u : 0u);
+    const int exponent = (e == 0 ? 1 : static_cast<int>(e)) - 150;
+    mpq_class v = mpz_class(m);
+    if (exponent >= 0) v *= mpq_class(mpz_class(1) << static_cast<unsigned>(exponent));
+    else v /= mpq_class(mpz_class(1) << static_cast<unsigned>(-exponent));
+    return (b >> 31) ? mpq_class(-v) : v;
+}
+
+// The oracle (built with the project's flags) run with IEEE denormals: in the relaxed build the
+// process has FTZ/DAZ set (crtfastmath), which would flush the oracle's float -> double
+// conversions. The library under test keeps running with them.
+bool oracle(const cpu::FloatTriPair& p) {
+#if defined(GLCOLLIDE_RELAXED_FLOAT) && defined(__SSE__)
+    const unsigned int csr = _mm_getcsr();
+    _mm_setcsr(csr & ~0x8040u); // clear FTZ (bit 15) and DAZ (bit 6)
+    const bool answer = cpu::exactPairIntersects(p);
+    _mm_setcsr(csr);
+    return answer;
+#else
+    return cpu::exactPairIntersects(p);
+#endif
+}
+
+int exactOrient3d(vec3 a, vec3 b, vec3 c, vec3 d) {
+    const mpq_class bx = q(b.x) - q(a.x), by = q(b.y) - q(a.y), bz = q(b.z) - q(a.z);
+    const mpq_class cx = q(c.x) - q(a.x), cy = q(c.y) - q(a.y), cz = q(c.z) - q(a.z);
+    const mpq_class dx = q(d.x) - q(a.x), dy = q(d.y) - q(a.y), dz = q(d.z) - q(a.z);
+    return sgn(bx * (cy * dz - cz * dy) + by * (cz * dx - cx * dz) + bz * (cx * dy - cy * dx));
+}
+
+int exactOrient2d(vec3 a, vec3 b, vec3 c, int drop) {
+    const int u = drop == 0 ? 1 : 0, w = drop == 2 ? 1 : 2;
+    return sgn((q(b[u]) - q(a[u])) * (q(c[w]) - q(a[w])) - (q(b[w]) - q(a[w])) * (q(c[u]) - q(a[u])));
+}
+
+std::uint32_t bits(std::mt19937& rng) { return static_cast<std::uint32_t>(rng()); }
+
+// Any finite float, exponents uniform over the whole range (denormals and zero included).
+float anyFloat(std::mt19937& rng) {
+    const std::uint32_t sign = bits(rng) & 1u, exponent = bits(rng) % 255u, mantissa = bits(rng) & 0x7fffffu;
+    return std::bit_cast<float>(sign << 31 | exponent << 23 | mantissa);
+}
+
+vec3 anyPoint(std::mt19937& rng) { return {anyFloat(rng), anyFloat(rng), anyFloat(rng)}; }
+
+// Points of one random magnitude 2^e (e in [lo, hi]) around a random centre.
+vec3 pointNear(std::mt19937& rng, vec3 centre, int e) {
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    const float s = std::ldexp(1.0f, e);
+    return centre + vec3(unit(rng), unit(rng), unit(rng)) * s;
+}
+
+// d on the plane abc up to rounding: a + s(b - a) + t(c - a) in double, rounded to float, then
+// moved by 0..2 float steps: the near-degenerate inputs where filters must hand over to exact.
+vec3 nearlyCoplanar(std::mt19937& rng, vec3 a, vec3 b, vec3 c) {
+    std::uniform_real_distribution<double> unit(-1.0, 2.0);
+    const double s = unit(rng), t = unit(rng);
+    vec3 d;
+    for (int k = 0; k < 3; ++k) {
+        const double v = double(a[k]) + s * (double(b[k]) - double(a[k])) + t * (double(c[k]) - double(a[k]));
+        float f = static_cast<float>(v);
+        for (std::uint32_t steps = bits(rng) % 3u; steps > 0; --steps) f = std::nextafter(f, (rng() & 1u) ? 1e38f : -1e38f);
+        d[k] = f;
+    }
+    return d;
+}
+
+struct Quad {
+    vec3 a, b, c, d;
+};
+
+// Random inputs of every kind the predicates meet: any floats; clustered points at scales from
+// denormal to 2^100; nearly coplanar quadruples; exact repeats (zero orientations).
+std::vector<Quad> predicateInputs(std::uint32_t seed, int count) {
+    std::mt19937 rng(seed);
+    std::vector<Quad> out;
+    for (int i = 0; i < count; ++i) {
+        Quad x;
+        switch (i % 4) {
+        case 0: x = {anyPoint(rng), anyPoint(rng), anyPoint(rng), anyPoint(rng)}; break;
+        case 1: {
+            const int e = static_cast<int>(rng() % 250u) - 140, spread = static_cast<int>(rng() % 30u);
+            const vec3 centre = (rng() & 1u) ? vec3(0.0f) : pointNear(rng, vec3(0.0f), std::min(e + spread, 100));
+            x = {pointNear(rng, centre, e), pointNear(rng, centre, e), pointNear(rng, centre, e), pointNear(rng, centre, e)};
+            break;
+        }
+        case 2: {
+            const int e = static_cast<int>(rng() % 60u) - 30;
+            const vec3 centre = pointNear(rng, vec3(0.0f), e + static_cast<int>(rng() % 20u));
+            x.a = pointNear(rng, centre, e);
+            x.b = pointNear(rng, centre, e);
+            x.c = pointNear(rng, centre, e);
+            x.d = nearlyCoplanar(rng, x.a, x.b, x.c);
+            break;
+        }
+        default: {
+            const vec3 p = pointNear(rng, vec3(0.0f), static_cast<int>(rng() % 20u) - 10);
+            const vec3 r = pointNear(rng, vec3(0.0f), 0);
+            x = {p, r, (rng() & 1u) ? p : r, nearlyCoplanar(rng, p, r, p)};
+            break;
+        }
+        }
+        out.push_back(x);
+    }
+    return out;
+}
+
+LIBRARY_TEST(FloatsConvertToTheExactIntegerOfTheirFrame) {
+    std::mt19937 rng(11);
+    for (int i = 0; i < 20000; ++i) {
+        const float x = anyFloat(rng), y = anyFloat(rng);
+        sh::GlcFrame f = sh::glcFrameInclude(sh::glcFrameInclude(sh::glcFrameEmpty(), x), y);
+        const int n = sh::glcFrameLimbs(f, 1, 1);
+        for (float v : {x, y}) {
+            const sh::GlcBig b = sh::glcBigFromFloat(v, f, n);
+            // Two's complement in n limbs -> rational, times 2^low.
+            mpz_class z = 0;
+            for (int k = n - 1; k >= 0; --k) z = z * mpz_class(4294967296.0) + b.limb[k];
+            if (b.limb[n - 1] >> 31) z -= mpz_class(1) << static_cast<unsigned>(32 * n);
+            mpq_class value(z);
+            if (f.low >= 0) value *= mpq_class(mpz_class(1) << static_cast<unsigned>(f.low));
+            else value /= mpq_class(mpz_class(1) << static_cast<unsigned>(-f.low));
+            if (value == 0 && v == 0.0f) continue; // zero: no frame needed
+            ASSERT_EQ(value, q(v)) << "float " << v << " (bits " << std::bit_cast<std::uint32_t>(v) << ")";
+        }
+    }
+}
+
+LIBRARY_TEST(IntegerArithmeticIsModularAndExact) {
+    // (x - y) * (x + y) = x^2 - y^2 for floats across the range, compared as signs and values.
+    std::mt19937 rng(12);
+    for (int i = 0; i < 20000; ++i) {
+        const float x = anyFloat(rng), y = anyFloat(rng);
+        sh::GlcFrame f = sh::glcFrameInclude(sh::glcFrameInclude(sh::glcFrameEmpty(), x), y);
+        const int n = sh::glcFrameLimbs(f, 2, 2);
+        const sh::GlcBig bx = sh::glcBigFromFloat(x, f, n), by = sh::glcBigFromFloat(y, f, n);
+        const sh::GlcBig lhs = sh::glcBigMul(sh::glcBigSub(bx, by, n), sh::glcBigAdd(bx, by, n), n);
+        const sh::GlcBig rhs = sh::glcBigSub(sh::glcBigMul(bx, bx, n), sh::glcBigMul(by, by, n), n);
+        for (int k = 0; k < n; ++k) ASSERT_EQ(lhs.limb[k], rhs.limb[k]) << x << " " << y;
+        ASSERT_EQ(sh::glcBigSign(lhs, n), sgn(q(x) * q(x) - q(y) * q(y))) << x << " " << y;
+        ASSERT_EQ(sh::glcBigSign(sh::glcBigNeg(lhs, n), n), -sgn(q(x) * q(x) - q(y) * q(y)));
+    }
+}
+
+LIBRARY_TEST(ExactOrientationsEqualTheRationalDeterminant) {
+    int zeros3 = 0, zeros2 = 0;
+    for (const Quad& x : predicateInputs(13, 40000)) {
+        const int e3 = exactOrient3d(x.a, x.b, x.c, x.d);
+        ASSERT_EQ(sh::glcOrientExact(x.a, x.b, x.c, x.d, -1), e3)
+            << x.a.x << " " << x.a.y << " " << x.a.z << " | " << x.d.x << " " << x.d.y << " " << x.d.z;
+        zeros3 += e3 == 0 ? 1 : 0;
+        for (int drop = 0; drop < 3; ++drop) {
+            const int e2 = exactOrient2d(x.a, x.b, x.d, drop);
+            ASSERT_EQ(sh::glcOrientExact(x.a, x.b, x.d, x.c, drop), e2) << "drop " << drop;
+            zeros2 += e2 == 0 ? 1 : 0;
+        }
+    }
+    // The inputs must exercise zero signs too, or the test says little about degenerate input.
+    EXPECT_GT(zeros3, 2000);
+    EXPECT_GT(zeros2, 2000);
+}
+
+LIBRARY_TEST(FiltersCertifyOnlyTheExactSign) {
+    int certified3 = 0, undecided3 = 0, certified2 = 0;
+    for (const Quad& x : predicateInputs(14, 40000)) {
+        const int f3 = sh::glcOrient3dFilter(x.a, x.b, x.c, x.d);
+        ASSERT_NE(f3, 0) << "a filter never certifies 0";
+        if (f3 != sh::GLC_UNDECIDED) {
+            ASSERT_EQ(f3, exactOrient3d(x.a, x.b, x.c, x.d));
+            ++certified3;
+        } else {
+            ++undecided3;
+        }
+        for (int drop = 0; drop < 3; ++drop) {
+            const int f2 = sh::glcOrient2dFilter(x.a, x.b, x.d, drop);
+            ASSERT_NE(f2, 0);
+            if (f2 == sh::GLC_UNDECIDED) continue;
+            ASSERT_EQ(f2, exactOrient2d(x.a, x.b, x.d, drop));
+            ++certified2;
+        }
+    }
+    // Both outcomes must be common, or the test says little about the bound.
+    EXPECT_GT(certified3, 5000);
+    EXPECT_GT(undecided3, 5000);
+    EXPECT_GT(certified2, 15000);
+}
+
+bool robust(const cpu::FloatTriPair& p) {
+    auto v = [&](int k) {
+        const auto i = static_cast<std::size_t>(3 * k);
+        return vec3(p[i], p[i + 1], p[i + 2]);
+    };
+    return sh::robustTrianglesIntersect(v(0), v(1), v(2), v(3), v(4), v(5));
+}
+
+LIBRARY_TEST(RobustTriTriEqualsTheOracleOnTheHardCases) {
+    for (const cpu::NamedTriPair& c : cpu::hardTriTriCases())
+        EXPECT_EQ(robust(c.pair), oracle(c.pair)) << c.name;
+}
+
+LIBRARY_TEST(RobustTriTriEqualsTheOracleOnEveryRandomFamily) {
+    constexpr std::size_t kPairs = 6007;
+    std::uint32_t seed = 101;
+    for (cpu::TriTriSet set : cpu::kAllTriTriSets) {
+        std::size_t wrong = 0, decidedByFilter = 0;
+        for (const cpu::FloatTriPair& p : cpu::randomTriTriPairs(set, kPairs, seed++)) {
+            const bool exact = oracle(p);
+            if (robust(p) != exact && ++wrong <= 3) ADD_FAILURE() << cpu::toString(set) << ": oracle says " << exact;
+            auto v = [&](int k) {
+                const auto i = static_cast<std::size_t>(3 * k);
+                return vec3(p[i], p[i + 1], p[i + 2]);
+            };
+            decidedByFilter += sh::glcTriTriFiltered(v(0), v(1), v(2), v(3), v(4), v(5)) != sh::GLC_UNDECIDED ? 1 : 0;
+        }
+        EXPECT_EQ(wrong, 0u) << cpu::toString(set);
+        std::printf("[ %-10s] %zu pairs, %zu decided by the filtered pass\n", cpu::toString(set), kPairs, decidedByFilter);
+    }
+}
+
+#ifdef GLCOLLIDE_RELAXED_FLOAT
+// Canaries: the relaxed build must really relax, or agreeing with the oracle there proves nothing.
+// volatile keeps the inputs unknown to the compiler; the operations themselves are free to change.
+volatile float g_one = 1.0f, g_tiny = 1e-8f, g_third = 1.0f / 3.0f, g_denormal = 1e-40f;
+
+TEST(RelaxedFloatBuild, ReassociatesSums) {
+    const float big = g_one, small = g_tiny;
+    // (big + small) - big is small's rounding error in IEEE order (0 here); reassociated, it is small.
+    EXPECT_EQ((big + small) - big, small);
+}
+
+TEST(RelaxedFloatBuild, FlushesDenormals) {
+    const float d = g_denormal;
+    EXPECT_EQ(d * g_one, 0.0f) << "crtfastmath sets FTZ/DAZ";
+}
+
+TEST(RelaxedFloatBuild, ContractsIntoFma) {
+#ifndef __FMA__
+    GTEST_SKIP() << "this CPU has no FMA instructions: contraction cannot happen in this build";
+#endif
+    // a*b - c*d with four equal values: 0 when each product is rounded; contracted into
+    // fma(a, b, -(c*d)) it is the rounding error of the product, which is not 0 for 1/3.
+    const float a = g_third, b = g_third, c = g_third, d = g_third;
+    EXPECT_NE(a * b - c * d, 0.0f);
+}
+#endif
+
+} // namespace
+} // namespace glcollide
