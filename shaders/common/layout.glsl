@@ -31,6 +31,8 @@
 #define GLC_BIND_QUERY_RESULTS 22     // uint[pairs]: tri-tri query output, 1 = the closed triangles intersect
 #define GLC_BIND_QUERY_STATS 23       // uint[1]: tri-tri query exact-fallback counter (robust precision)
 #define GLC_BIND_HEALTH 24             // GpuHealth: the first non-finite node NodeUpdate produced
+#define GLC_BIND_UNDECIDED 25          // uint[]: robust TriTri: items the filtered pass left to the exact pass
+                                       // (candidate indices; query: pair indices)
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -90,11 +92,15 @@ struct GpuCollisionCounters {
     uint boxPairCount;
     uint candidateCount;
     uint intersectionCount;
-    uint exactFallbackCount; // robust TriTri: predicates the float filter could not decide
+    uint exactFallbackCount; // robust TriTri: predicates the exact pass evaluated in integers
     uint boxPairCapacity;
     uint candidateCapacity;
     uint intersectionCapacity;
     uint contactCount;       // vertex-face and edge-edge contacts that produced a force
+    uint undecidedCount;     // robust TriTri: candidates left to the exact pass (capacity: candidateCapacity)
+    uint pad0;
+    uint pad1;
+    uint pad2;
 };
 
 // Written by NodeUpdate when a node's new position or velocity is not finite (EngineOptions::

@@ -1,7 +1,11 @@
 #version 430 core
 // TriTri — the narrow phase: triangle-triangle intersection tests (seeds/002, Alg. 3
-// "Triangle-Triangle Intersection Compute Shader"). The test itself is triTriIntersect of
-// common/tri_tri.glsl (fast, or robust with GLC_PRECISION_ROBUST). Variants (docs/broad-phase.md):
+// "Triangle-Triangle Intersection Compute Shader"). Fast: triTriIntersect of common/tri_tri.glsl.
+// Robust (GLC_PRECISION_ROBUST): the filtered test glcTriTriFiltered of common/tri_tri_robust.glsl;
+// a pair it cannot decide is appended (as its candidate index) to the undecided list, which the
+// exact pass tri_tri_exact.comp finishes. With robust precision only candidates are tested: closed
+// triangles that meet have overlapping face boxes (each box contains its triangle), so a valid pair
+// that is not a candidate does not intersect. Variants (docs/broad-phase.md):
 //   (default)            octree mode: one invocation per candidate pair of BBCollision
 //                        (indirect dispatch) -> intersection list.
 //   GLC_TRITRI_ALL_PAIRS 2D over every face pair f < g (host loops over 2D tiles of 16 x 16
@@ -20,18 +24,34 @@ layout(std430, binding = GLC_BIND_INTERSECTIONS) writeonly buffer IntersectionsB
 layout(std430, binding = GLC_BIND_FACES) readonly buffer FacesBuf { uint g_faceIndices[]; };
 layout(std430, binding = GLC_BIND_COLLISION_COUNTERS) coherent buffer CollisionCountersBuf { GpuCollisionCounters g_counters; };
 
-// Counts the exact fallbacks of the robust test (helper of common/tri_tri.glsl).
-#define GLC_COUNT_EXACT_FALLBACK() atomicAdd(g_counters.exactFallbackCount, 1u)
+#ifdef GLC_PRECISION_ROBUST
+#include "common/tri_tri_robust.glsl"
+layout(std430, binding = GLC_BIND_UNDECIDED) writeonly buffer UndecidedBuf { uint g_undecided[]; };
+#else
 #include "common/tri_tri.glsl"
+#endif
 
 uvec3 faceNodes(uint face) {
     return uvec3(g_faceIndices[3u * face], g_faceIndices[3u * face + 1u], g_faceIndices[3u * face + 2u]);
 }
 
-void appendIfIntersecting(uint f, uvec3 nf, uint g, uvec3 ng) {
-    if (triTriIntersect(g_positions[nf.x].xyz, g_positions[nf.y].xyz, g_positions[nf.z].xyz,
-                        g_positions[ng.x].xyz, g_positions[ng.y].xyz, g_positions[ng.z].xyz))
-        GLC_APPEND(g_counters.intersectionCount, g_counters.intersectionCapacity, g_intersections, uvec2(f, g))
+// Tests candidate `slot` (the face pair f, g): appends it to the intersections when it intersects;
+// robust appends the slot to the undecided list when the filters cannot tell (its capacity is the
+// candidate capacity, so it overflows only with the candidates, which reruns everything).
+void testCandidate(uint slot, uint f, uvec3 nf, uint g, uvec3 ng) {
+    vec3 a0 = g_positions[nf.x].xyz, a1 = g_positions[nf.y].xyz, a2 = g_positions[nf.z].xyz;
+    vec3 b0 = g_positions[ng.x].xyz, b1 = g_positions[ng.y].xyz, b2 = g_positions[ng.z].xyz;
+#ifdef GLC_PRECISION_ROBUST
+    int answer = glcTriTriFiltered(a0, a1, a2, b0, b1, b2);
+    if (answer == GLC_UNDECIDED) {
+        GLC_APPEND(g_counters.undecidedCount, g_counters.candidateCapacity, g_undecided, slot)
+        return;
+    }
+    bool hit = answer == 1;
+#else
+    bool hit = triTriIntersect(a0, a1, a2, b0, b1, b2);
+#endif
+    if (hit) GLC_APPEND(g_counters.intersectionCount, g_counters.intersectionCapacity, g_intersections, uvec2(f, g))
 }
 
 #ifdef GLC_TRITRI_ALL_PAIRS
@@ -64,9 +84,17 @@ void main() {
     vec3 loF, hiF, loG, hiG;
     faceBox(g_positions[nf.x].xyz, g_positions[nf.y].xyz, g_positions[nf.z].xyz, u_halfThickness, loF, hiF);
     faceBox(g_positions[ng.x].xyz, g_positions[ng.y].xyz, g_positions[ng.z].xyz, u_halfThickness, loG, hiG);
-    if (boxesOverlap(loF, hiF, loG, hiG))
-        GLC_APPEND(g_counters.candidateCount, g_counters.candidateCapacity, g_facePairs, uvec2(f, g))
-    appendIfIntersecting(f, nf, g, ng);
+    bool candidate = boxesOverlap(loF, hiF, loG, hiG);
+    uint slot = 0u;
+    if (candidate) {
+        slot = atomicAdd(g_counters.candidateCount, 1u);
+        if (slot < g_counters.candidateCapacity) g_facePairs[slot] = uvec2(f, g);
+    }
+#ifdef GLC_PRECISION_ROBUST
+    if (candidate && slot < g_counters.candidateCapacity) testCandidate(slot, f, nf, g, ng);
+#else
+    testCandidate(slot, f, nf, g, ng); // the paper's reference: fast tests every valid pair
+#endif
 }
 
 #else // octree mode: one invocation per candidate
@@ -80,7 +108,7 @@ void main() {
     uint i = globalIndex();
     if (i >= min(g_counters.candidateCount, g_counters.candidateCapacity)) return;
     uvec2 pair = g_facePairs[i];
-    appendIfIntersecting(pair.x, faceNodes(pair.x), pair.y, faceNodes(pair.y));
+    testCandidate(i, pair.x, faceNodes(pair.x), pair.y, faceNodes(pair.y));
 }
 
 #endif

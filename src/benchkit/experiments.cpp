@@ -251,19 +251,13 @@ RunResult runFamily(const Experiment& x, const std::string& name, const Family& 
         fn += !answers.intersect[i] && f.exact[i] ? 1 : 0;
     }
     const auto n = static_cast<std::uint32_t>(f.pairs.size());
-    const gl::Buffer triangles("bench_triangles", f.pairs.size() * sizeof(cpu::FloatTriPair), f.pairs.data());
-    const gl::Buffer results("bench_results", f.pairs.size() * sizeof(std::uint32_t));
-    const std::uint32_t zero = 0;
-    const gl::Buffer stats("bench_stats", sizeof zero, &zero);
-    triangles.bindStorage(GLC_BIND_QUERY_TRIANGLES);
-    results.bindStorage(GLC_BIND_QUERY_RESULTS);
-    stats.bindStorage(GLC_BIND_QUERY_STATS);
+    passes::TriTriQueryBatch batch = pass.upload(f.pairs);
     gl::GpuTimer timer(1);
     std::vector<double> ms;
     for (int i = 0; i < x.warmupFrames + x.frames; ++i) {
         timer.beginFrame();
         timer.begin(0);
-        pass.dispatch(n);
+        pass.dispatch(batch);
         timer.end(0);
         const double t = timer.resolveMilliseconds()[0];
         if (i >= x.warmupFrames) ms.push_back(t);
@@ -275,6 +269,7 @@ RunResult runFamily(const Experiment& x, const std::string& name, const Family& 
     r.set("false_positives", fp);
     r.set("false_negatives", fn);
     r.set("exact_fallbacks", double(answers.exactFallbacks));
+    r.set("undecided_pairs", double(answers.undecidedPairs));
     r.set("gpu_ns_per_pair", r.gpuMs.median * 1e6 / n);
     r.time = r.gpuMs.median;
     r.error = fp + fn;

@@ -30,12 +30,15 @@ constexpr std::size_t kPairBytes = 2 * sizeof(std::uint32_t); // uvec2
 
 // Counter words of GpuCollisionCounters; the three list capacities follow from kBoxPairCapacity.
 constexpr std::size_t kBoxPairCount = 0, kCandidateCount = 1, kIntersectionCount = 2,
-                      kExactFallbackCount = 3, kBoxPairCapacity = 4;
+                      kExactFallbackCount = 3, kBoxPairCapacity = 4, kUndecidedCount = 8;
+static_assert(offsetof(gpu::GpuCollisionCounters, undecidedCount) == kUndecidedCount * sizeof(std::uint32_t));
 
 template <typename T>
 gl::Buffer makeBuffer(const char* label, const std::vector<T>& data) {
     return gl::Buffer(label, data.size() * sizeof(T), data.empty() ? nullptr : data.data());
 }
+
+bool robust(const CollisionConfig& c) { return c.settings.precision == TriTriPrecision::Robust; }
 
 std::vector<std::string> triTriDefines(const CollisionConfig& c) {
     std::vector<std::string> d;
@@ -124,11 +127,16 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const cpu:
     if (mode == BroadPhase::Octree) {
         m_boxPairs = gl::ComputeProgram("bb_collision");
         m_expand = gl::ComputeProgram("bb_collision", {"GLC_BB_EXPAND"});
-        m_args = gl::ComputeProgram("collision_dispatch_args");
         m_boxPairCapacity = initial(config.boxPairCapacity);
         m_boxPairList = gl::Buffer("boxPairs", std::size_t{m_boxPairCapacity} * kPairBytes);
-        m_dispatchArgs = gl::Buffer("dispatchArgs", 2 * 3 * sizeof(std::uint32_t));
     }
+    // Indirect dispatch arguments: slot 0 the expansion, 1 TriTri over the candidates (octree),
+    // 2 TriTriExact over the undecided candidates (robust).
+    if (mode == BroadPhase::Octree || robust(config)) {
+        m_args = gl::ComputeProgram("collision_dispatch_args");
+        m_dispatchArgs = gl::Buffer("dispatchArgs", 3 * 3 * sizeof(std::uint32_t));
+    }
+    if (robust(config)) m_triTriExact = gl::ComputeProgram("tri_tri_exact");
     for (const gl::ComputeProgram* p : {&m_boxPairs, &m_boxMask, &m_expand}) {
         if (p->name() == 0) continue; // not used by this mode
         p->set("u_pairRules", m_pairRules);
@@ -145,6 +153,7 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const cpu:
     m_candidateCapacity = initial(config.candidateCapacity);
     m_intersectionCapacity = initial(config.intersectionCapacity);
     m_candidates = gl::Buffer("candidates", std::size_t{m_candidateCapacity} * kPairBytes);
+    if (robust(config)) m_undecided = gl::Buffer("undecided", std::size_t{m_candidateCapacity} * sizeof(std::uint32_t));
     m_intersections = gl::Buffer("intersections", std::size_t{m_intersectionCapacity} * kPairBytes);
     m_counters = gl::Buffer("collisionCounters", sizeof(gpu::GpuCollisionCounters));
     writeCapacities();
@@ -179,6 +188,7 @@ void CollisionDetection::bindInputs(const DeviceBuffers& b) const {
     if (m_boxMaskBuffer) m_boxMaskBuffer.bindStorage(GLC_BIND_BOX_MASK);
     if (m_boxPairList) m_boxPairList.bindStorage(GLC_BIND_BOX_PAIRS);
     if (m_dispatchArgs) m_dispatchArgs.bindStorage(GLC_BIND_DISPATCH_ARGS);
+    if (m_undecided) m_undecided.bindStorage(GLC_BIND_UNDECIDED);
 }
 
 void CollisionDetection::bindOutputs() const {
@@ -204,6 +214,7 @@ void CollisionDetection::resetCounts(bool boxPairs, bool candidates, bool inters
     const std::uint32_t zeros[4] = {0, 0, 0, 0};
     const std::size_t first = boxPairs ? kBoxPairCount : candidates ? kCandidateCount : kIntersectionCount;
     m_counters.upload(first * sizeof(std::uint32_t), (kExactFallbackCount + 1 - first) * sizeof(std::uint32_t), zeros);
+    m_counters.upload(kUndecidedCount * sizeof(std::uint32_t), sizeof(std::uint32_t), zeros); // TriTri's, like the intersections
 }
 
 void CollisionDetection::readCounters() {
@@ -212,6 +223,7 @@ void CollisionDetection::readCounters() {
     m_counts.candidates = m_rawCounters[kCandidateCount];
     m_counts.intersections = m_rawCounters[kIntersectionCount];
     m_counts.exactFallbacks = m_rawCounters[kExactFallbackCount];
+    m_counts.undecided = m_rawCounters[kUndecidedCount];
 }
 
 void CollisionDetection::grow(gl::Buffer& list, std::uint32_t& capacity, std::uint32_t count, const char* label,
@@ -229,6 +241,10 @@ void CollisionDetection::grow(gl::Buffer& list, std::uint32_t& capacity, std::ui
     capacity = count <= (1u << 31) ? std::bit_ceil(count) : count;
     if (capacity > maxEntries) capacity = count;
     list = gl::Buffer(label, std::size_t{capacity} * kPairBytes);
+    // The undecided list holds candidate indices: it has the candidates' capacity, so it never
+    // overflows on its own.
+    if (&list == &m_candidates && m_undecided)
+        m_undecided = gl::Buffer("undecided", std::size_t{capacity} * sizeof(std::uint32_t));
     writeCapacities();
 }
 
@@ -273,11 +289,29 @@ void CollisionDetection::runTriTriCandidates() const {
     glDispatchComputeIndirect(static_cast<GLintptr>(3 * sizeof(std::uint32_t)));
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    runTriTriExact();
 }
 
 void CollisionDetection::runTriTriAllPairs(std::uint32_t faceCount) const {
     m_triTri.use();
     dispatchUpperTriangle(m_triTri, faceCount, kFacePairTile);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    runTriTriExact();
+}
+
+void CollisionDetection::runTriTriExact() const {
+    if (m_triTriExact.name() == 0) return; // fast
+    m_args.use();
+    m_args.set("u_source", 2u);
+    m_args.set("u_invocationsPerGroup", static_cast<std::uint32_t>(GLC_WORKGROUP_SIZE));
+    m_args.set("u_slot", 2u);
+    m_args.set("u_z", 1u);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
+    m_triTriExact.use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_dispatchArgs.name());
+    glDispatchComputeIndirect(static_cast<GLintptr>(2 * 3 * sizeof(std::uint32_t)));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
@@ -376,7 +410,7 @@ std::vector<std::array<std::uint32_t, 2>> CollisionDetection::readIntersections(
 std::vector<std::string> CollisionDetection::allocatedLabels() const {
     std::vector<std::string> labels;
     for (const gl::Buffer* b : {&m_faceInfo, &m_objects, &m_boxes, &m_boxFaceOffsets, &m_boxFaceList,
-                                &m_boxMaskBuffer, &m_boxPairList, &m_candidates, &m_intersections,
+                                &m_boxMaskBuffer, &m_boxPairList, &m_candidates, &m_undecided, &m_intersections,
                                 &m_counters, &m_dispatchArgs})
         if (*b) labels.push_back(b->label());
     return labels;
@@ -385,7 +419,7 @@ std::vector<std::string> CollisionDetection::allocatedLabels() const {
 std::size_t CollisionDetection::allocatedBytes() const {
     std::size_t bytes = 0;
     for (const gl::Buffer* b : {&m_faceInfo, &m_objects, &m_boxes, &m_boxFaceOffsets, &m_boxFaceList,
-                                &m_boxMaskBuffer, &m_boxPairList, &m_candidates, &m_intersections,
+                                &m_boxMaskBuffer, &m_boxPairList, &m_candidates, &m_undecided, &m_intersections,
                                 &m_counters, &m_dispatchArgs})
         if (*b) bytes += b->bytes();
     return bytes;

@@ -42,7 +42,8 @@ struct CollisionCounts {
     std::uint32_t boxPairs = 0;       ///< overlapping leaf-box pairs (octree mode; 0 otherwise)
     std::uint32_t candidates = 0;     ///< valid face pairs whose face boxes overlap
     std::uint32_t intersections = 0;  ///< candidates (or valid pairs) whose triangles intersect
-    std::uint32_t exactFallbacks = 0; ///< robust TriTri: predicates decided in double
+    std::uint32_t exactFallbacks = 0; ///< robust TriTri: predicates the exact pass evaluated in integers
+    std::uint32_t undecided = 0;      ///< robust TriTri: candidates the filtered pass left to the exact pass
     std::uint32_t reruns = 0;         ///< stages rerun after a list overflowed and was grown
     /// Growths per list in this call (a rerun may grow two lists at once in masked/all-pairs mode).
     std::uint32_t boxPairGrowths = 0, candidateGrowths = 0, intersectionGrowths = 0;
@@ -105,6 +106,7 @@ private:
     void runExpand() const;
     void runTriTriCandidates() const;
     void runTriTriAllPairs(std::uint32_t faceCount) const;
+    void runTriTriExact() const;
     template <typename F>
     void timed(gl::GpuTimer* timer, std::size_t section, const char* name, F&& work) const;
 
@@ -114,14 +116,14 @@ private:
     std::uint32_t m_faceCount = 0;
     cpu::OctreeLayout m_layout;
 
-    gl::ComputeProgram m_bbUpdate, m_boxPairs, m_boxMask, m_expand, m_args, m_triTri;
+    gl::ComputeProgram m_bbUpdate, m_boxPairs, m_boxMask, m_expand, m_args, m_triTri, m_triTriExact;
 
     gl::Buffer m_faceInfo, m_objects, m_boxes, m_boxFaceOffsets, m_boxFaceList, m_boxMaskBuffer;
-    gl::Buffer m_boxPairList, m_candidates, m_intersections, m_counters, m_dispatchArgs;
+    gl::Buffer m_boxPairList, m_candidates, m_undecided, m_intersections, m_counters, m_dispatchArgs;
     std::uint32_t m_boxPairCapacity = 0, m_candidateCapacity = 0, m_intersectionCapacity = 0;
     std::uint64_t m_listByteLimit = 0;
     std::uint32_t m_expandSlices = 1; ///< z groups per box pair in the expansion (bb_collision.comp)
-    std::array<std::uint32_t, 8> m_rawCounters{};
+    std::array<std::uint32_t, 12> m_rawCounters{}; // GpuCollisionCounters
     CollisionCounts m_counts;
 };
 

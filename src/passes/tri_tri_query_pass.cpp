@@ -13,21 +13,16 @@ namespace glcollide::passes {
 
 const char* toString(TriTriPrecision precision) { return precision == TriTriPrecision::Robust ? "robust" : "fast"; }
 
-TriTriQueryPass::TriTriQueryPass(TriTriPrecision precision)
-    : m_precision(precision),
-      m_program("tri_tri_query", precision == TriTriPrecision::Robust ? std::vector<std::string>{"GLC_PRECISION_ROBUST"}
-                                                                      : std::vector<std::string>{}) {}
-
-void TriTriQueryPass::dispatch(std::uint32_t pairCount) const {
-    m_program.use();
-    m_program.set("u_pairCount", pairCount);
-    m_program.dispatch1D(pairCount, GLC_WORKGROUP_SIZE);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+TriTriQueryPass::TriTriQueryPass(TriTriPrecision precision) : m_precision(precision) {
+    if (precision == TriTriPrecision::Robust) {
+        m_program = gl::ComputeProgram("tri_tri_query", {"GLC_PRECISION_ROBUST"});
+        m_exact = gl::ComputeProgram("tri_tri_query_exact");
+    } else {
+        m_program = gl::ComputeProgram("tri_tri_query");
+    }
 }
 
-TriTriQueryResult TriTriQueryPass::run(const std::vector<TriTriPair>& pairs) const {
-    TriTriQueryResult result;
-    if (pairs.empty()) return result;
+TriTriQueryBatch TriTriQueryPass::upload(const std::vector<TriTriPair>& pairs) const {
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     const std::size_t inputBytes = pairs.size() * sizeof(TriTriPair);
@@ -36,23 +31,56 @@ TriTriQueryResult TriTriQueryPass::run(const std::vector<TriTriPair>& pairs) con
         throw Error(std::string(kName) + ": " + std::to_string(pairs.size()) + " pairs (" +
                     std::to_string(inputBytes) + " bytes) exceed the device's shader storage block size of " +
                     std::to_string(maxBlock) + " bytes; split the batch");
-    const auto count = static_cast<std::uint32_t>(pairs.size());
-    const gl::Buffer triangles("query_triangles", inputBytes, pairs.data());
-    const gl::Buffer results("query_results", pairs.size() * sizeof(std::uint32_t));
-    const std::uint32_t zero = 0;
-    const gl::Buffer stats("query_stats", sizeof(std::uint32_t), &zero);
-    triangles.bindStorage(GLC_BIND_QUERY_TRIANGLES);
-    results.bindStorage(GLC_BIND_QUERY_RESULTS);
-    stats.bindStorage(GLC_BIND_QUERY_STATS);
-    dispatch(count);
-    std::vector<std::uint32_t> answers(pairs.size());
-    results.download(0, answers.size() * sizeof(std::uint32_t), answers.data());
-    std::uint32_t fallbacks = 0;
-    stats.download(0, sizeof(fallbacks), &fallbacks);
+    TriTriQueryBatch b;
+    b.pairCount = static_cast<std::uint32_t>(pairs.size());
+    b.triangles = gl::Buffer("query_triangles", inputBytes, pairs.data());
+    b.results = gl::Buffer("query_results", pairs.size() * sizeof(std::uint32_t));
+    b.stats = gl::Buffer("query_stats", 2 * sizeof(std::uint32_t));
+    if (m_precision == TriTriPrecision::Robust)
+        b.undecided = gl::Buffer("query_undecided", pairs.size() * sizeof(std::uint32_t)); // at most every pair
+    return b;
+}
+
+void TriTriQueryPass::dispatch(TriTriQueryBatch& b) const {
+    if (b.pairCount == 0) return;
+    const std::uint32_t zeros[2] = {0, 0};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after an earlier dispatch's writes to the counters
+    b.stats.upload(0, sizeof zeros, zeros);
+    b.triangles.bindStorage(GLC_BIND_QUERY_TRIANGLES);
+    b.results.bindStorage(GLC_BIND_QUERY_RESULTS);
+    b.stats.bindStorage(GLC_BIND_QUERY_STATS);
+    if (b.undecided) b.undecided.bindStorage(GLC_BIND_UNDECIDED);
+    m_program.use();
+    m_program.set("u_pairCount", b.pairCount);
+    m_program.dispatch1D(b.pairCount, GLC_WORKGROUP_SIZE);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    if (m_exact.name() != 0) {
+        m_exact.use();
+        m_exact.dispatch1D(b.pairCount, GLC_WORKGROUP_SIZE);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+TriTriQueryResult TriTriQueryPass::read(const TriTriQueryBatch& b) const {
+    TriTriQueryResult result;
+    std::vector<std::uint32_t> answers(b.pairCount);
+    if (b.pairCount == 0) return result;
+    b.results.download(0, answers.size() * sizeof(std::uint32_t), answers.data());
+    std::uint32_t stats[2] = {0, 0};
+    b.stats.download(0, sizeof stats, stats);
     result.intersect.reserve(answers.size());
     for (std::uint32_t a : answers) result.intersect.push_back(a != 0 ? 1 : 0);
-    result.exactFallbacks = fallbacks;
+    result.exactFallbacks = stats[0];
+    result.undecidedPairs = stats[1];
     return result;
+}
+
+TriTriQueryResult TriTriQueryPass::run(const std::vector<TriTriPair>& pairs) const {
+    if (pairs.empty()) return {};
+    TriTriQueryBatch batch = upload(pairs);
+    dispatch(batch);
+    return read(batch);
 }
 
 } // namespace glcollide::passes

@@ -1,7 +1,9 @@
 #pragma once
-// TriTriQuery: a batch of independent triangle-triangle queries answered on the GPU in one
-// dispatch with the narrow-phase test of shaders/common/tri_tri.glsl. Used by `glcollide query
-// tritri`, the narrow-phase GL tests and the tri-tri benchmark.
+// TriTriQuery: a batch of independent triangle-triangle queries answered on the GPU with the
+// narrow-phase test: fast (shaders/common/tri_tri.glsl) in one dispatch, or robust in two — the
+// filtered pass, then the exact pass over the pairs it left undecided
+// (shaders/common/tri_tri_robust.glsl). Used by `glcollide query tritri`, the narrow-phase GL
+// tests, the tri-tri benchmark and the robust self-check.
 
 #include "gl/handles.hpp"
 #include "gl/program.hpp"
@@ -28,7 +30,14 @@ using TriTriPair = std::array<float, 18>;
 /// Answers of one batch.
 struct TriTriQueryResult {
     std::vector<std::uint8_t> intersect; ///< 1 when the closed triangles share a point, else 0
-    std::uint64_t exactFallbacks = 0;    ///< predicates robust decided exactly (0 for fast)
+    std::uint64_t exactFallbacks = 0;    ///< predicates the exact pass evaluated in integers (0 for fast)
+    std::uint64_t undecidedPairs = 0;    ///< pairs the filtered pass left to the exact pass (0 for fast)
+};
+
+/// A batch on the device: the pairs, the answers, the exact-pass counters and the undecided list.
+struct TriTriQueryBatch {
+    std::uint32_t pairCount = 0;
+    gl::Buffer triangles, results, stats, undecided;
 };
 
 class TriTriQueryPass {
@@ -38,16 +47,20 @@ public:
 
     [[nodiscard]] TriTriPrecision precision() const { return m_precision; }
 
-    /// Uploads `pairs`, dispatches one invocation per pair, waits and reads the answers back.
-    /// Throws Error when the batch exceeds the device's shader storage block size.
+    /// Uploads `pairs`, answers them, waits and reads the answers back. Throws Error when the
+    /// batch exceeds the device's shader storage block size.
     [[nodiscard]] TriTriQueryResult run(const std::vector<TriTriPair>& pairs) const;
 
-    /// Dispatch only, on buffers already bound at GLC_BIND_QUERY_* (benchmarks: no transfers).
-    void dispatch(std::uint32_t pairCount) const;
+    /// The three steps of run(), for benchmarks that time dispatch() alone, any number of times.
+    [[nodiscard]] TriTriQueryBatch upload(const std::vector<TriTriPair>& pairs) const;
+    /// Resets the batch's counters, binds it and runs the pass(es); ends with a storage barrier.
+    void dispatch(TriTriQueryBatch& batch) const;
+    [[nodiscard]] TriTriQueryResult read(const TriTriQueryBatch& batch) const;
 
 private:
     TriTriPrecision m_precision;
     gl::ComputeProgram m_program;
+    gl::ComputeProgram m_exact; ///< robust only: the exact pass over the undecided pairs
 };
 
 } // namespace glcollide::passes

@@ -181,6 +181,7 @@ TEST(LayoutGl, CollisionStructsMatchCpp) {
         {"g_counters.candidateCapacity", offsetof(gpu::GpuCollisionCounters, candidateCapacity)},
         {"g_counters.intersectionCapacity", offsetof(gpu::GpuCollisionCounters, intersectionCapacity)},
         {"g_counters.contactCount", offsetof(gpu::GpuCollisionCounters, contactCount)},
+        {"g_counters.undecidedCount", offsetof(gpu::GpuCollisionCounters, undecidedCount)},
     };
     for (const auto& [name, offset] : members)
         EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset)) << name;
