@@ -17,7 +17,8 @@ using ::testing::HasSubstr;
 namespace {
 
 const std::string kData = GLCOLLIDE_TEST_DATA_DIR "/mesh/";
-const std::string kIpc = GLCOLLIDE_SOURCE_DIR "/../shared/external/ipc-sim-meshes/tetMeshes/";
+// Copies of the IPC meshes with their licence and provenance: tests/data/external/README.md.
+const std::string kIpc = GLCOLLIDE_TEST_DATA_DIR "/external/ipc-sim-meshes/tetMeshes/";
 
 double tetVolumeSum(const TetMesh& m) {
     double v = 0.0;
@@ -88,7 +89,7 @@ struct IpcMesh {
 
 class GmshIpcMeshes : public ::testing::TestWithParam<IpcMesh> {};
 
-// Counts from external/ipc-sim-meshes/README.md.
+// Counts from the IPC mesh descriptions (see tests/data/external/README.md).
 INSTANTIATE_TEST_SUITE_P(GmshIpc, GmshIpcMeshes,
                          ::testing::Values(IpcMesh{"tet.msh", 4, 1, 4}, IpcMesh{"tet-pyramid.msh", 4, 1, 4},
                                            IpcMesh{"tet-perp-edges.msh", 4, 1, 4}, IpcMesh{"cube.msh", 8, 6, 12},

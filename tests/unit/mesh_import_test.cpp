@@ -21,7 +21,8 @@ using ::testing::HasSubstr;
 namespace {
 
 const std::string kData = GLCOLLIDE_TEST_DATA_DIR "/mesh/";
-const std::string kExternal = GLCOLLIDE_SOURCE_DIR "/../shared/external/";
+// Third-party meshes with their licences and provenance: tests/data/external/README.md.
+const std::string kExternal = GLCOLLIDE_TEST_DATA_DIR "/external/";
 
 std::string errorOf(const std::string& path) {
     try {
@@ -42,7 +43,7 @@ TEST(MeshImport, WeldsSeamsAndDuplicatePositions) {
     EXPECT_EQ(surfaceEdgeSprings(m.faces, SpringKind::Edge).size(), 5u);
 }
 
-// Vertex/face counts from the READMEs of external/dedo-cloth-with-holes and ipc-sim-meshes.
+// Vertex/face counts from the upstream descriptions of the DEDO cloths and the IPC sphere.
 TEST(MeshImport, DedoClothsKeepOneVertexPerPosition) {
     const SurfaceMesh button = importSurfaceMesh(kExternal + "dedo-cloth-with-holes/button_cloth.obj");
     EXPECT_EQ(button.positions.size(), 392u);

@@ -37,10 +37,8 @@ std::string g_contextError; // why g_context could not be created
 class GlTestEnvironment final : public ::testing::Environment {
 public:
     void SetUp() override {
-        HeadlessContextOptions options;
-        options.debug = true; // device: GLCOLLIDE_EGL_DEVICE or auto, resolved by HeadlessContext
         try {
-            g_context = std::make_unique<HeadlessContext>(options);
+            g_context = std::make_unique<HeadlessContext>(glTestContextOptions());
         } catch (const Error& e) {
             // CI runs these tests on llvmpipe: a missing context must be red, not skipped. A failure
             // here would make gtest print every test as SKIPPED (and ctest's skip regex would
@@ -99,6 +97,12 @@ class GlErrorListener final : public ::testing::EmptyTestEventListener {
 };
 
 } // namespace
+
+HeadlessContextOptions glTestContextOptions() {
+    HeadlessContextOptions options;
+    options.debug = true; // device left empty: GLCOLLIDE_EGL_DEVICE or auto, resolved by HeadlessContext
+    return options;
+}
 
 HeadlessContext& glTestContext() {
     if (!g_context) throw std::logic_error("glTestContext(): the GL test environment has no context");

@@ -8,7 +8,12 @@
 
 namespace glcollide::test {
 
-/// The binary's HeadlessContext (debug context; device from GLCOLLIDE_EGL_DEVICE, else auto).
+/// The options the binary's context is created with: a debug context on the device that
+/// GLCOLLIDE_EGL_DEVICE names, else "auto". Tests of context handling create their extra contexts
+/// with these, so they run on whatever device the environment provides.
+HeadlessContextOptions glTestContextOptions();
+
+/// The binary's HeadlessContext, created with glTestContextOptions().
 /// Tests that make another context current must call glTestContext().makeCurrent() afterwards.
 HeadlessContext& glTestContext();
 
