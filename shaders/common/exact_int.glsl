@@ -19,11 +19,14 @@
 // truncated multiplication is exact. docs/narrow-phase.md gives the sizes.
 //
 // API (for orientation predicates here and the coplanarity cubic of continuous collision
-// detection later):
+// detection later). Big integers live in per-invocation registers (GLC_BIG_REGISTERS of them,
+// GLC_BIG_LIMBS limbs each), named by index: no array is ever copied, and every operation touches
+// only the n limbs the frame needs, so typical inputs cost a few limbs however large the capacity.
 //   GlcFrame f = glcFrameEmpty(); f = glcFrameInclude(f, x); ...   // every input of the expression
 //   int n = glcFrameLimbs(f, degree, growthBits);                   // limbs for its values
-//   GlcBig a = glcBigFromFloat(x, f, n);                            // exact: x / 2^f.low
-//   glcBigAdd / glcBigSub / glcBigMul / glcBigNeg (all modulo 2^(32n)), glcBigSign
+//   glcBigSetFloat(r, x, f, n);                                     // register r = x / 2^f.low, exact
+//   glcBigSetUint(r, v, n); glcBigAdd(r, a, b, n); glcBigSub(r, a, b, n); glcBigNeg(r, a, n);
+//   glcBigMul(r, a, b, n) (r distinct from a and b); glcBigSign(r, n)   -- all modulo 2^(32n)
 // growthBits bounds how much larger than the product of `degree` inputs (each below 2^(high-low))
 // any intermediate value can be: e.g. orient3d multiplies three differences (1 bit each) and sums
 // at most 6 products (3 bits), so growthBits = 3 + 3.
@@ -35,9 +38,12 @@
 // and sign (glcFrameLimbs never asks for more: it clamps, and the bound is shown in the docs).
 #define GLC_BIG_LIMBS 28
 
-struct GlcBig {
-    uint limb[GLC_BIG_LIMBS];
-};
+#ifndef GLC_PRIVATE
+#define GLC_PRIVATE // GLSL globals are per invocation; C++ makes them thread_local
+#endif
+
+#define GLC_BIG_REGISTERS 16
+GLC_PRIVATE uint glcBig[GLC_BIG_REGISTERS][GLC_BIG_LIMBS];
 
 struct GlcFrame {
     int low;  // lowest set bit over the inputs, as an exponent of 2 (meaningless while empty)
@@ -81,94 +87,83 @@ int glcFrameLimbs(GlcFrame f, int degree, int growthBits) {
     return min((bits + 31) / 32, GLC_BIG_LIMBS);
 }
 
-GlcBig glcBigZero() {
-    GlcBig r;
-    for (int i = 0; i < GLC_BIG_LIMBS; ++i) r.limb[i] = 0u;
-    return r;
+// Register r = the small non-negative integer v (a constant factor of a polynomial).
+void glcBigSetUint(int r, uint v, int n) {
+    glcBig[r][0] = v;
+    for (int i = 1; i < n; ++i) glcBig[r][i] = 0u;
 }
 
-// The small non-negative integer v (a constant factor of a polynomial).
-GlcBig glcBigFromUint(uint v) {
-    GlcBig r = glcBigZero();
-    r.limb[0] = v;
-    return r;
-}
-
-// -a modulo 2^(32n): invert and add one.
-GlcBig glcBigNeg(GlcBig a, int n) {
-    GlcBig r = glcBigZero();
+// Register r = -a modulo 2^(32n): invert and add one (r may be a).
+void glcBigNeg(int r, int a, int n) {
     uint carry = 1u;
     for (int i = 0; i < n; ++i) {
         uint c;
-        r.limb[i] = uaddCarry(~a.limb[i], carry, c);
+        glcBig[r][i] = uaddCarry(~glcBig[a][i], carry, c);
         carry = c;
     }
-    return r;
 }
 
-// x / 2^f.low as an exact integer (x must have been included in f).
-GlcBig glcBigFromFloat(float x, GlcFrame f, int n) {
-    GlcBig r = glcBigZero();
+// Register r = x / 2^f.low as an exact integer (x must have been included in f).
+void glcBigSetFloat(int r, float x, GlcFrame f, int n) {
+    for (int i = 0; i < n; ++i) glcBig[r][i] = 0u;
     uint m = glcMantissa(x);
-    if (m == 0u) return r;
+    if (m == 0u) return;
     int lsb = findLSB(m);
     m = m >> uint(lsb);
     int shift = glcExponent(x) + lsb - f.low; // >= 0 since f.low <= this input's lowest bit
     int q = shift >> 5;
     uint s = uint(shift & 31);
-    if (q < n) r.limb[q] = m << s;
-    if (s != 0u && q + 1 < n) r.limb[q + 1] = m >> (32u - s);
-    return (floatBitsToUint(x) >> 31) != 0u ? glcBigNeg(r, n) : r;
+    if (q < n) glcBig[r][q] = m << s;
+    if (s != 0u && q + 1 < n) glcBig[r][q + 1] = m >> (32u - s);
+    if ((floatBitsToUint(x) >> 31) != 0u) glcBigNeg(r, r, n);
 }
 
-GlcBig glcBigAdd(GlcBig a, GlcBig b, int n) {
-    GlcBig r = glcBigZero();
+// Register r = a + b (r may be a or b: limb i is read before it is written).
+void glcBigAdd(int r, int a, int b, int n) {
     uint carry = 0u;
     for (int i = 0; i < n; ++i) {
         uint c1, c2;
-        uint s = uaddCarry(a.limb[i], b.limb[i], c1);
-        r.limb[i] = uaddCarry(s, carry, c2);
+        uint s = uaddCarry(glcBig[a][i], glcBig[b][i], c1);
+        glcBig[r][i] = uaddCarry(s, carry, c2);
         carry = c1 + c2;
     }
-    return r;
 }
 
-GlcBig glcBigSub(GlcBig a, GlcBig b, int n) {
-    GlcBig r = glcBigZero();
+// Register r = a - b (r may be a or b).
+void glcBigSub(int r, int a, int b, int n) {
     uint borrow = 0u;
     for (int i = 0; i < n; ++i) {
         uint b1, b2;
-        uint d = usubBorrow(a.limb[i], b.limb[i], b1);
-        r.limb[i] = usubBorrow(d, borrow, b2);
+        uint d = usubBorrow(glcBig[a][i], glcBig[b][i], b1);
+        glcBig[r][i] = usubBorrow(d, borrow, b2);
         borrow = b1 + b2;
     }
-    return r;
 }
 
-// a * b modulo 2^(32n): schoolbook, keeping only the limbs below n. Two's complement operands
-// multiply correctly modulo 2^(32n), so no sign handling is needed while the product fits.
-GlcBig glcBigMul(GlcBig a, GlcBig b, int n) {
-    GlcBig r = glcBigZero();
+// Register r = a * b modulo 2^(32n), r distinct from a and b: schoolbook, keeping only the limbs
+// below n. Two's complement operands multiply correctly modulo 2^(32n), so no sign handling is
+// needed while the product fits.
+void glcBigMul(int r, int a, int b, int n) {
+    for (int i = 0; i < n; ++i) glcBig[r][i] = 0u;
     for (int i = 0; i < n; ++i) {
-        uint ai = a.limb[i];
+        uint ai = glcBig[a][i];
         if (ai == 0u) continue;
         uint carry = 0u;
         for (int j = 0; i + j < n; ++j) {
             uint hi, lo, c1, c2;
-            umulExtended(ai, b.limb[j], hi, lo);
-            uint t = uaddCarry(lo, r.limb[i + j], c1);
-            r.limb[i + j] = uaddCarry(t, carry, c2);
+            umulExtended(ai, glcBig[b][j], hi, lo);
+            uint t = uaddCarry(lo, glcBig[r][i + j], c1);
+            glcBig[r][i + j] = uaddCarry(t, carry, c2);
             carry = hi + c1 + c2; // hi <= 2^32 - 2: no overflow
         }
     }
-    return r;
 }
 
 // -1, 0 or 1.
-int glcBigSign(GlcBig a, int n) {
-    if ((a.limb[n - 1] >> 31) != 0u) return -1;
+int glcBigSign(int a, int n) {
+    if ((glcBig[a][n - 1] >> 31) != 0u) return -1;
     uint nonzero = 0u;
-    for (int i = 0; i < n; ++i) nonzero |= a.limb[i];
+    for (int i = 0; i < n; ++i) nonzero |= glcBig[a][i];
     return nonzero != 0u ? 1 : 0;
 }
 

@@ -93,25 +93,31 @@ int glcOrientExact(vec3 a, vec3 b, vec3 c, vec3 d, int drop) {
         if (!planar) f = glcFrameInclude(f, d[k]);
     }
     int n = planar ? glcFrameLimbs(f, 2, 3) : glcFrameLimbs(f, 3, 6);
-    GlcBig rows[9]; // rows[3 * r + k]: row r, column k
+    // Registers 0-8: row r, column k at 3r + k; 9-13: scratch.
+    const int P = 9, A = 10, T1 = 11, T2 = 12, DET = 13;
     for (int r = 0; r < 3; ++r) {
         vec3 p = r == 0 ? b : (r == 1 ? c : d);
         for (int k = 0; k < 3; ++k) {
             if (planar && (r == 2 || k == 2)) {
-                rows[3 * r + k] = glcBigFromUint(r == k ? 1u : 0u);
+                glcBigSetUint(3 * r + k, r == k ? 1u : 0u, n);
             } else {
                 int axis = planar ? (k == 0 ? u : w) : k;
-                rows[3 * r + k] = glcBigSub(glcBigFromFloat(p[axis], f, n), glcBigFromFloat(a[axis], f, n), n);
+                glcBigSetFloat(P, p[axis], f, n);
+                glcBigSetFloat(A, a[axis], f, n);
+                glcBigSub(3 * r + k, P, A, n);
             }
         }
     }
-    GlcBig det = glcBigZero();
+    glcBigSetUint(DET, 0u, n);
     for (int k = 0; k < 3; ++k) {
         int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-        GlcBig minor = glcBigSub(glcBigMul(rows[3 + k1], rows[6 + k2], n), glcBigMul(rows[3 + k2], rows[6 + k1], n), n);
-        det = glcBigAdd(det, glcBigMul(rows[k], minor, n), n);
+        glcBigMul(T1, 3 + k1, 6 + k2, n);
+        glcBigMul(T2, 3 + k2, 6 + k1, n);
+        glcBigSub(T1, T1, T2, n); // the minor
+        glcBigMul(T2, k, T1, n);
+        glcBigAdd(DET, DET, T2, n);
     }
-    return glcBigSign(det, n);
+    return glcBigSign(DET, n);
 }
 
 #endif // GLC_ORIENT_GLSL

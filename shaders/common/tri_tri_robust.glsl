@@ -22,12 +22,6 @@
 
 #include "common/orient.glsl"
 
-// Per-invocation state of the exact pass (GLSL globals are per invocation; C++ makes them
-// thread_local).
-#ifndef GLC_PRIVATE
-#define GLC_PRIVATE
-#endif
-
 // ---------------------------------------------------------------------------------------------
 // The filtered decision (Guigue and Devillers 2003, "Fast and robust triangle-triangle overlap
 // test using orientation predicates", JGT 8(1), for the crossing case), with only certified signs.

@@ -1,8 +1,8 @@
 #version 430 core
 // TriTriQueryExact — the exact half of a robust TriTriQuery batch: one invocation per pair the
 // filtered pass left undecided (the list at GLC_BIND_UNDECIDED, its length in stats[1]), decided by
-// glcTriTriExact of common/tri_tri_robust.glsl. Dispatched over the whole batch; invocations past
-// the undecided count return at once (no read-back between the two passes).
+// glcTriTriExact of common/tri_tri_robust.glsl. The host reads the count back and dispatches that
+// many invocations (passes/tri_tri_query_pass.cpp).
 #include "common/layout.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;

@@ -55,8 +55,13 @@ void TriTriQueryPass::dispatch(TriTriQueryBatch& b) const {
     m_program.dispatch1D(b.pairCount, GLC_WORKGROUP_SIZE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     if (m_exact.name() != 0) {
+        // One read-back of the undecided count sizes the exact pass: its kernel is large, and
+        // even invocations that return at once cost a software rasteriser its set-up.
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        std::uint32_t undecided = 0;
+        b.stats.download(sizeof(std::uint32_t), sizeof undecided, &undecided);
         m_exact.use();
-        m_exact.dispatch1D(b.pairCount, GLC_WORKGROUP_SIZE);
+        m_exact.dispatch1D(undecided, GLC_WORKGROUP_SIZE);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
