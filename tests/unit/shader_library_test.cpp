@@ -155,8 +155,8 @@ std::vector<Quad> predicateInputs(std::uint32_t seed, int count) {
 // Register r (n limbs, two's complement) as a rational, times 2^low.
 mpq_class registerValue(int r, int n, int low) {
     mpz_class z = 0;
-    for (int k = n - 1; k >= 0; --k) z = z * mpz_class(4294967296.0) + sh::glcBig[r][k];
-    if (sh::glcBig[r][n - 1] >> 31) z -= mpz_class(1) << static_cast<unsigned>(32 * n);
+    for (int k = n - 1; k >= 0; --k) z = z * mpz_class(4294967296.0) + sh::glcLimbs[r * n + k];
+    if (sh::glcLimbs[r * n + n - 1] >> 31) z -= mpz_class(1) << static_cast<unsigned>(32 * n);
     mpq_class value(z);
     if (low >= 0) value *= mpq_class(mpz_class(1) << static_cast<unsigned>(low));
     else value /= mpq_class(mpz_class(1) << static_cast<unsigned>(-low));
