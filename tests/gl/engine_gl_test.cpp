@@ -73,8 +73,9 @@ TEST(EngineGl, EveryShippedSceneComposesAndSteps) {
 }
 
 TEST(EngineGl, CollisionEffectsAddTheirPassesAndBuffers) {
+    // Robust precision (the default) adds the undecided list of the exact pass.
     const Names collisionBuffers = {"faceInfo", "objects", "boxes", "boxFaceOffsets", "boxFaceList", "boxPairs",
-                                    "candidates", "intersections", "collisionCounters", "dispatchArgs"};
+                                    "candidates", "undecided", "intersections", "collisionCounters", "dispatchArgs"};
     Engine engine(sceneWith(R"(["collisions", "springs"])"));
     EXPECT_EQ(engine.pipeline(), (Names{"SpringUpdate", "BBUpdate", "BBCollision", "TriTri", "ContactResponse",
                                         "NodeUpdate"}));
