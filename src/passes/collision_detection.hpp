@@ -6,7 +6,9 @@
 //   Masked   BBUpdate -> BBCollision (box-pair mask) -> TriTri over all face pairs, masked
 //   AllPairs TriTri over all face pairs (the reference)
 // All three produce the same candidate set (valid face pairs whose inflated face boxes overlap)
-// and, with robust precision, the same intersection set. Lists never drop data: an overflowing
+// and, with robust precision, the same intersection set. Robust TriTri is two kernels in the
+// TriTri slot: the filtered test appends what it cannot decide to the undecided list, and
+// TriTriExact (indirect dispatch from that count) decides those exactly (docs/narrow-phase.md). Lists never drop data: an overflowing
 // list is grown to the next power of two >= its exact count and the stage is rerun.
 
 #include "cpu/flat_model.hpp"
