@@ -38,9 +38,9 @@ bool glcInFilterRange(vec3 v) {
 
 float glcMaxComponent(vec3 v) { return max(max(v.x, v.y), v.z); }
 
-int glcOrient3dFilter(vec3 a, vec3 b, vec3 c, vec3 d) {
-    if (!(glcInFilterRange(a) && glcInFilterRange(b) && glcInFilterRange(c) && glcInFilterRange(d)))
-        return GLC_UNDECIDED;
+// The filter's float evaluation: (det, permanent, max(M, 1)) of det[b-a, c-a, d-a], M the largest
+// |difference|. Separate so the tests can measure its error against the exact determinant.
+vec3 glcOrient3dEstimate(vec3 a, vec3 b, vec3 c, vec3 d) {
     vec3 ba = b - a;
     vec3 ca = c - a;
     vec3 da = d - a;
@@ -50,9 +50,16 @@ int glcOrient3dFilter(vec3 a, vec3 b, vec3 c, vec3 d) {
                       abs(ba.y) * (abs(ca.z * da.x) + abs(ca.x * da.z)) +
                       abs(ba.z) * (abs(ca.x * da.y) + abs(ca.y * da.x));
     float m = max(glcMaxComponent(max(max(abs(ba), abs(ca)), abs(da))), 1.0f);
-    float bound = GLC_FILTER_RELATIVE * permanent + GLC_FILTER_FLUSH * (m * m);
-    if (det > bound) return 1;
-    if (-det > bound) return -1;
+    return vec3(det, permanent, m);
+}
+
+int glcOrient3dFilter(vec3 a, vec3 b, vec3 c, vec3 d) {
+    if (!(glcInFilterRange(a) && glcInFilterRange(b) && glcInFilterRange(c) && glcInFilterRange(d)))
+        return GLC_UNDECIDED;
+    vec3 e = glcOrient3dEstimate(a, b, c, d); // det, permanent, max(M, 1)
+    float bound = GLC_FILTER_RELATIVE * e.y + GLC_FILTER_FLUSH * (e.z * e.z);
+    if (e.x > bound) return 1;
+    if (-e.x > bound) return -1;
     return GLC_UNDECIDED;
 }
 

@@ -245,6 +245,38 @@ LIBRARY_TEST(FiltersCertifyOnlyTheExactSign) {
     EXPECT_GT(certified2, 15000);
 }
 
+// The first half of the filter's argument, measured: the float determinant's error against the
+// exact one stays within gamma_26 times the exact permanent (docs/narrow-phase.md), for inputs
+// away from the flush range. Reports the largest error seen in units of u * permanent
+// (u = 2^-23); the bound is 26 (to first order).
+LIBRARY_TEST(FilterErrorStaysWithinTheBoundOfTheArgument) {
+    constexpr double u = 1.0 / 8388608.0; // 2^-23
+    const double gamma26 = 26 * u / (1 - 26 * u);
+    double worst = 0;
+    int measured = 0;
+    for (const Quad& x : predicateInputs(15, 40000)) {
+        bool inRange = true;
+        for (vec3 p : {x.a, x.b, x.c, x.d})
+            for (int k = 0; k < 3; ++k)
+                inRange = inRange && std::fabs(p[k]) <= 1099511627776.0f && (p[k] == 0.0f || std::fabs(p[k]) >= 1e-20f);
+        if (!inRange) continue;
+        const vec3 e = sh::glcOrient3dEstimate(x.a, x.b, x.c, x.d);
+        const mpq_class bx = q(x.b.x) - q(x.a.x), by = q(x.b.y) - q(x.a.y), bz = q(x.b.z) - q(x.a.z);
+        const mpq_class cx = q(x.c.x) - q(x.a.x), cy = q(x.c.y) - q(x.a.y), cz = q(x.c.z) - q(x.a.z);
+        const mpq_class dx = q(x.d.x) - q(x.a.x), dy = q(x.d.y) - q(x.a.y), dz = q(x.d.z) - q(x.a.z);
+        const mpq_class det = bx * (cy * dz - cz * dy) + by * (cz * dx - cx * dz) + bz * (cx * dy - cy * dx);
+        const mpq_class permanent = abs(bx) * (abs(cy * dz) + abs(cz * dy)) + abs(by) * (abs(cz * dx) + abs(cx * dz)) +
+                                    abs(bz) * (abs(cx * dy) + abs(cy * dx));
+        if (sgn(permanent) == 0 || permanent < mpq_class(1e-30)) continue; // the flush term's range
+        const mpq_class error = abs(mpq_class(static_cast<double>(e.x)) - det);
+        ASSERT_LE(error, mpq_class(gamma26) * permanent) << "error beyond gamma_26 * permanent";
+        worst = std::max(worst, mpq_class(error / permanent).get_d() / u);
+        ++measured;
+    }
+    EXPECT_GT(measured, 10000);
+    std::printf("[ filter   ] %d inputs: largest |det error| = %.3f u * permanent (bound 26 u)\n", measured, worst);
+}
+
 bool robust(const cpu::FloatTriPair& p) {
     auto v = [&](int k) {
         const auto i = static_cast<std::size_t>(3 * k);
