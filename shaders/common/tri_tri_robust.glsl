@@ -115,16 +115,42 @@ int glcUndecided(vec3 a, vec3 b, vec3 c, vec3 d, int drop) {
     return 0;
 }
 
+// Zeros that comparisons of the inputs prove, with no arithmetic: a coordinate all points share
+// (a zero column of the determinant) or two equal points (a zero row, or two equal rows). Flat
+// cloth in an axis plane, shared corners and degenerate triangles meet them all the time; each
+// one found here saves an exact evaluation and a rerun.
+bool glcSameCoordinate(vec3 a, vec3 b, vec3 c, int k) {
+    int ka = glcKey(a[k]);
+    return glcKey(b[k]) == ka && glcKey(c[k]) == ka;
+}
+
+bool glcOrient3dZeroByComparison(vec3 a, vec3 b, vec3 c, vec3 d) {
+    for (int k = 0; k < 3; ++k)
+        if (glcSameCoordinate(a, b, c, k) && glcKey(d[k]) == glcKey(a[k])) return true;
+    return glcSamePoint(a, b) || glcSamePoint(a, c) || glcSamePoint(a, d) || glcSamePoint(b, c) ||
+           glcSamePoint(b, d) || glcSamePoint(c, d);
+}
+
+bool glcOrient2dZeroByComparison(vec3 a, vec3 b, vec3 c, int drop) {
+    int u = glcKeptU(drop), w = glcKeptW(drop);
+    if (glcSameCoordinate(a, b, c, u) || glcSameCoordinate(a, b, c, w)) return true;
+    return (glcKey(a[u]) == glcKey(b[u]) && glcKey(a[w]) == glcKey(b[w])) ||
+           (glcKey(a[u]) == glcKey(c[u]) && glcKey(a[w]) == glcKey(c[w])) ||
+           (glcKey(b[u]) == glcKey(c[u]) && glcKey(b[w]) == glcKey(c[w]));
+}
+
 int glcOrient3d(vec3 a, vec3 b, vec3 c, vec3 d) {
     if (glcExactPending) return 0;
     int s = glcOrient3dFilter(a, b, c, d);
-    return s != GLC_UNDECIDED ? s : glcUndecided(a, b, c, d, -1);
+    if (s != GLC_UNDECIDED) return s;
+    return glcOrient3dZeroByComparison(a, b, c, d) ? 0 : glcUndecided(a, b, c, d, -1);
 }
 
 int glcOrient2d(vec3 a, vec3 b, vec3 c, int drop) {
     if (glcExactPending) return 0;
     int s = glcOrient2dFilter(a, b, c, drop);
-    return s != GLC_UNDECIDED ? s : glcUndecided(a, b, c, a, drop);
+    if (s != GLC_UNDECIDED) return s;
+    return glcOrient2dZeroByComparison(a, b, c, drop) ? 0 : glcUndecided(a, b, c, a, drop);
 }
 
 // ---------------------------------------------------------------------------------------------
