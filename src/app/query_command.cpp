@@ -44,7 +44,9 @@ int queryTriTriCommand(const QueryTriTriOptions& options) {
     out.close();
     if (!out) throw Error(options.outPath + ": write failed");
     std::cout << pairs.size() << " pairs, " << hits << " intersecting (" << passes::toString(precision) << " precision";
-    if (precision == passes::TriTriPrecision::Robust) std::cout << ", " << result.exactFallbacks << " exact fallbacks";
+    if (precision == passes::TriTriPrecision::Robust)
+        std::cout << ", " << result.undecidedPairs << " pairs to the exact pass, " << result.exactFallbacks
+                  << " exact fallbacks";
     std::cout << ") on " << context.deviceDescription() << " | " << context.glInfo().renderer << "\n";
     return 0;
 }
