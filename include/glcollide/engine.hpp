@@ -2,6 +2,7 @@
 /// \file The engine: a scene's state in GPU buffers and the compute pipeline its effects call for.
 
 #include <glcollide/scene.hpp>
+#include <glcollide/setup_stats.hpp>
 
 #include <glm/vec3.hpp>
 
@@ -145,6 +146,9 @@ public:
     /// host's own glMemoryBarrier with that use's bit first.
     void step();
     [[nodiscard]] const StepStats& lastStep() const;
+    /// What construction spent building compute programs: per program the wall time and whether
+    /// it came from the program binary cache (GLCOLLIDE_CACHE_DIR; README, docs/integration.md).
+    [[nodiscard]] const SetupStats& setupStats() const;
 
     /// The passes dispatched each substep, in order ("NodeForce", "SpringUpdate", "BBUpdate",
     /// "BBCollision", "TriTri", "ContactResponse", "NodeUpdate"; only those the effects call for).

@@ -1,5 +1,7 @@
 #include "app/commands.hpp"
 
+#include "gl/program_cache.hpp"
+
 #include <glcollide/gl_info.hpp>
 #include <glcollide/headless_context.hpp>
 
@@ -35,6 +37,13 @@ int infoCommand(const InfoOptions& options) {
           {"shader_storage_buffer_offset_alignment", l.shaderStorageBufferOffsetAlignment},
           {"timestamp_bits", l.timestampBits}}}};
     for (const EglDeviceInfo& d : devices) j["egl_devices"].push_back(d.description());
+    // The program binary cache (README, docs/integration.md): where it is, and whether this
+    // driver can fill it (no binary format: every program is compiled, every time).
+    const gl::CacheLocation cache = gl::cacheLocationFromEnvironment();
+    const std::size_t binaryFormats = gl::programBinaryFormats().size();
+    j["program_cache"] = {{"folder", cache.enabled ? nlohmann::json(cache.folder.string()) : nlohmann::json(nullptr)},
+                          {"off_reason", cache.enabled ? nlohmann::json(nullptr) : nlohmann::json(cache.reason)},
+                          {"binary_formats", binaryFormats}};
     if (options.json) {
         std::cout << j.dump(2) << "\n";
         return 0;
@@ -48,6 +57,12 @@ int infoCommand(const InfoOptions& options) {
               << "\nGL version: " << gl.version << "\nGLSL version: " << gl.glslVersion << "\n"
               << "compute limits:\n";
     for (const auto& [key, value] : j["compute_limits"].items()) std::cout << "  " << key << ": " << value.dump() << "\n";
+    std::cout << "program cache: ";
+    if (cache.enabled)
+        std::cout << cache.folder.string() << " (the driver offers " << binaryFormats << " program binary format"
+                  << (binaryFormats == 1 ? "" : "s") << (binaryFormats == 0 ? ": nothing is cached" : "") << ")\n";
+    else
+        std::cout << "off (" << cache.reason << ")\n";
     return 0;
 }
 

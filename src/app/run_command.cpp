@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <algorithm>
@@ -63,6 +64,24 @@ nlohmann::json nonFiniteRecord(const Engine& engine) {
             {"global_node", r.globalNode}};
 }
 
+std::string hex64(std::uint64_t v) {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
+    return text;
+}
+
+// The "setup" object of --stats: what building the compute programs cost (README, --stats).
+nlohmann::json setupRecord(const SetupStats& s) {
+    nlohmann::json programs = nlohmann::json::array();
+    for (const ProgramSetup& p : s.programs)
+        programs.push_back({{"shader", p.shader}, {"defines", p.defines}, {"source_fnv1a64", hex64(p.sourceHash)},
+                            {"ms", p.milliseconds}, {"cache", p.cacheHit ? "hit" : "miss"}});
+    nlohmann::json cache = {{"hits", s.cacheHits}, {"misses", s.cacheMisses},
+                            {"folder", s.cacheFolder.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.cacheFolder)}};
+    if (!s.cacheNote.empty()) cache["note"] = s.cacheNote;
+    return {{"compile_link_ms", s.compileLinkMilliseconds}, {"program_cache", cache}, {"programs", programs}};
+}
+
 void printSummary(const HeadlessContext& context, const Engine& engine, std::uint64_t frames) {
     const Scene& scene = engine.scene();
     const SubstepInfo& sub = engine.substepInfo();
@@ -80,6 +99,12 @@ void printSummary(const HeadlessContext& context, const Engine& engine, std::uin
               << "time: " << frames << " frames of " << scene.time.dt << " s, " << sub.substeps
               << " substeps each (" << (sub.automatic ? "auto" : "fixed") << "; stability needs "
               << sub.stableSubsteps << ")\n";
+    const SetupStats& setup = engine.setupStats();
+    std::cout << "setup: " << setup.programs.size() << " programs in " << setup.compileLinkMilliseconds
+              << " ms (program cache: " << setup.cacheHits << " hits, " << setup.cacheMisses << " misses, "
+              << (setup.cacheFolder.empty() ? "off" : setup.cacheFolder);
+    if (!setup.cacheNote.empty()) std::cout << "; " << setup.cacheNote;
+    std::cout << ")\n";
 }
 
 } // namespace
@@ -151,6 +176,7 @@ int runCommand(const RunOptions& options) {
         stats["dt_s"] = scene.time.dt;
         stats["substeps"] = engine.substepInfo().substeps;
         stats["stable_substeps"] = engine.substepInfo().stableSubsteps;
+        stats["setup"] = setupRecord(engine.setupStats());
         stats["finite"] = finite;
         stats["non_finite"] = nonFiniteRecord(engine);
         stats["frames"] = frameList;

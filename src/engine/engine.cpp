@@ -8,6 +8,7 @@
 #include "gl/gpu_timer.hpp"
 #include "gl/host_state.hpp"
 #include "gl/layout.hpp"
+#include "gl/setup_stats_sink.hpp"
 #include "passes/collision_detection.hpp"
 #include "passes/contact_response.hpp"
 #include "passes/dynamics_passes.hpp"
@@ -72,6 +73,7 @@ struct Engine::Impl {
                                  kCollisionBase = 4;
     gl::GpuTimer timer{kCollisionBase};
     StepStats stats;
+    SetupStats setup;
 
     void chooseSubsteps();
     void allocate();
@@ -166,6 +168,8 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
     auto impl = std::make_unique<Impl>();
     Impl& d = *impl;
     d.glFeatures = features;
+    // Every program the passes build from here on reports its cost to this engine alone.
+    const gl::SetupStatsScope setupSink(&d.setup);
     if (options.debugCallback)
         d.debug = std::make_unique<gl::DebugOutputScope>(
             [callback = options.debugCallback](const gl::DebugMessage& m) {
@@ -300,6 +304,8 @@ void Engine::step() {
     d.stats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
+
+const SetupStats& Engine::setupStats() const { return m_impl->setup; }
 
 const StepStats& Engine::lastStep() const { return m_impl->stats; }
 std::vector<std::string> Engine::pipeline() const { return m_impl->passNames; }

@@ -2,11 +2,14 @@
 
 #include "gl/debug_output.hpp"
 #include "gl/embedded_shaders.hpp"
+#include "gl/program_cache.hpp"
+#include "gl/setup_stats_sink.hpp"
 
 #include <glcollide/error.hpp>
 
 #include <epoxy/gl.h>
 
+#include <chrono>
 #include <regex>
 #include <sstream>
 
@@ -79,19 +82,45 @@ std::string mapShaderLog(const std::string& log, std::string_view shaderName) {
 
 ComputeProgram::ComputeProgram(std::string_view shaderName, const std::vector<std::string>& defines)
     : m_shaderName(shaderName) {
-    build(shaderSource(shaderName, defines),
+    build(shaderSource(shaderName, defines), defines,
           [&](const std::string& log) { return mapShaderLog(log, shaderName); });
 }
 
 ComputeProgram ComputeProgram::fromSource(std::string label, const std::string& source) {
     ComputeProgram program;
     program.m_shaderName = std::move(label);
-    program.build(source, [](const std::string& log) { return log; });
+    program.build(source, {}, [](const std::string& log) { return log; });
     return program;
 }
 
-void ComputeProgram::build(const std::string& source,
+void ComputeProgram::build(const std::string& source, const std::vector<std::string>& defines,
                            const std::function<std::string(const std::string&)>& mapLog) {
+    const auto start = std::chrono::steady_clock::now();
+    ProgramCache cache(cacheLocationFromEnvironment());
+    const std::string key = cache.usable() ? programCacheKey(currentDriverIdentity(), source) : std::string();
+    bool hit = false;
+    if (cache.usable()) {
+        m_handle = Handle<deleteProgram>(glCreateProgram());
+        hit = cache.load(m_handle.name(), m_shaderName, key);
+    }
+    if (!hit) {
+        // A fresh object: a program that failed glProgramBinary is not reused.
+        m_handle = compileAndLink(source, mapLog, cache.usable());
+        cache.store(m_handle.name(), m_shaderName, key);
+    }
+    labelObject(GL_PROGRAM, m_handle.name(), "glcollide/" + m_shaderName);
+    if (SetupStats* sink = activeSetupStats()) {
+        if (sink->cacheFolder.empty() && cache.location().enabled) sink->cacheFolder = cache.location().folder.string();
+        if (sink->cacheNote.empty()) sink->cacheNote = cache.note();
+    }
+    recordProgramSetup({m_shaderName, defines, fnv1a64(source),
+                        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
+                        hit});
+}
+
+Handle<deleteProgram> ComputeProgram::compileAndLink(const std::string& source,
+                                      const std::function<std::string(const std::string&)>& mapLog,
+                                      bool retrievable) const {
     const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
     const char* text = source.c_str();
     glShaderSource(shader, 1, &text, nullptr);
@@ -103,15 +132,16 @@ void ComputeProgram::build(const std::string& source,
         glDeleteShader(shader);
         throw Error("compiling shader '" + m_shaderName + "' failed:\n" + log);
     }
-    const GLuint program = glCreateProgram();
-    m_handle = Handle<deleteProgram>(program);
-    glAttachShader(program, shader);
-    glLinkProgram(program);
-    glDetachShader(program, shader);
+    Handle<deleteProgram> program(glCreateProgram());
+    // Set before linking, so the driver keeps what glGetProgramBinary needs (the cache stores it).
+    if (retrievable) glProgramParameteri(program.name(), GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
+    glAttachShader(program.name(), shader);
+    glLinkProgram(program.name());
+    glDetachShader(program.name(), shader);
     glDeleteShader(shader);
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (!ok) throw Error("linking shader '" + m_shaderName + "' failed:\n" + mapLog(infoLog(program, true)));
-    labelObject(GL_PROGRAM, program, "glcollide/" + m_shaderName);
+    glGetProgramiv(program.name(), GL_LINK_STATUS, &ok);
+    if (!ok) throw Error("linking shader '" + m_shaderName + "' failed:\n" + mapLog(infoLog(program.name(), true)));
+    return program;
 }
 
 void ComputeProgram::use() const { glUseProgram(name()); }

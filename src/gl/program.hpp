@@ -45,7 +45,13 @@ public:
     void dispatch1D(std::uint32_t invocations, std::uint32_t groupSize) const;
 
 private:
-    void build(const std::string& source, const std::function<std::string(const std::string&)>& mapLog);
+    /// Loads the program from the program binary cache (gl/program_cache.hpp) or compiles and
+    /// links it (then stores it there), and records the cost in the active SetupStats sink.
+    void build(const std::string& source, const std::vector<std::string>& defines,
+               const std::function<std::string(const std::string&)>& mapLog);
+    [[nodiscard]] Handle<deleteProgram> compileAndLink(const std::string& source,
+                                                       const std::function<std::string(const std::string&)>& mapLog,
+                                                       bool retrievable) const;
 
     Handle<deleteProgram> m_handle;
     std::string m_shaderName;
