@@ -47,6 +47,14 @@ struct EngineOptions {
     /// wait for the GPU at the frame's end, which gpuTiming waits for anyway) until it is set, and
     /// reports it in StepStats::nonFinite. Off: no test, no read.
     bool checkFinite = true;
+    /// The on-device self-check of robust precision, run at construction when the scene's
+    /// collisions use robust precision and no pass on this device, driver and shader is remembered
+    /// (docs/narrow-phase.md, "On-device self-check"; on llvmpipe about 4 s the first time with
+    /// cold shader caches, then about 11 ms to find the remembered pass). Error: a disagreement
+    /// with the exact oracle throws glcollide::Error naming the device, the driver and the first
+    /// wrong case; Warn: it is added to warnings(); Off: no check. GLCOLLIDE_SELF_CHECK=
+    /// error|warn|off, when set, wins. The result: setupStats().robustSelfCheck.
+    SelfCheckMode robustSelfCheck = SelfCheckMode::Error;
 };
 
 /// GPU time of one pass over all substeps of a frame.

@@ -2,6 +2,7 @@
 // and a Markdown report; the table goes to stdout, progress to stderr (docs/benchmarks.md).
 
 #include "app/commands.hpp"
+#include "app/self_check_report.hpp"
 
 #include "benchkit/experiments.hpp"
 #include "benchkit/report.hpp"
@@ -78,6 +79,9 @@ int benchCommand(const BenchOptions& options) {
     };
     log("suite " + suite.name + " (" + std::to_string(suite.experiments.size()) + " experiments) on " +
         run.renderer + ", " + run.eglDevice + ", commit " + run.gitCommit);
+    // The suite measures robust precision against the oracle; first make sure this device computes
+    // it exactly on the built-in hard cases (once per device, driver and shader).
+    log("robust self-check: " + selfCheckLine(checkRobustBeforeUse()));
     if (run.softwareRenderer) log("software renderer: these timings are CPU (llvmpipe) timings, not GPU timings");
 
     const auto start = std::chrono::steady_clock::now();

@@ -1,6 +1,8 @@
 #include "app/commands.hpp"
+#include "app/self_check_report.hpp"
 
 #include "gl/program_cache.hpp"
+#include "passes/robust_self_check.hpp"
 
 #include <glcollide/gl_info.hpp>
 #include <glcollide/headless_context.hpp>
@@ -44,6 +46,12 @@ int infoCommand(const InfoOptions& options) {
     j["program_cache"] = {{"folder", cache.enabled ? nlohmann::json(cache.folder.string()) : nlohmann::json(nullptr)},
                           {"off_reason", cache.enabled ? nlohmann::json(nullptr) : nlohmann::json(cache.reason)},
                           {"binary_formats", binaryFormats}};
+    // The robust self-check on this device: run now, or the remembered pass. info reports a
+    // failure rather than failing (it is what a user runs to find out).
+    const SelfCheckMode mode = passes::effectiveSelfCheckMode(SelfCheckMode::Error);
+    SelfCheckReport selfCheck = passes::runRobustSelfCheck(mode == SelfCheckMode::Error ? SelfCheckMode::Warn : mode);
+    selfCheck.mode = mode; // report the mode in force, not the one info ran it in
+    j["robust_self_check"] = selfCheckJson(selfCheck);
     if (options.json) {
         std::cout << j.dump(2) << "\n";
         return 0;
@@ -63,6 +71,7 @@ int infoCommand(const InfoOptions& options) {
                   << (binaryFormats == 1 ? "" : "s") << (binaryFormats == 0 ? ": nothing is cached" : "") << ")\n";
     else
         std::cout << "off (" << cache.reason << ")\n";
+    std::cout << "robust self-check: " << selfCheckLine(selfCheck) << "\n";
     return 0;
 }
 

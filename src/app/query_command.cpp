@@ -2,6 +2,7 @@
 // narrow-phase test (docs/narrow-phase.md).
 
 #include "app/commands.hpp"
+#include "app/self_check_report.hpp"
 
 #include "passes/tri_tri_query_pass.hpp"
 #include "scene/tri_pair_csv.hpp"
@@ -24,6 +25,7 @@ int queryTriTriCommand(const QueryTriTriOptions& options) {
     const TriPairCsv csv = readTriPairCsv(options.inPath);
 
     HeadlessContext context({options.device});
+    if (precision == passes::TriTriPrecision::Robust) (void)checkRobustBeforeUse(); // docs/narrow-phase.md
     const passes::TriTriQueryPass pass(precision);
     const std::vector<passes::TriTriPair> pairs(csv.pairs.begin(), csv.pairs.end());
     const passes::TriTriQueryResult result = pass.run(pairs);

@@ -1,6 +1,7 @@
 #include "app/commands.hpp"
 #include "app/mesh_export.hpp"
 #include "app/progress.hpp"
+#include "app/self_check_report.hpp"
 
 #include <glcollide/engine.hpp>
 #include <glcollide/error.hpp>
@@ -79,7 +80,8 @@ nlohmann::json setupRecord(const SetupStats& s) {
     nlohmann::json cache = {{"hits", s.cacheHits}, {"misses", s.cacheMisses},
                             {"folder", s.cacheFolder.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.cacheFolder)}};
     if (!s.cacheNote.empty()) cache["note"] = s.cacheNote;
-    return {{"compile_link_ms", s.compileLinkMilliseconds}, {"program_cache", cache}, {"programs", programs}};
+    return {{"compile_link_ms", s.compileLinkMilliseconds}, {"program_cache", cache}, {"programs", programs},
+            {"robust_self_check", selfCheckJson(s.robustSelfCheck)}};
 }
 
 void printSummary(const HeadlessContext& context, const Engine& engine, std::uint64_t frames) {
@@ -105,6 +107,7 @@ void printSummary(const HeadlessContext& context, const Engine& engine, std::uin
               << (setup.cacheFolder.empty() ? "off" : setup.cacheFolder);
     if (!setup.cacheNote.empty()) std::cout << "; " << setup.cacheNote;
     std::cout << ")\n";
+    if (setup.robustSelfCheck.needed) std::cout << "robust self-check: " << selfCheckLine(setup.robustSelfCheck) << "\n";
 }
 
 } // namespace

@@ -12,6 +12,7 @@
 #include "passes/collision_detection.hpp"
 #include "passes/contact_response.hpp"
 #include "passes/dynamics_passes.hpp"
+#include "passes/robust_self_check.hpp"
 
 #include <glcollide/error.hpp>
 #include <glcollide/gl_info.hpp>
@@ -196,6 +197,12 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
         if (d.collision->passNames() != d.plan.collisionPasses())
             throw Error("internal error: collision passes differ from the pipeline plan");
         d.contact.emplace();
+        // Robust precision promises the oracle's answers; check that this device delivers them
+        // before relying on it (once per device, driver and shader; docs/narrow-phase.md).
+        if (d.plan.collision.precision == TriTriPrecision::Robust) {
+            d.setup.robustSelfCheck = passes::runRobustSelfCheck(passes::effectiveSelfCheckMode(options.robustSelfCheck));
+            if (!d.setup.robustSelfCheck.message.empty()) d.warnings.push_back(d.setup.robustSelfCheck.message);
+        }
         d.timer = gl::GpuTimer(Impl::kCollisionBase + d.plan.collisionPasses().size());
     }
     d.passNames = d.plan.passes();

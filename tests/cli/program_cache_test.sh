@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The program binary cache end to end (README, GLCOLLIDE_CACHE_DIR): a colliding scene run twice
 # into a fresh cache folder compiles every program in the first run and none in the second
-# (--stats "setup"); two processes filling one cold folder at once both succeed and leave it
-# usable; `off` writes nothing; `info` names the folder.
+# (--stats "setup"), and the robust self-check it needs runs once and is then remembered; two
+# processes filling one cold folder at once both succeed and leave it usable; `off` writes
+# nothing; `info` names the folder and the self-check's result; a bad GLCOLLIDE_SELF_CHECK is an
+# error naming it.
 # usage: program_cache_test.sh GLCOLLIDE_BINARY SOURCE_DIR
 set -u
 bin=$1
@@ -32,6 +34,10 @@ check "cold run: compile_link_ms is the programs' sum" stats_check "$work/stats1
 check "warm run: 0 misses" stats_check "$work/stats2.json" \
   's["program_cache"]["misses"] == 0 and s["program_cache"]["hits"] == len(s["programs"]) > 0'
 check "warm run: every program a hit" stats_check "$work/stats2.json" 'all(p["cache"] == "hit" for p in s["programs"])'
+check "cold run: robust self-check ran and passed" stats_check "$work/stats1.json" \
+  's["robust_self_check"]["status"] == "passed" and s["robust_self_check"]["cases"] >= 300 and not s["robust_self_check"]["remembered"]'
+check "warm run: the pass is remembered" stats_check "$work/stats2.json" \
+  's["robust_self_check"]["status"] == "passed" and s["robust_self_check"]["remembered"] and s["robust_self_check"]["cases"] == 0'
 check "setup line on stdout" grep -q "^setup: .* programs in .* ms (program cache: 0 hits" "$work/out1.txt"
 check "cache holds entries" test "$(ls "$work/cache"/*.bin | wc -l)" -gt 0
 
@@ -59,6 +65,12 @@ check "off: no hits, no folder" stats_check "$work/stats_off.json" \
 # info names the folder, or says it is off.
 GLCOLLIDE_CACHE_DIR=$work/cache "$bin" info >"$work/info.txt" 2>&1
 check "info names the cache folder" grep -q "^program cache: $work/cache (the driver offers" "$work/info.txt"
+check "info reports the remembered self-check" grep -q "^robust self-check: passed (remembered in $work/cache/robust-self-check-" "$work/info.txt"
+GLCOLLIDE_SELF_CHECK=off "$bin" info >"$work/info_sc_off.txt" 2>&1
+check "info: self-check off" grep -q "^robust self-check: off" "$work/info_sc_off.txt"
+GLCOLLIDE_SELF_CHECK=maybe "$bin" run "$scene" --frames 1 --quiet >/dev/null 2>"$work/sc_bad.txt"
+check "bad GLCOLLIDE_SELF_CHECK exits 1" test $? -eq 1
+check "bad GLCOLLIDE_SELF_CHECK is named" grep -q "GLCOLLIDE_SELF_CHECK: expected error, warn or off, got 'maybe'" "$work/sc_bad.txt"
 GLCOLLIDE_CACHE_DIR=off "$bin" info >"$work/info_off.txt" 2>&1
 check "info says off" grep -q "^program cache: off (GLCOLLIDE_CACHE_DIR=off)" "$work/info_off.txt"
 GLCOLLIDE_CACHE_DIR=$work/cache "$bin" info --json >"$work/info.json" 2>&1
