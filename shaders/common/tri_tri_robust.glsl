@@ -118,7 +118,8 @@ int glcUndecided(vec3 a, vec3 b, vec3 c, vec3 d, int drop) {
 // Zeros that comparisons of the inputs prove, with no arithmetic: a coordinate all points share
 // (a zero column of the determinant) or two equal points (a zero row, or two equal rows). Flat
 // cloth in an axis plane, shared corners and degenerate triangles meet them all the time; each
-// one found here saves an exact evaluation and a rerun.
+// one found saves an exact evaluation (not the rerun: checked where the exact evaluation is, so
+// the shader holds one copy; at every predicate call it doubled the exact kernel's compile time).
 bool glcSameCoordinate(vec3 a, vec3 b, vec3 c, int k) {
     int ka = glcKey(a[k]);
     return glcKey(b[k]) == ka && glcKey(c[k]) == ka;
@@ -142,15 +143,23 @@ bool glcOrient2dZeroByComparison(vec3 a, vec3 b, vec3 c, int drop) {
 int glcOrient3d(vec3 a, vec3 b, vec3 c, vec3 d) {
     if (glcExactPending) return 0;
     int s = glcOrient3dFilter(a, b, c, d);
-    if (s != GLC_UNDECIDED) return s;
-    return glcOrient3dZeroByComparison(a, b, c, d) ? 0 : glcUndecided(a, b, c, d, -1);
+    return s != GLC_UNDECIDED ? s : glcUndecided(a, b, c, d, -1);
 }
 
 int glcOrient2d(vec3 a, vec3 b, vec3 c, int drop) {
     if (glcExactPending) return 0;
     int s = glcOrient2dFilter(a, b, c, drop);
-    if (s != GLC_UNDECIDED) return s;
-    return glcOrient2dZeroByComparison(a, b, c, drop) ? 0 : glcUndecided(a, b, c, a, drop);
+    return s != GLC_UNDECIDED ? s : glcUndecided(a, b, c, a, drop);
+}
+
+// The exact sign of the pending predicate: 0 when comparisons prove it, else integer arithmetic.
+// Called at one place only (glcTriTriExact), so the shader holds one copy of both.
+int glcPendingSign() {
+    bool zero = glcPendingDrop < 0 ? glcOrient3dZeroByComparison(glcPending[0], glcPending[1], glcPending[2], glcPending[3])
+                                   : glcOrient2dZeroByComparison(glcPending[0], glcPending[1], glcPending[2], glcPendingDrop);
+    if (zero) return 0;
+    ++glcExactEvaluations;
+    return glcOrientExact(glcPending[0], glcPending[1], glcPending[2], glcPending[3], glcPendingDrop);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -335,9 +344,8 @@ bool glcTriTriExact(vec3 a0, vec3 a1, vec3 a2, vec3 b0, vec3 b1, vec3 b2) {
         glcExactPending = false;
         hit = glcRobustProcedure(a0, a1, a2, b0, b1, b2);
         if (!glcExactPending || glcExactKnown == GLC_MAX_EXACT) break; // the bound is never reached (see above)
-        glcExactSigns[glcExactKnown] = glcOrientExact(glcPending[0], glcPending[1], glcPending[2], glcPending[3], glcPendingDrop);
+        glcExactSigns[glcExactKnown] = glcPendingSign();
         ++glcExactKnown;
-        ++glcExactEvaluations;
     }
     return hit;
 }
