@@ -3,7 +3,8 @@
 # into a fresh cache folder compiles every program in the first run and none in the second
 # (--stats "setup"), and the robust self-check it needs runs once and is then remembered; two
 # processes filling one cold folder at once both succeed and leave it usable; `off` writes
-# nothing; `info` names the folder and the self-check's result; a bad GLCOLLIDE_SELF_CHECK is an
+# nothing, and so does a driver offering no binary format (Mesa with MESA_SHADER_CACHE_DISABLE);
+# `info` names the folder and the self-check's result; a bad GLCOLLIDE_SELF_CHECK is an
 # error naming it.
 # usage: program_cache_test.sh GLCOLLIDE_BINARY SOURCE_DIR
 set -u
@@ -61,6 +62,15 @@ GLCOLLIDE_CACHE_DIR=off timeout 300 "$bin" run "$scene" --frames 1 --stats "$wor
 check "off run exits 0" test $? -eq 0
 check "off: no hits, no folder" stats_check "$work/stats_off.json" \
   's["program_cache"]["hits"] == 0 and s["program_cache"]["folder"] is None'
+
+# A driver offering no program binary format: Mesa offers none with its own shader cache disabled.
+# Every program is then a miss, the note says why, and nothing is written.
+GLCOLLIDE_CACHE_DIR=$work/noformat MESA_SHADER_CACHE_DISABLE=true timeout 300 "$bin" run "$scene" --frames 1 \
+  --stats "$work/stats_noformat.json" --quiet >/dev/null 2>&1
+check "no binary format: run exits 0" test $? -eq 0
+check "no binary format: all misses, the note says why" stats_check "$work/stats_noformat.json" \
+  's["program_cache"]["hits"] == 0 and s["program_cache"]["misses"] == len(s["programs"]) and "no program binary format" in s["program_cache"]["note"]'
+check "no binary format: no entry written" test "$(ls "$work/noformat" 2>/dev/null | grep -c '\.bin$')" -eq 0
 
 # info names the folder, or says it is off.
 GLCOLLIDE_CACHE_DIR=$work/cache "$bin" info >"$work/info.txt" 2>&1
