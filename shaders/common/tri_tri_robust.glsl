@@ -294,12 +294,23 @@ bool glcSegmentTriangle(vec3 p, vec3 q, GlcShape t, int sp, int sq) {
     return pos == 0 || neg == 0;
 }
 
+// All six corners share one coordinate exactly: both triangles lie in one axis plane, every
+// orient3d between them is 0 (a flat cloth in its rest pose: six exact decisions saved per pair).
+bool glcInOneAxisPlane(GlcShape s, GlcShape t) {
+    bool found = false;
+    for (int k = 0; k < 3; ++k)
+        found = found || (glcSameCoordinate(s.v[0], s.v[1], s.v[2], k) && glcSameCoordinate(t.v[0], t.v[1], t.v[2], k) &&
+                          glcKey(s.v[0][k]) == glcKey(t.v[0][k]));
+    return found;
+}
+
 bool glcTriangleTriangle(GlcShape s, GlcShape t) {
     int d[3];
     int e[3];
-    for (int k = 0; k < 3; ++k) d[k] = glcOrient3d(s.v[0], s.v[1], s.v[2], t.v[k]);
+    bool axisPlane = glcInOneAxisPlane(s, t);
+    for (int k = 0; k < 3; ++k) d[k] = axisPlane ? 0 : glcOrient3d(s.v[0], s.v[1], s.v[2], t.v[k]);
     if ((d[0] > 0 && d[1] > 0 && d[2] > 0) || (d[0] < 0 && d[1] < 0 && d[2] < 0)) return false;
-    for (int k = 0; k < 3; ++k) e[k] = glcOrient3d(t.v[0], t.v[1], t.v[2], s.v[k]);
+    for (int k = 0; k < 3; ++k) e[k] = axisPlane ? 0 : glcOrient3d(t.v[0], t.v[1], t.v[2], s.v[k]);
     if ((e[0] > 0 && e[1] > 0 && e[2] > 0) || (e[0] < 0 && e[1] < 0 && e[2] < 0)) return false;
     // Closed triangles meet iff an edge of one meets the other (see the oracle).
     for (int k = 0; k < 6; ++k) {
