@@ -70,7 +70,8 @@ struct CollisionStats {
     std::uint32_t intersectingPairs = 0; ///< face pairs whose closed triangles intersect, last substep
     std::uint32_t maxIntersectingPairs = 0; ///< the largest intersectingPairs of the frame's substeps
     std::uint32_t contacts = 0;          ///< vertex-face and edge-edge contacts with a force, last substep
-    std::uint32_t exactFallbacks = 0;    ///< robust predicates decided by the exact path, last substep
+    std::uint32_t undecidedPairs = 0;    ///< robust: candidates the filtered test left to the exact pass, last substep
+    std::uint32_t exactFallbacks = 0;    ///< robust: predicates the exact pass evaluated in integers, last substep
     std::uint32_t listGrowths = 0;       ///< pair lists grown (and passes rerun) during the frame
 };
 

@@ -39,6 +39,7 @@ nlohmann::json frameRecord(const Engine& engine) {
                                {"intersecting_pairs", c.intersectingPairs},
                                {"max_intersecting_pairs", c.maxIntersectingPairs},
                                {"contacts", c.contacts},
+                               {"undecided_pairs", c.undecidedPairs},
                                {"exact_fallbacks", c.exactFallbacks},
                                {"list_growths", c.listGrowths}};
     }

@@ -242,6 +242,7 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
         c.candidatePairs = counts.candidates;
         c.intersectingPairs = counts.intersections;
         c.maxIntersectingPairs = std::max(c.maxIntersectingPairs, counts.intersections);
+        c.undecidedPairs = counts.undecided;
         c.exactFallbacks = counts.exactFallbacks;
         c.listGrowths += counts.reruns;
         // detect() cleared the response's contact counter; it is read after the last substep.
@@ -350,6 +351,7 @@ CollisionStats Engine::detectCollisions() {
     c.candidatePairs = counts.candidates;
     c.intersectingPairs = counts.intersections;
     c.maxIntersectingPairs = counts.intersections;
+    c.undecidedPairs = counts.undecided;
     c.exactFallbacks = counts.exactFallbacks;
     c.listGrowths = counts.reruns;
     return c;
