@@ -32,6 +32,8 @@ constexpr std::size_t kPairBytes = 2 * sizeof(std::uint32_t); // uvec2
 constexpr std::size_t kBoxPairCount = 0, kCandidateCount = 1, kIntersectionCount = 2,
                       kExactFallbackCount = 3, kBoxPairCapacity = 4, kUndecidedCount = 8;
 static_assert(offsetof(gpu::GpuCollisionCounters, undecidedCount) == kUndecidedCount * sizeof(std::uint32_t));
+// Lists with indirect dispatch arguments (u_source and slot of collision_dispatch_args.comp).
+constexpr std::uint32_t kBoxPairList = 0, kCandidateList = 1, kUndecidedList = 2;
 
 template <typename T>
 gl::Buffer makeBuffer(const char* label, const std::vector<T>& data) {
@@ -130,8 +132,8 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const cpu:
         m_boxPairCapacity = initial(config.boxPairCapacity);
         m_boxPairList = gl::Buffer("boxPairs", std::size_t{m_boxPairCapacity} * kPairBytes);
     }
-    // Indirect dispatch arguments: slot 0 the expansion, 1 TriTri over the candidates (octree),
-    // 2 TriTriExact over the undecided candidates (robust).
+    // Indirect dispatch arguments (writeDispatchArgs): the expansion and TriTri in octree mode,
+    // TriTriExact with robust precision.
     if (mode == BroadPhase::Octree || robust(config)) {
         m_args = gl::ComputeProgram("collision_dispatch_args");
         m_dispatchArgs = gl::Buffer("dispatchArgs", 3 * 3 * sizeof(std::uint32_t));
@@ -254,41 +256,41 @@ void CollisionDetection::runBBUpdate() const {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
+// Indirect dispatch arguments, one slot per list, written on the GPU from the list's count
+// (collision_dispatch_args.comp): 0 box pairs (the expansion), 1 candidates (TriTri), 2 undecided
+// candidates (TriTriExact).
+void CollisionDetection::writeDispatchArgs(std::uint32_t list, std::uint32_t itemsPerGroup, std::uint32_t zGroups) const {
+    m_args.use();
+    m_args.set("u_source", list);
+    m_args.set("u_invocationsPerGroup", itemsPerGroup);
+    m_args.set("u_slot", list);
+    m_args.set("u_z", zGroups);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
+}
+
+void CollisionDetection::dispatchIndirect(const gl::ComputeProgram& program, std::uint32_t list) const {
+    program.use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_dispatchArgs.name());
+    glDispatchComputeIndirect(static_cast<GLintptr>(list * 3 * sizeof(std::uint32_t)));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
 void CollisionDetection::runBoxPairs() const {
     m_boxPairs.use();
     dispatchUpperTriangle(m_boxPairs, m_layout.boxCount, kBoxPairTile);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    // Expansion: one group per box pair, sized on the GPU.
-    m_args.use();
-    m_args.set("u_source", 0u);
-    m_args.set("u_invocationsPerGroup", 1u);
-    m_args.set("u_slot", 0u);
-    m_args.set("u_z", m_expandSlices);
-    glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
+    writeDispatchArgs(kBoxPairList, 1u, m_expandSlices); // the expansion: one group per box pair
 }
 
 void CollisionDetection::runExpand() const {
-    m_expand.use();
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_dispatchArgs.name());
-    glDispatchComputeIndirect(0);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    m_args.use();
-    m_args.set("u_source", 1u);
-    m_args.set("u_invocationsPerGroup", static_cast<std::uint32_t>(GLC_WORKGROUP_SIZE));
-    m_args.set("u_slot", 1u);
-    m_args.set("u_z", 1u);
-    glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
+    dispatchIndirect(m_expand, kBoxPairList);
+    writeDispatchArgs(kCandidateList, GLC_WORKGROUP_SIZE, 1u);
 }
 
 void CollisionDetection::runTriTriCandidates() const {
-    m_triTri.use();
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_dispatchArgs.name());
-    glDispatchComputeIndirect(static_cast<GLintptr>(3 * sizeof(std::uint32_t)));
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    dispatchIndirect(m_triTri, kCandidateList);
     runTriTriExact();
 }
 
@@ -301,18 +303,8 @@ void CollisionDetection::runTriTriAllPairs(std::uint32_t faceCount) const {
 
 void CollisionDetection::runTriTriExact() const {
     if (m_triTriExact.name() == 0) return; // fast
-    m_args.use();
-    m_args.set("u_source", 2u);
-    m_args.set("u_invocationsPerGroup", static_cast<std::uint32_t>(GLC_WORKGROUP_SIZE));
-    m_args.set("u_slot", 2u);
-    m_args.set("u_z", 1u);
-    glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
-    m_triTriExact.use();
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_dispatchArgs.name());
-    glDispatchComputeIndirect(static_cast<GLintptr>(2 * 3 * sizeof(std::uint32_t)));
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    writeDispatchArgs(kUndecidedList, GLC_WORKGROUP_SIZE, 1u);
+    dispatchIndirect(m_triTriExact, kUndecidedList);
 }
 
 CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::GpuTimer* timer, std::size_t timerBase) {

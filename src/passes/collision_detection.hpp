@@ -109,6 +109,8 @@ private:
     void runTriTriCandidates() const;
     void runTriTriAllPairs(std::uint32_t faceCount) const;
     void runTriTriExact() const;
+    void writeDispatchArgs(std::uint32_t list, std::uint32_t itemsPerGroup, std::uint32_t zGroups) const;
+    void dispatchIndirect(const gl::ComputeProgram& program, std::uint32_t list) const;
     template <typename F>
     void timed(gl::GpuTimer* timer, std::size_t section, const char* name, F&& work) const;
 
