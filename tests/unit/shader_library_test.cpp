@@ -311,6 +311,58 @@ LIBRARY_TEST(RobustTriTriEqualsTheOracleOnEveryRandomFamily) {
     }
 }
 
+// fabad4e's exact path, transcribed: orient3d as 24 monomials of the raw coordinates, each split
+// exactly into two doubles (Dekker), summed exactly into a nonoverlapping expansion (Shewchuk's
+// GROW-EXPANSION with Knuth's TWO-SUM); the sign of the largest component. Exact under IEEE
+// semantics; under reassociation the split and TWO-SUM's error terms fold to 0 and it becomes a
+// plain double sum. It was wrong on an NVIDIA H100 and right on llvmpipe: the relaxed build must
+// reproduce that failure, or it would not be evidence for the integer path.
+int doubleExpansionOrient3d(vec3 fa, vec3 fb, vec3 fc, vec3 fd) {
+    const glm::dvec3 pts[4] = {glm::dvec3(fa), glm::dvec3(fb), glm::dvec3(fc), glm::dvec3(fd)};
+    const int triples[4][4] = {{1, 2, 3, 1}, {0, 2, 3, -1}, {1, 0, 3, -1}, {1, 2, 0, -1}};
+    const int perms[6][4] = {{0, 1, 2, 1}, {0, 2, 1, -1}, {1, 2, 0, 1}, {1, 0, 2, -1}, {2, 0, 1, 1}, {2, 1, 0, -1}};
+    std::vector<double> e;
+    for (const auto& tr : triples) {
+        for (const auto& pm : perms) {
+            double x = pts[tr[0]][pm[0]];
+            const double y = pts[tr[1]][pm[1]], z = pts[tr[2]][pm[2]];
+            if (tr[3] * pm[3] < 0) x = -x;
+            const double prod = x * y;                    // exact: 48 bits
+            const double c = 134217729.0 * prod, hi = c - (c - prod), lo = prod - hi;
+            for (double q : {hi * z, lo * z}) {           // exact: at most 50 bits each
+                std::vector<double> out;
+                for (double ei : e) {
+                    const double sum = q + ei, bv = sum - q, av = sum - bv;
+                    const double err = (q - av) + (ei - bv);
+                    q = sum;
+                    if (err != 0.0) out.push_back(err);
+                }
+                if (q != 0.0) out.push_back(q);
+                e = out;
+            }
+        }
+    }
+    return e.empty() ? 0 : (e.back() > 0.0 ? 1 : -1);
+}
+
+LIBRARY_TEST(DoubleExpansionsAreExactOnlyUnderStrictIeee) {
+    int wrong = 0, inputs = 0;
+    for (const Quad& x : predicateInputs(16, 40000)) {
+        bool normal = true; // fabad4e rebuilt denormals from their bits; keep to normal floats here
+        for (vec3 p : {x.a, x.b, x.c, x.d})
+            for (int k = 0; k < 3; ++k) normal = normal && (p[k] == 0.0f || std::fabs(p[k]) >= 1e-30f) && std::fabs(p[k]) <= 1e30f;
+        if (!normal) continue;
+        ++inputs;
+        wrong += doubleExpansionOrient3d(x.a, x.b, x.c, x.d) != exactOrient3d(x.a, x.b, x.c, x.d) ? 1 : 0;
+    }
+    std::printf("[ fabad4e  ] double-expansion orient3d wrong on %d of %d inputs\n", wrong, inputs);
+#ifdef GLCOLLIDE_RELAXED_FLOAT
+    EXPECT_GT(wrong, 100) << "the relaxed build does not reproduce the failure seen on NVIDIA";
+#else
+    EXPECT_EQ(wrong, 0) << "the transcription is not exact even under IEEE semantics";
+#endif
+}
+
 #ifdef GLCOLLIDE_RELAXED_FLOAT
 // Canaries: the relaxed build must really relax, or agreeing with the oracle there proves nothing.
 // volatile keeps the inputs unknown to the compiler; the operations themselves are free to change.
