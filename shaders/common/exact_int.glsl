@@ -34,8 +34,10 @@
 #ifndef GLC_EXACT_INT_GLSL
 #define GLC_EXACT_INT_GLSL
 
-// 28 limbs = 896 bits: degree 3 over the full float range needs 3 * 277 = 831 bits plus growth
-// and sign (glcFrameLimbs never asks for more: it clamps, and the bound is shown in the docs).
+// 28 limbs = 896 bits. A caller must keep degree * 277 + growthBits + 1 <= 896 for inputs over the
+// whole float range (orient3d: 3 * (277 + 1) + 6 + 1 = 841; the CCD cubic's coefficients, whose
+// factors are differences of differences, 3 * (277 + 2) + 10 + 1 = 848). glcFrameLimbs clamps to
+// the capacity, so a larger polynomial would be computed modulo 2^896: wrong, not an overflow.
 #define GLC_BIG_LIMBS 28
 
 #ifndef GLC_PRIVATE
