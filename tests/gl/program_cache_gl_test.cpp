@@ -12,6 +12,7 @@
 #include "gl/program_cache.hpp"
 #include "gl/setup_stats_sink.hpp"
 #include "scoped_cache_dir.hpp"
+#include "support/two_tet_boxes_scene.hpp"
 
 #include <glcollide/engine.hpp>
 #include <glcollide/scene.hpp>
@@ -211,20 +212,9 @@ TEST(ProgramCacheGl, NoSinkRecordsNothingAndStillCaches) {
     expectComputes(program);
 }
 
-Scene smallCollidingScene() {
-    const std::string json = R"({"format_version": 1, "name": "cache test",
-      "effects": ["springs", "collisions"], "collision": {"precision": "robust"},
-      "objects": [
-        {"name": "a", "generator": {"type": "tet_box", "size": [1, 1, 1], "resolution": [1, 1, 1]},
-         "mass": 1, "springs": {"stiffness": 10}},
-        {"name": "b", "generator": {"type": "tet_box", "size": [1, 1, 1], "resolution": [1, 1, 1]},
-         "transform": {"translate": [0.5, 0, 0]}, "mass": 1, "springs": {"stiffness": 10}}]})";
-    return parseScene(json, ".", "program cache test");
-}
-
 TEST(ProgramCacheGl, EngineSetupStatsCountItsOwnProgramsOnly) {
     const FreshCacheDir dir;
-    const Scene scene = smallCollidingScene();
+    const Scene scene = test::twoOverlappingTetBoxes("robust");
     const Engine cold(scene);
     const SetupStats coldStats = cold.setupStats();
     ASSERT_FALSE(coldStats.programs.empty());

@@ -9,6 +9,7 @@
 
 #include "passes/robust_self_check.hpp"
 #include "scoped_cache_dir.hpp"
+#include "support/two_tet_boxes_scene.hpp"
 
 #include <glcollide/engine.hpp>
 #include <glcollide/error.hpp>
@@ -161,19 +162,8 @@ TEST_F(RobustSelfCheckGl, TheEnvironmentVariableWins) {
     EXPECT_THROW((void)passes::effectiveSelfCheckMode(SelfCheckMode::Error), Error);
 }
 
-Scene collidingScene(const char* precision) {
-    const std::string json = std::string(R"({"format_version": 1, "name": "self-check test",
-      "effects": ["springs", "collisions"], "collision": {"precision": ")") + precision + R"("},
-      "objects": [
-        {"name": "a", "generator": {"type": "tet_box", "size": [1, 1, 1], "resolution": [1, 1, 1]},
-         "mass": 1, "springs": {"stiffness": 10}},
-        {"name": "b", "generator": {"type": "tet_box", "size": [1, 1, 1], "resolution": [1, 1, 1]},
-         "transform": {"translate": [0.5, 0, 0]}, "mass": 1, "springs": {"stiffness": 10}}]})";
-    return parseScene(json, ".", "self-check test");
-}
-
 TEST_F(RobustSelfCheckGl, AnEngineWithRobustCollisionsRunsItOnce) {
-    const Engine first(collidingScene("robust"));
+    const Engine first(test::twoOverlappingTetBoxes("robust"));
     const SelfCheckReport& r = first.setupStats().robustSelfCheck;
     EXPECT_TRUE(r.needed);
     EXPECT_TRUE(r.passed);
@@ -181,17 +171,17 @@ TEST_F(RobustSelfCheckGl, AnEngineWithRobustCollisionsRunsItOnce) {
     bool queryProgram = false;
     for (const ProgramSetup& p : first.setupStats().programs) queryProgram |= p.shader == "tri_tri_query";
     EXPECT_TRUE(queryProgram) << "the check's programs count as setup";
-    const Engine second(collidingScene("robust"));
+    const Engine second(test::twoOverlappingTetBoxes("robust"));
     EXPECT_TRUE(second.setupStats().robustSelfCheck.remembered);
     EXPECT_TRUE(second.warnings().empty());
 }
 
 TEST_F(RobustSelfCheckGl, FastPrecisionOrOffNeedsNoCheck) {
-    const Engine fast(collidingScene("fast"));
+    const Engine fast(test::twoOverlappingTetBoxes("fast"));
     EXPECT_FALSE(fast.setupStats().robustSelfCheck.needed);
     EngineOptions options;
     options.robustSelfCheck = SelfCheckMode::Off;
-    const Engine off(collidingScene("robust"), options);
+    const Engine off(test::twoOverlappingTetBoxes("robust"), options);
     EXPECT_FALSE(off.setupStats().robustSelfCheck.needed);
     EXPECT_EQ(off.setupStats().robustSelfCheck.mode, SelfCheckMode::Off);
     EXPECT_EQ(markerFiles(dir), 0u);
