@@ -2,9 +2,7 @@
 // The CPU twin (src/cpu/collision_twin.cpp) repeats each of them in the same float arithmetic, so
 // boxes and candidate pairs match bit for bit (docs/broad-phase.md).
 
-// Bits of u_pairRules: which face pairs may collide.
-#define GLC_RULE_BETWEEN_OBJECTS 1u // faces of different objects (effect `collisions`)
-#define GLC_RULE_SELF 2u            // faces of one object that share no node (effect `self_collisions`)
+// u_pairRules holds GLC_RULE_* bits (layout.glsl): which face pairs may collide.
 
 // Closed AABB overlap: lo_a <= hi_b and lo_b <= hi_a on every axis. An empty box (lo > hi)
 // overlaps nothing that is finite.
@@ -32,7 +30,3 @@ void faceBox(vec3 p0, vec3 p1, vec3 p2, float halfThickness, out vec3 lo, out ve
     lo = min(min(p0, p1), p2) - vec3(halfThickness);
     hi = max(max(p0, p1), p2) + vec3(halfThickness);
 }
-
-// Appends to a counted list: the count stays exact even when the list is full, so the host can
-// grow the list and rerun (DESIGN.md "Append buffers never drop data").
-#define GLC_APPEND(counter, capacity, list, item) { uint slot_ = atomicAdd(counter, 1u); if (slot_ < capacity) list[slot_] = item; }

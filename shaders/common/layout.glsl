@@ -17,16 +17,16 @@
 #define GLC_BIND_OBJECTS 8             // GpuObject[]
 #define GLC_BIND_BOX_FACE_LIST 9       // uint[faces]: face indices grouped by leaf box (CSR items)
 #define GLC_BIND_FACE_PAIRS 10         // uvec2[capacity]: candidate face pairs (broad-phase output)
-#define GLC_BIND_BOX_MASK 11           // uint[boxes * boxes]: 1 where two leaf boxes overlap (masked mode)
+#define GLC_BIND_BOX_MASK 11           // uint[boxes * boxes]: 1 where two leaf boxes overlap (masked broad phase)
 #define GLC_BIND_NODE_SPRING_OFFSETS 12 // uint[nodes+1]: CSR row offsets into node-spring list
 #define GLC_BIND_NODE_SPRING_LIST 13   // uint[2*springs]: spring indices adjacent to each node
 #define GLC_BIND_NODE_FACE_OFFSETS 14  // uint[nodes+1]: CSR row offsets into node-face list
 #define GLC_BIND_NODE_FACE_LIST 15     // uint[3*faces]: face indices adjacent to each node
 #define GLC_BIND_BOX_FACE_OFFSETS 16   // uint[boxes+1]: CSR row offsets into the box face list
-#define GLC_BIND_BOX_PAIRS 17          // uvec2[capacity]: overlapping leaf-box pairs (octree mode)
-#define GLC_BIND_COLLISION_COUNTERS 18 // GpuCollisionCounters: append counters and capacities
+#define GLC_BIND_BOX_PAIRS 17          // uvec2[capacity]: overlapping leaf-box pairs (octree broad phase)
+#define GLC_BIND_COLLISION_COUNTERS 18 // GpuCollisionCounters: (count, capacity) of every list, statistics
 #define GLC_BIND_CONTACT_FORCES 19     // ivec4[nodes]: contact force, fixed point (GLC_CONTACT_FORCE_SCALE units per N)
-#define GLC_BIND_DISPATCH_ARGS 20      // uint[3 * k]: glDispatchComputeIndirect arguments written on the GPU
+#define GLC_BIND_DISPATCH_ARGS 20      // uint[3 * GLC_LIST_COUNT]: indirect dispatch arguments per list, written on the GPU
 #define GLC_BIND_QUERY_TRIANGLES 21   // float[18 * pairs]: tri-tri query input, a0 a1 a2 b0 b1 b2 (xyz each)
 #define GLC_BIND_QUERY_RESULTS 22     // uint[pairs]: tri-tri query output, 1 = the closed triangles intersect
 #define GLC_BIND_QUERY_STATS 23       // uint[1]: tri-tri query exact-fallback counter (robust precision)
@@ -44,8 +44,25 @@
 #define GLC_OWN_EDGE12 16u
 #define GLC_OWN_EDGE20 32u
 
-// Work-group size of the per-node and per-spring passes.
-#define GLC_WORKGROUP_SIZE 128
+// Bits of u_pairRules (collision.glsl): which face pairs may collide.
+#define GLC_RULE_BETWEEN_OBJECTS 1u // faces of different objects (effect `collisions`)
+#define GLC_RULE_SELF 2u            // faces of one object that share no node (effect `self_collisions`)
+
+// Work-group sizes, shared by the shaders (local_size) and the C++ that sizes their dispatches;
+// tests/gl/layout_gl_test.cpp checks each program's GL_COMPUTE_WORK_GROUP_SIZE against them.
+#define GLC_WORKGROUP_SIZE 128   // one invocation per item: nodes, springs, list entries
+#define GLC_BB_UPDATE_GROUP 64   // BBUpdate: one group per leaf box
+#define GLC_BOX_PAIR_TILE 8      // box-pair kernels: 8 x 8 tiles of the boxes x boxes grid
+#define GLC_FACE_PAIR_TILE 16    // face-pair kernels: 16 x 16 tiles of the faces x faces grid
+#define GLC_EXPAND_GROUP 64      // octree expansion: one group (x z slices) per box pair
+
+// Append lists of the collision pipeline: the index of each list's (count, capacity) in
+// GpuCollisionCounters.lists and of its indirect dispatch arguments (GLC_BIND_DISPATCH_ARGS).
+#define GLC_LIST_BOX_PAIRS 0u     // uvec2 overlapping leaf-box pairs (octree broad phase)
+#define GLC_LIST_CANDIDATES 1u    // uvec2 candidate face pairs (every broad phase)
+#define GLC_LIST_UNDECIDED 2u     // uint candidate indices the filtered TriTri left to the exact pass
+#define GLC_LIST_INTERSECTIONS 3u // uvec2 face pairs whose closed triangles intersect
+#define GLC_LIST_COUNT 4
 
 // A spring between two nodes (global node indices).
 struct GpuSpring {
@@ -85,22 +102,21 @@ struct GpuFaceInfo {
     uint pad0;
 };
 
-// Append counters. A writer does i = atomicAdd(count, 1) and stores only if i < capacity, so
-// after the pass `count` is the exact number of items found, even on overflow; the engine then
-// grows the list to at least `count` and reruns the pass (DESIGN.md: lists never drop data).
+// One append list's counter. A writer does i = atomicAdd(count, 1) and stores only if
+// i < capacity (GLC_APPEND), so after a pass `count` is the exact number of items found, even on
+// overflow; the host then grows the list to at least `count` and reruns the stage that wrote it
+// (lists never drop data; docs/design/).
+struct GpuListCounter {
+    uint count;
+    uint capacity;
+};
+
 struct GpuCollisionCounters {
-    uint boxPairCount;
-    uint candidateCount;
-    uint intersectionCount;
+    GpuListCounter lists[GLC_LIST_COUNT]; // indexed by GLC_LIST_*
     uint exactFallbackCount; // robust TriTri: predicates the exact pass evaluated in integers
-    uint boxPairCapacity;
-    uint candidateCapacity;
-    uint intersectionCapacity;
     uint contactCount;       // vertex-face and edge-edge contacts that produced a force
-    uint undecidedCount;     // robust TriTri: candidates left to the exact pass (capacity: candidateCapacity)
     uint pad0;
     uint pad1;
-    uint pad2;
 };
 
 // Written by NodeUpdate when a node's new position or velocity is not finite (EngineOptions::

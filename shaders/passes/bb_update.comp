@@ -7,7 +7,6 @@
 // does not depend on thread order (no float atomics). CPU twin: cpu::twinLeafBoxes.
 #include "common/layout.glsl"
 
-#define GLC_BB_UPDATE_GROUP 64
 layout(local_size_x = GLC_BB_UPDATE_GROUP) in;
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };

@@ -22,6 +22,8 @@
 // and clears them. Ownership bits (GLC_OWN_*) make every vertex-face and edge-edge pair count once.
 // Twin: cpu::contactForces.
 #include "common/layout.glsl"
+#include "common/lists.glsl"
+#include "common/face_nodes.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
@@ -29,11 +31,9 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
 layout(std430, binding = GLC_BIND_NODE_VELOCITIES) readonly buffer NodeVelocitiesBuf { vec4 g_velocities[]; };
-layout(std430, binding = GLC_BIND_FACES) readonly buffer FacesBuf { uint g_faces[]; };
 layout(std430, binding = GLC_BIND_FACE_INFO) readonly buffer FaceInfoBuf { GpuFaceInfo g_faceInfo[]; };
 layout(std430, binding = GLC_BIND_OBJECTS) readonly buffer ObjectsBuf { GpuObject g_objects[]; };
 layout(std430, binding = GLC_BIND_FACE_PAIRS) readonly buffer FacePairsBuf { uvec2 g_facePairs[]; };
-layout(std430, binding = GLC_BIND_COLLISION_COUNTERS) buffer CollisionCountersBuf { GpuCollisionCounters g_counters; };
 layout(std430, binding = GLC_BIND_CONTACT_FORCES) buffer ContactForcesBuf { ivec4 g_contactForces[]; };
 
 uniform uint u_candidateCount;
@@ -133,8 +133,7 @@ void main() {
     uint i = globalIndex();
     if (i >= u_candidateCount) return;
     uvec2 pair = g_facePairs[i];
-    uvec3 fa = uvec3(g_faces[3u * pair.x], g_faces[3u * pair.x + 1u], g_faces[3u * pair.x + 2u]);
-    uvec3 fb = uvec3(g_faces[3u * pair.y], g_faces[3u * pair.y + 1u], g_faces[3u * pair.y + 2u]);
+    uvec3 fa = faceNodes(pair.x), fb = faceNodes(pair.y);
     GpuFaceInfo ia = g_faceInfo[pair.x];
     GpuFaceInfo ib = g_faceInfo[pair.y];
     bool closedA = g_objects[ia.object].closed != 0u;

@@ -1,4 +1,5 @@
 #version 430 core
+// glcollide-features: GLC_GRAVITY GLC_DAMPING GLC_WIND
 // NodeForce — per-node external forces: gravity, viscous damping, linear wind drag on faces.
 // The NodeForce stage of the AABB-octree pipeline (seeds/002, Table 2, Fig. 4). One invocation
 // per node; wind gathers the node's faces through a CSR list, so no atomics are needed.

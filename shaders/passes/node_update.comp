@@ -1,4 +1,5 @@
 #version 430 core
+// glcollide-features: GLC_FORCES GLC_GROUND GLC_CONTACTS GLC_CHECK_FINITE
 // NodeUpdate — one symplectic Euler substep (v += h w f; x += h v), pinned nodes (w = 0) held,
 // optional ground plane with restitution and Coulomb friction on the velocity.
 // The NodeUpdate stage of the AABB-octree pipeline (seeds/002, Table 2).

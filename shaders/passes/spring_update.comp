@@ -1,4 +1,5 @@
 #version 430 core
+// glcollide-features: GLC_ACCUMULATE
 // SpringUpdate — Hooke force plus damping along each spring, gathered per node.
 // The SpringUpdate stage of the AABB-octree pipeline (seeds/002, Table 2). The paper scatters per
 // spring; we gather through a node->spring CSR list in a fixed order, so the sum is deterministic

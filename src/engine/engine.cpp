@@ -30,11 +30,6 @@
 namespace glcollide {
 namespace {
 
-template <typename T>
-gl::Buffer makeBuffer(const char* label, const std::vector<T>& data) {
-    return gl::Buffer(label, data.size() * sizeof(T), data.empty() ? nullptr : data.data());
-}
-
 std::vector<glm::vec4> packNodes(const std::vector<glm::dvec3>& xyz, const std::vector<double>* w) {
     std::vector<glm::vec4> out(xyz.size());
     for (std::size_t i = 0; i < xyz.size(); ++i)
@@ -69,10 +64,7 @@ struct Engine::Impl {
     std::optional<passes::CollisionDetection> collision;
     std::optional<passes::ContactResponsePass> contact;
     std::vector<std::string> passNames;
-    // Timer sections: the dynamics passes, the response, then the collision detection's passes.
-    static constexpr std::size_t kNodeForce = 0, kSpringUpdate = 1, kNodeUpdate = 2, kContact = 3,
-                                 kCollisionBase = 4;
-    gl::GpuTimer timer{kCollisionBase};
+    gl::GpuTimer timer{passes::kPassCount}; // one section per pass: passes::passIndex(id)
     StepStats stats;
     SetupStats setup;
 
@@ -81,7 +73,7 @@ struct Engine::Impl {
     void substep(int index, bool lastOfFrame);
     void readHealth();
     template <typename Pass, typename... Args>
-    void run(std::size_t section, const Pass& pass, Args&&... args);
+    void run(const Pass& pass, Args&&... args);
 };
 
 void Engine::Impl::chooseSubsteps() {
@@ -121,9 +113,9 @@ void Engine::Impl::allocate() {
     buffers.faceCount = static_cast<std::uint32_t>(m.faceCount());
     buffers.springCount = static_cast<std::uint32_t>(m.springs.size());
     if (!plan.nodeUpdate) return;
-    buffers.positions = makeBuffer("positions", packNodes(m.positions, &m.inverseMasses));
-    buffers.velocities = makeBuffer("velocities", packNodes(m.velocities, nullptr));
-    buffers.faces = makeBuffer("faces", m.faceIndices);
+    buffers.positions = gl::makeBuffer("positions", packNodes(m.positions, &m.inverseMasses));
+    buffers.velocities = gl::makeBuffer("velocities", packNodes(m.velocities, nullptr));
+    buffers.faces = gl::makeBuffer("faces", m.faceIndices);
     if (plan.nodeForce || plan.springUpdate)
         buffers.forces = gl::Buffer("forces", m.nodeCount() * sizeof(glm::vec4));
     if (plan.springUpdate) {
@@ -135,28 +127,26 @@ void Engine::Impl::allocate() {
         for (std::size_t o = 0; o < m.objects.size(); ++o)
             for (std::uint32_t k = 0; k < m.objects[o].springCount; ++k)
                 springs[m.objects[o].firstSpring + k].object = static_cast<std::uint32_t>(o);
-        buffers.springs = makeBuffer("springs", springs);
-        buffers.nodeSpringOffsets = makeBuffer("nodeSpringOffsets", m.nodeSprings.offsets);
-        buffers.nodeSpringList = makeBuffer("nodeSpringList", m.nodeSprings.items);
+        buffers.springs = gl::makeBuffer("springs", springs);
+        buffers.nodeSpringOffsets = gl::makeBuffer("nodeSpringOffsets", m.nodeSprings.offsets);
+        buffers.nodeSpringList = gl::makeBuffer("nodeSpringList", m.nodeSprings.items);
     }
     if (plan.nodeForce && plan.nodeForceParams.wind) {
-        buffers.nodeFaceOffsets = makeBuffer("nodeFaceOffsets", m.nodeFaces.offsets);
-        buffers.nodeFaceList = makeBuffer("nodeFaceList", m.nodeFaces.items);
+        buffers.nodeFaceOffsets = gl::makeBuffer("nodeFaceOffsets", m.nodeFaces.offsets);
+        buffers.nodeFaceList = gl::makeBuffer("nodeFaceList", m.nodeFaces.items);
     }
     if (plan.nodeUpdateParams.checkFinite) {
         const gpu::GpuHealth none{GLC_HEALTH_NONE, GLC_HEALTH_NONE, 0u, 0u};
         buffers.health = gl::Buffer("health", sizeof none, &none);
     }
     if (plan.collisions)
-        buffers.contactForces = makeBuffer("contactForces", std::vector<glm::ivec4>(m.nodeCount(), glm::ivec4(0)));
+        buffers.contactForces = gl::makeBuffer("contactForces", std::vector<glm::ivec4>(m.nodeCount(), glm::ivec4(0)));
 }
 
 template <typename Pass, typename... Args>
-void Engine::Impl::run(std::size_t section, const Pass& pass, Args&&... args) {
-    gl::DebugGroup group(Pass::kName);
-    if (options.gpuTiming) timer.begin(section);
+void Engine::Impl::run(const Pass& pass, Args&&... args) {
+    const gl::TimedSection section(options.gpuTiming ? &timer : nullptr, passes::passIndex(Pass::kId), Pass::kName);
     pass.dispatch(buffers, std::forward<Args>(args)...);
-    if (options.gpuTiming) timer.end(section);
 }
 
 Engine::Engine(const Scene& scene, const EngineOptions& options) {
@@ -194,8 +184,6 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
         config.selfCollisions = d.plan.selfCollisions;
         config.settings = d.plan.collision;
         d.collision.emplace(config, d.model);
-        if (d.collision->passNames() != d.plan.collisionPasses())
-            throw Error("internal error: collision passes differ from the pipeline plan");
         d.contact.emplace();
         // Robust precision promises the oracle's answers; check that this device delivers them
         // before relying on it (once per device, driver and shader; docs/narrow-phase.md).
@@ -203,7 +191,6 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
             d.setup.robustSelfCheck = passes::runRobustSelfCheck(passes::effectiveSelfCheckMode(options.robustSelfCheck));
             if (!d.setup.robustSelfCheck.message.empty()) d.warnings.push_back(d.setup.robustSelfCheck.message);
         }
-        d.timer = gl::GpuTimer(Impl::kCollisionBase + d.plan.collisionPasses().size());
     }
     d.passNames = d.plan.passes();
     d.stats.substeps = d.substeps.substeps;
@@ -232,11 +219,10 @@ Engine& Engine::operator=(Engine&& other) noexcept {
 }
 
 void Engine::Impl::substep(int index, bool lastOfFrame) {
-    if (nodeForce) run(kNodeForce, *nodeForce, plan.nodeForceParams);
-    if (springUpdate) run(kSpringUpdate, *springUpdate);
+    if (nodeForce) run(*nodeForce, plan.nodeForceParams);
+    if (springUpdate) run(*springUpdate);
     if (collision) {
-        const passes::CollisionCounts counts =
-            collision->detect(buffers, options.gpuTiming ? &timer : nullptr, kCollisionBase);
+        const passes::CollisionCounts counts = collision->detect(buffers, options.gpuTiming ? &timer : nullptr);
         CollisionStats& c = stats.collision;
         c.boxPairs = counts.boxPairs;
         c.candidatePairs = counts.candidates;
@@ -246,7 +232,7 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
         c.exactFallbacks = counts.exactFallbacks;
         c.listGrowths += counts.reruns;
         // detect() cleared the response's contact counter; it is read after the last substep.
-        run(kContact, *contact,
+        run(*contact,
             passes::ContactInputs{&collision->candidates(), &collision->faceInfo(), &collision->objects(),
                                   &collision->counters(), counts.candidates},
             plan.contact);
@@ -256,7 +242,7 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
                                            sizeof c.contacts, &c.contacts);
         }
     }
-    if (nodeUpdate) run(kNodeUpdate, *nodeUpdate, plan.nodeUpdateParams, static_cast<std::uint32_t>(index));
+    if (nodeUpdate) run(*nodeUpdate, plan.nodeUpdateParams, static_cast<std::uint32_t>(index));
 }
 
 void Engine::Impl::readHealth() {
@@ -298,16 +284,8 @@ void Engine::step() {
     d.readHealth();
     if (d.options.gpuTiming) {
         const std::vector<double> ms = d.timer.resolveMilliseconds();
-        // Pass names in pipeline order map to timer sections.
-        std::size_t collisionPass = 0;
-        for (PassTiming& p : d.stats.passes) {
-            std::size_t section = Impl::kNodeUpdate;
-            if (p.name == passes::NodeForcePass::kName) section = Impl::kNodeForce;
-            else if (p.name == passes::SpringUpdatePass::kName) section = Impl::kSpringUpdate;
-            else if (p.name == passes::ContactResponsePass::kName) section = Impl::kContact;
-            else if (p.name != passes::NodeUpdatePass::kName) section = Impl::kCollisionBase + collisionPass++;
-            p.gpuMilliseconds = ms[section];
-        }
+        const std::vector<passes::PassId> ids = d.plan.passIds();
+        for (std::size_t p = 0; p < ids.size(); ++p) d.stats.passes[p].gpuMilliseconds = ms[passes::passIndex(ids[p])];
     }
     d.stats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -346,7 +324,7 @@ CollisionStats Engine::detectCollisions() {
     const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Compute, m_impl->glFeatures);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); // as in step(): host shader writes are seen
     const gl::DebugGroup group("glcollide::Engine::detectCollisions");
-    const passes::CollisionCounts counts = m_impl->collision->detect(m_impl->buffers, nullptr, 0);
+    const passes::CollisionCounts counts = m_impl->collision->detect(m_impl->buffers, nullptr);
     c.boxPairs = counts.boxPairs;
     c.candidatePairs = counts.candidates;
     c.intersectingPairs = counts.intersections;

@@ -1,23 +1,30 @@
 #include "engine/pipeline_plan.hpp"
 
+#include "passes/broad_phase/create_broad_phase.hpp"
+
 #include <glcollide/error.hpp>
 
 namespace glcollide::engine {
 
-std::vector<std::string> PipelinePlan::passes() const {
-    std::vector<std::string> p;
-    if (nodeForce) p.emplace_back("NodeForce");
-    if (springUpdate) p.emplace_back("SpringUpdate");
-    for (std::string& c : collisionPasses()) p.push_back(std::move(c));
-    if (collisions) p.emplace_back("ContactResponse");
-    if (nodeUpdate) p.emplace_back("NodeUpdate");
+std::vector<passes::PassId> PipelinePlan::passIds() const {
+    using passes::PassId;
+    std::vector<PassId> p;
+    if (nodeForce) p.push_back(PassId::NodeForce);
+    if (springUpdate) p.push_back(PassId::SpringUpdate);
+    if (collisions) {
+        // The broad phase's passes come from its factory entry; TriTri tests its candidates.
+        for (PassId id : passes::broadPhasePasses(collision.broadPhase)) p.push_back(id);
+        p.push_back(PassId::TriTri);
+        p.push_back(PassId::ContactResponse);
+    }
+    if (nodeUpdate) p.push_back(PassId::NodeUpdate);
     return p;
 }
 
-std::vector<std::string> PipelinePlan::collisionPasses() const {
-    if (!collisions) return {};
-    if (collision.broadPhase == BroadPhase::AllPairs) return {"TriTri"};
-    return {"BBUpdate", "BBCollision", "TriTri"};
+std::vector<std::string> PipelinePlan::passes() const {
+    std::vector<std::string> names;
+    for (passes::PassId id : passIds()) names.emplace_back(passes::passName(id));
+    return names;
 }
 
 std::vector<std::string> PipelinePlan::buffers() const {

@@ -4,6 +4,7 @@
 
 #include "core/contact_params.hpp"
 #include "core/dynamics_params.hpp"
+#include "passes/pass_id.hpp"
 
 #include <glcollide/scene.hpp>
 
@@ -27,9 +28,10 @@ struct PipelinePlan {
     CollisionSettings collision;
     ContactParams contact;
 
+    /// The passes a substep dispatches, in order.
+    [[nodiscard]] std::vector<passes::PassId> passIds() const;
+    /// Their names (passes::passName).
     [[nodiscard]] std::vector<std::string> passes() const;
-    /// The collision detection passes of the chosen broad phase, in dispatch order.
-    [[nodiscard]] std::vector<std::string> collisionPasses() const;
     /// Labels of the engine's own buffers (DeviceBuffers declaration order); the collision
     /// detection's lists and tables follow them in Engine::allocatedBuffers().
     [[nodiscard]] std::vector<std::string> buffers() const;

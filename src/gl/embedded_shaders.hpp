@@ -10,6 +10,7 @@ struct EmbeddedShader {
     const char* source;        ///< expanded source: #version first, then #line-marked text
     const char* const* files;  ///< files[k] = path (relative to shaders/) of GLSL source-string k
     std::size_t fileCount;
+    const char* features;      ///< space-separated switches of its `// glcollide-features:` line
 };
 
 extern const EmbeddedShader kShaders[];

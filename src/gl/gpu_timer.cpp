@@ -53,4 +53,13 @@ std::vector<double> GpuTimer::resolveMilliseconds() {
     return ms;
 }
 
+TimedSection::TimedSection(GpuTimer* timer, std::size_t section, std::string_view name)
+    : m_group(name), m_timer(timer), m_section(section) {
+    if (m_timer) m_timer->begin(m_section);
+}
+
+TimedSection::~TimedSection() {
+    if (m_timer) m_timer->end(m_section);
+}
+
 } // namespace glcollide::gl

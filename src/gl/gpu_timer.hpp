@@ -3,9 +3,11 @@
 // elapsed-time queries cannot nest with a host's, and read 0 around compute on Mesa
 // (notes/platform.md §2.4).
 
+#include "gl/debug_output.hpp"
 #include "gl/handles.hpp"
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 namespace glcollide::gl {
@@ -35,6 +37,21 @@ private:
         std::uint32_t start, end;
     };
     std::vector<Bracket> m_brackets;
+};
+
+/// The bracket around one pass's dispatches: a debug group named after the pass (RenderDoc,
+/// apitrace) and, when `timer` is not null, its timer section.
+class TimedSection {
+public:
+    TimedSection(GpuTimer* timer, std::size_t section, std::string_view name);
+    ~TimedSection();
+    TimedSection(const TimedSection&) = delete;
+    TimedSection& operator=(const TimedSection&) = delete;
+
+private:
+    DebugGroup m_group;
+    GpuTimer* m_timer;
+    std::size_t m_section;
 };
 
 } // namespace glcollide::gl

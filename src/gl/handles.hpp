@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 #include <string_view>
 #include <utility>
 
@@ -69,5 +70,11 @@ private:
     std::size_t m_bytes = 0;
     std::string m_label;
 };
+
+/// A buffer holding a copy of `data` (a placeholder when empty).
+template <typename T>
+Buffer makeBuffer(std::string_view label, const std::vector<T>& data) {
+    return Buffer(label, data.size() * sizeof(T), data.empty() ? nullptr : data.data());
+}
 
 } // namespace glcollide::gl

@@ -45,8 +45,16 @@ std::vector<std::string> embeddedShaderNames() {
     return names;
 }
 
+std::vector<std::string> shaderFeatures(std::string_view name) {
+    std::istringstream words(findShader(name).features);
+    std::vector<std::string> features;
+    for (std::string w; words >> w;) features.push_back(w);
+    return features;
+}
+
 std::string shaderSource(std::string_view name, const std::vector<std::string>& defines) {
-    const std::string source = findShader(name).source;
+    const embedded::EmbeddedShader& shader = findShader(name);
+    const std::string source = shader.source;
     const std::size_t endOfVersion = source.find('\n') + 1;
     std::string defineBlock;
     for (const std::string& d : defines) {
@@ -54,6 +62,11 @@ std::string shaderSource(std::string_view name, const std::vector<std::string>& 
         const std::string macro = d.substr(0, space);
         if (macro.empty() || !std::regex_match(macro, std::regex("[A-Za-z_][A-Za-z0-9_]*")))
             throw Error("invalid shader define '" + d + "' for " + std::string(name));
+        // GLC_ switches are the shader's declared features: only those variants were validated at
+        // build time (tools/shader_embed.cpp). A different kernel belongs in its own file.
+        if (macro.rfind("GLC_", 0) == 0 && !std::regex_search(shader.features, std::regex("(^| )" + macro + "( |$)")))
+            throw Error("shader '" + std::string(name) + "' has no feature " + macro + " (declared: '" +
+                        shader.features + "')");
         defineBlock += "#define " + d + "\n";
     }
     // The embedded text continues with "#line 2 0", so inserted lines do not shift locations.

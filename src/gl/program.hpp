@@ -12,8 +12,12 @@
 
 namespace glcollide::gl {
 
-/// Names of all embedded shaders (stems of shaders/passes/*.comp).
+/// Names of all embedded shaders (stems of shaders/passes/*.comp and shaders/bench/*.comp).
 std::vector<std::string> embeddedShaderNames();
+
+/// The feature switches a shader declares (`// glcollide-features:`); the only GLC_ defines it
+/// accepts. Throws Error for an unknown name.
+std::vector<std::string> shaderFeatures(std::string_view name);
 
 /// The expanded source of an embedded shader with `defines` ("NAME" or "NAME VALUE") inserted
 /// after #version. Throws Error for an unknown name.

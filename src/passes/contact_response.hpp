@@ -6,6 +6,7 @@
 #include "core/contact_params.hpp"
 #include "gl/program.hpp"
 #include "passes/device_buffers.hpp"
+#include "passes/pass_id.hpp"
 
 namespace glcollide::passes {
 
@@ -20,7 +21,8 @@ struct ContactInputs {
 
 class ContactResponsePass {
 public:
-    static constexpr const char* kName = "ContactResponse";
+    static constexpr PassId kId = PassId::ContactResponse;
+    static constexpr const char* kName = passName(kId);
     ContactResponsePass();
     void dispatch(const DeviceBuffers& buffers, const ContactInputs& inputs, const ContactParams& params) const;
 

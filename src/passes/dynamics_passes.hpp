@@ -7,12 +7,14 @@
 #include "core/dynamics_params.hpp"
 #include "gl/program.hpp"
 #include "passes/device_buffers.hpp"
+#include "passes/pass_id.hpp"
 
 namespace glcollide::passes {
 
 class NodeForcePass {
 public:
-    static constexpr const char* kName = "NodeForce";
+    static constexpr PassId kId = PassId::NodeForce;
+    static constexpr const char* kName = passName(kId);
     explicit NodeForcePass(const NodeForceParams& config);
     void dispatch(const DeviceBuffers& buffers, const NodeForceParams& params) const;
 
@@ -23,7 +25,8 @@ private:
 
 class SpringUpdatePass {
 public:
-    static constexpr const char* kName = "SpringUpdate";
+    static constexpr PassId kId = PassId::SpringUpdate;
+    static constexpr const char* kName = passName(kId);
     explicit SpringUpdatePass(const SpringUpdateParams& config);
     void dispatch(const DeviceBuffers& buffers) const;
 
@@ -33,7 +36,8 @@ private:
 
 class NodeUpdatePass {
 public:
-    static constexpr const char* kName = "NodeUpdate";
+    static constexpr PassId kId = PassId::NodeUpdate;
+    static constexpr const char* kName = passName(kId);
     explicit NodeUpdatePass(const NodeUpdateParams& config);
     /// `substep`: index within the frame, recorded with a non-finite node when checkFinite is on.
     void dispatch(const DeviceBuffers& buffers, const NodeUpdateParams& params, std::uint32_t substep = 0) const;

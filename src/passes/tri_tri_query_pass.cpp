@@ -15,10 +15,10 @@ const char* toString(TriTriPrecision precision) { return precision == TriTriPrec
 
 TriTriQueryPass::TriTriQueryPass(TriTriPrecision precision) : m_precision(precision) {
     if (precision == TriTriPrecision::Robust) {
-        m_program = gl::ComputeProgram("tri_tri_query", {"GLC_PRECISION_ROBUST"});
+        m_program = gl::ComputeProgram("tri_tri_query_filtered");
         m_exact = gl::ComputeProgram("tri_tri_query_exact");
     } else {
-        m_program = gl::ComputeProgram("tri_tri_query");
+        m_program = gl::ComputeProgram("tri_tri_query_fast");
     }
 }
 

@@ -52,7 +52,7 @@ TEST(CollisionLargeBoxGl, BoxesWithThousandsOfFacesLoseNoCandidate) {
     for (int depth = 1; depth <= 3; ++depth) {
         config.settings.octreeDepth = depth;
         passes::CollisionDetection detection(config, model);
-        detection.detect(buffers, nullptr, 0);
+        detection.detect(buffers, nullptr);
         EXPECT_EQ(detection.readCandidates(), twin) << "octree depth " << depth;
     }
 }

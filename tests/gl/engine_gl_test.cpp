@@ -86,9 +86,9 @@ TEST(EngineGl, CollisionEffectsAddTheirPassesAndBuffers) {
     engine.step();
     EXPECT_TRUE(engine.lastStep().collisions);
     EXPECT_EQ(engine.lastStep().passes.size(), 6u);
-    // All pairs needs no boxes.
+    // All pairs needs no leaf boxes (no BBUpdate); its face-pair stage is timed as BBCollision.
     Engine allPairs(sceneWith(R"(["self_collisions"])", R"("collision": {"broad_phase": "all_pairs"},)"));
-    EXPECT_EQ(allPairs.pipeline(), (Names{"TriTri", "ContactResponse", "NodeUpdate"}));
+    EXPECT_EQ(allPairs.pipeline(), (Names{"BBCollision", "TriTri", "ContactResponse", "NodeUpdate"}));
     allPairs.step();
 }
 

@@ -14,6 +14,7 @@
 #include <epoxy/gl.h>
 
 #include <fstream>
+#include <array>
 #include <map>
 #include <sstream>
 
@@ -31,7 +32,7 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"NodeSpringListBuf", GLC_BIND_NODE_SPRING_LIST},
     {"NodeFaceOffsetsBuf", GLC_BIND_NODE_FACE_OFFSETS},
     {"NodeFaceListBuf", GLC_BIND_NODE_FACE_LIST},
-    // collision detection (src/passes/collision_detection.cpp)
+    // collision detection (src/passes/collision_detection.cpp, src/passes/broad_phase/)
     {"BoxesBuf", GLC_BIND_BOXES},
     {"IntersectionsBuf", GLC_BIND_INTERSECTIONS},
     {"FaceInfoBuf", GLC_BIND_FACE_INFO},
@@ -42,6 +43,11 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"BoxPairsBuf", GLC_BIND_BOX_PAIRS},
     {"CollisionCountersBuf", GLC_BIND_COLLISION_COUNTERS},
     {"DispatchArgsBuf", GLC_BIND_DISPATCH_ARGS},
+    {"UndecidedBuf", GLC_BIND_UNDECIDED},
+    // tri-tri queries (src/passes/tri_tri_query_pass.cpp)
+    {"QueryTrianglesBuf", GLC_BIND_QUERY_TRIANGLES},
+    {"QueryResultsBuf", GLC_BIND_QUERY_RESULTS},
+    {"QueryStatsBuf", GLC_BIND_QUERY_STATS},
     // non-finite check of NodeUpdate (EngineOptions::checkFinite)
     {"ContactForcesBuf", GLC_BIND_CONTACT_FORCES},
     {"HealthBuf", GLC_BIND_HEALTH},
@@ -56,21 +62,10 @@ GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenu
     return value;
 }
 
-// Every variant the engine can compile, so every block of every shader is seen.
+// Every embedded shader with all its declared features on, so every block of every shader is seen.
 std::vector<gl::ComputeProgram> allPrograms() {
     std::vector<gl::ComputeProgram> p;
-    p.emplace_back("node_force", std::vector<std::string>{"GLC_GRAVITY", "GLC_DAMPING", "GLC_WIND"});
-    p.emplace_back("spring_update", std::vector<std::string>{"GLC_ACCUMULATE"});
-    p.emplace_back("node_update", std::vector<std::string>{"GLC_FORCES", "GLC_GROUND"});
-    p.emplace_back("node_update", std::vector<std::string>{"GLC_FORCES", "GLC_CONTACTS", "GLC_CHECK_FINITE"});
-    // Collision detection: every variant (precision adds no block, so the fast ones suffice).
-    p.emplace_back("bb_update");
-    p.emplace_back("bb_collision");
-    p.emplace_back("bb_collision", std::vector<std::string>{"GLC_BB_MASK"});
-    p.emplace_back("bb_collision", std::vector<std::string>{"GLC_BB_EXPAND"});
-    p.emplace_back("collision_dispatch_args");
-    p.emplace_back("tri_tri");
-    p.emplace_back("tri_tri", std::vector<std::string>{"GLC_TRITRI_ALL_PAIRS", "GLC_TRITRI_MASKED"});
+    for (const std::string& name : gl::embeddedShaderNames()) p.emplace_back(name, gl::shaderFeatures(name));
     return p;
 }
 
@@ -158,7 +153,7 @@ TEST(LayoutGl, ObjectStructMatchesCpp) {
 
 // The collision structs, as the collision shaders see them.
 TEST(LayoutGl, CollisionStructsMatchCpp) {
-    gl::ComputeProgram update("bb_update"), expand("bb_collision", {"GLC_BB_EXPAND"});
+    gl::ComputeProgram update("bb_update"), expand("octree_expand");
     EXPECT_EQ(resourceProperty(update.name(), GL_BUFFER_VARIABLE, "g_boxes[0].lo", GL_TOP_LEVEL_ARRAY_STRIDE),
               static_cast<GLint>(sizeof(gpu::GpuBox)));
     EXPECT_EQ(resourceProperty(update.name(), GL_BUFFER_VARIABLE, "g_boxes[0].lo", GL_OFFSET),
@@ -173,18 +168,53 @@ TEST(LayoutGl, CollisionStructsMatchCpp) {
         {"g_faceInfo[0].box", offsetof(gpu::GpuFaceInfo, box)},
         {"g_faceInfo[0].owned", offsetof(gpu::GpuFaceInfo, owned)},
         {"g_faceInfo[0].pad0", offsetof(gpu::GpuFaceInfo, pad0)},
-        {"g_counters.boxPairCount", offsetof(gpu::GpuCollisionCounters, boxPairCount)},
-        {"g_counters.candidateCount", offsetof(gpu::GpuCollisionCounters, candidateCount)},
-        {"g_counters.intersectionCount", offsetof(gpu::GpuCollisionCounters, intersectionCount)},
+        {"g_counters.lists[0].count", offsetof(gpu::GpuCollisionCounters, lists) + offsetof(gpu::GpuListCounter, count)},
+        {"g_counters.lists[0].capacity",
+         offsetof(gpu::GpuCollisionCounters, lists) + offsetof(gpu::GpuListCounter, capacity)},
         {"g_counters.exactFallbackCount", offsetof(gpu::GpuCollisionCounters, exactFallbackCount)},
-        {"g_counters.boxPairCapacity", offsetof(gpu::GpuCollisionCounters, boxPairCapacity)},
-        {"g_counters.candidateCapacity", offsetof(gpu::GpuCollisionCounters, candidateCapacity)},
-        {"g_counters.intersectionCapacity", offsetof(gpu::GpuCollisionCounters, intersectionCapacity)},
         {"g_counters.contactCount", offsetof(gpu::GpuCollisionCounters, contactCount)},
-        {"g_counters.undecidedCount", offsetof(gpu::GpuCollisionCounters, undecidedCount)},
     };
     for (const auto& [name, offset] : members)
         EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset)) << name;
+}
+
+// The list array's stride, which the C++ counters index with (GpuListCounter per list).
+TEST(LayoutGl, ListCountersHaveTheCppStride) {
+    gl::ComputeProgram expand("octree_expand");
+    for (std::uint32_t list = 0; list < GLC_LIST_COUNT; ++list) {
+        const std::string name = "g_counters.lists[" + std::to_string(list) + "].capacity";
+        EXPECT_EQ(resourceProperty(expand.name(), GL_BUFFER_VARIABLE, name.c_str(), GL_OFFSET),
+                  static_cast<GLint>(offsetof(gpu::GpuCollisionCounters, lists) + list * sizeof(gpu::GpuListCounter) +
+                                     offsetof(gpu::GpuListCounter, capacity)))
+            << name;
+    }
+}
+
+// The work-group sizes the C++ sizes dispatches with (layout.glsl) are the ones each program
+// was compiled with.
+TEST(LayoutGl, WorkGroupSizesMatchTheSharedConstants) {
+    const std::map<std::string, std::array<GLint, 3>> expected = {
+        {"bb_update", {GLC_BB_UPDATE_GROUP, 1, 1}},
+        {"octree_box_pairs", {GLC_BOX_PAIR_TILE, GLC_BOX_PAIR_TILE, 1}},
+        {"box_mask", {GLC_BOX_PAIR_TILE, GLC_BOX_PAIR_TILE, 1}},
+        {"octree_expand", {GLC_EXPAND_GROUP, 1, 1}},
+        {"all_face_pairs", {GLC_FACE_PAIR_TILE, GLC_FACE_PAIR_TILE, 1}},
+        {"masked_face_pairs", {GLC_FACE_PAIR_TILE, GLC_FACE_PAIR_TILE, 1}},
+        {"paper_all_pairs_tri_tri", {GLC_FACE_PAIR_TILE, GLC_FACE_PAIR_TILE, 1}},
+        {"paper_masked_tri_tri", {GLC_FACE_PAIR_TILE, GLC_FACE_PAIR_TILE, 1}},
+        {"list_dispatch_args", {1, 1, 1}},
+    };
+    std::size_t checked = 0;
+    for (const gl::ComputeProgram& program : allPrograms()) {
+        std::array<GLint, 3> size{};
+        glGetProgramiv(program.name(), GL_COMPUTE_WORK_GROUP_SIZE, size.data());
+        const auto it = expected.find(program.shaderName());
+        // Every other shader is one invocation per item in groups of GLC_WORKGROUP_SIZE.
+        const std::array<GLint, 3> want = it != expected.end() ? it->second : std::array<GLint, 3>{GLC_WORKGROUP_SIZE, 1, 1};
+        EXPECT_EQ(size, want) << program.shaderName();
+        checked += it != expected.end() ? 1 : 0;
+    }
+    EXPECT_EQ(checked, expected.size()) << "a shader named here is not embedded";
 }
 
 TEST(LayoutGl, HealthStructMatchesCpp) {

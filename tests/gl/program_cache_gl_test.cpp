@@ -224,11 +224,13 @@ TEST(ProgramCacheGl, EngineSetupStatsCountItsOwnProgramsOnly) {
     double sum = 0.0;
     for (const ProgramSetup& p : coldStats.programs) sum += p.milliseconds;
     EXPECT_DOUBLE_EQ(coldStats.compileLinkMilliseconds, sum);
-    bool robustTriTri = false;
-    for (const ProgramSetup& p : coldStats.programs)
-        robustTriTri |= p.shader == "tri_tri" &&
-                        std::find(p.defines.begin(), p.defines.end(), "GLC_PRECISION_ROBUST") != p.defines.end();
-    EXPECT_TRUE(robustTriTri) << "the per-program list names shaders and defines";
+    bool robustTriTri = false, defines = false;
+    for (const ProgramSetup& p : coldStats.programs) {
+        robustTriTri |= p.shader == "tri_tri_filtered";
+        defines |= p.shader == "node_update" &&
+                   std::find(p.defines.begin(), p.defines.end(), "GLC_FORCES") != p.defines.end();
+    }
+    EXPECT_TRUE(robustTriTri && defines) << "the per-program list names shaders and defines";
 
     const Engine warm(scene);
     EXPECT_EQ(warm.setupStats().cacheHits, coldStats.programs.size());

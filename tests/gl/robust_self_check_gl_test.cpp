@@ -169,7 +169,7 @@ TEST_F(RobustSelfCheckGl, AnEngineWithRobustCollisionsRunsItOnce) {
     EXPECT_TRUE(r.passed);
     EXPECT_EQ(r.cases, passes::builtinSelfCheckCases().size());
     bool queryProgram = false;
-    for (const ProgramSetup& p : first.setupStats().programs) queryProgram |= p.shader == "tri_tri_query";
+    for (const ProgramSetup& p : first.setupStats().programs) queryProgram |= p.shader == "tri_tri_query_filtered";
     EXPECT_TRUE(queryProgram) << "the check's programs count as setup";
     const Engine second(test::twoOverlappingTetBoxes("robust"));
     EXPECT_TRUE(second.setupStats().robustSelfCheck.remembered);

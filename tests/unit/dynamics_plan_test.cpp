@@ -69,7 +69,8 @@ TEST(PipelinePlan, CollisionEffectsAddTheBroadPhaseNarrowPhaseAndResponse) {
     scene.collision.broadPhase = BroadPhase::AllPairs;
     plan = engine::planPipeline(scene);
     EXPECT_TRUE(plan.selfCollisions);
-    EXPECT_EQ(plan.passes(), (std::vector<std::string>{"TriTri", "ContactResponse", "NodeUpdate"}));
+    // All pairs: one broad-phase stage (every face pair's boxes), timed as BBCollision.
+    EXPECT_EQ(plan.passes(), (std::vector<std::string>{"BBCollision", "TriTri", "ContactResponse", "NodeUpdate"}));
     scene.bodies[0].faces.clear(); // nothing to collide: no collision passes
     EXPECT_EQ(engine::planPipeline(scene).passes(), std::vector<std::string>{"NodeUpdate"});
 }

@@ -1,0 +1,28 @@
+#version 430 core
+// All-pairs broad phase (the reference): one invocation per face pair f < g over the upper
+// triangle of the faces x faces grid, in 2D tiles the host walks (u_tileOriginX/Y). A valid pair
+// whose face boxes overlap is appended to the candidate list as (f, g). O(faces^2): a reference for
+// tests and benchmarks, not for large scenes. CPU twin: cpu::twinCandidates.
+#include "common/layout.glsl"
+#include "common/collision.glsl"
+#include "common/lists.glsl"
+#include "common/face_nodes.glsl"
+
+layout(local_size_x = GLC_FACE_PAIR_TILE, local_size_y = GLC_FACE_PAIR_TILE) in;
+
+layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
+layout(std430, binding = GLC_BIND_FACE_INFO) readonly buffer FaceInfoBuf { GpuFaceInfo g_faceInfo[]; };
+layout(std430, binding = GLC_BIND_FACE_PAIRS) writeonly buffer FacePairsBuf { uvec2 g_facePairs[]; };
+
+#include "common/face_pair_candidate.glsl"
+
+uniform uint u_faceCount;
+uniform uint u_tileOriginX; // first face g (x) of this dispatch
+uniform uint u_tileOriginY; // first face f (y) of this dispatch
+
+void main() {
+    uint g = u_tileOriginX + gl_GlobalInvocationID.x;
+    uint f = u_tileOriginY + gl_GlobalInvocationID.y;
+    if (f >= u_faceCount || g >= u_faceCount || g <= f) return;
+    if (isCandidatePair(f, g)) GLC_APPEND(GLC_LIST_CANDIDATES, g_facePairs, uvec2(f, g))
+}

@@ -1,0 +1,63 @@
+#pragma once
+// The broad-phase interface (after ipc-toolkit's broad_phase.hpp + create_broad_phase.hpp): every
+// kind of broad phase is one class behind it, made by createBroadPhase() from the scene's
+// collision settings, and the engine knows only this interface.
+//
+// The contract, the same for every kind (tests/gl/collision_detection_gl_test.cpp runs it over
+// all kinds against the CPU brute force, cpu::twinCandidates): the stages a broad phase adds to
+// the substep's chain append every valid face pair (pair rules of shaders/common/collision.glsl)
+// whose inflated closed face boxes overlap, exactly once, as (lower, higher) face index, to the
+// candidate list GLC_LIST_CANDIDATES; they may use lists of their own (declared in AppendLists,
+// grown and rerun by the chain like any other).
+//
+// Room for continuous collision detection: a broad phase reads node positions from binding
+// GLC_BIND_NODE_POSITIONS. A swept broad phase would also read the substep's start positions and
+// bound each face over both (BroadPhaseContext::sweptBoxes); no kind supports that yet, and
+// createBroadPhase() refuses it rather than ignore it.
+
+#include "gl/handles.hpp"
+#include "passes/collision/append_lists.hpp"
+#include "passes/collision/stage_chain.hpp"
+#include "passes/pass_id.hpp"
+
+#include "cpu/flat_model.hpp"
+#include "cpu/octree.hpp"
+
+#include <glcollide/scene.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace glcollide::passes {
+
+/// What every broad phase is built from.
+struct BroadPhaseContext {
+    const cpu::FlatModel& model;
+    /// The octree of settings.octreeDepth over the rest pose (face -> leaf box), built once by
+    /// the collision detection: GpuFaceInfo.box comes from it.
+    const cpu::OctreeLayout& layout;
+    const CollisionSettings& settings;
+    std::uint32_t pairRules = 0;    ///< GLC_RULE_* bits of the scene's collision effects
+    float halfThickness = 0.0f;     ///< face-box inflation, cpu::halfThicknessFloat(settings.thickness)
+    /// First capacity of a list of the broad phase's own; 0 = settings.initialCapacity (tests
+    /// overflow one list at a time).
+    std::uint32_t boxPairCapacity = 0;
+    bool sweptBoxes = false;        ///< CCD: bound each face over the substep's start and end positions
+};
+
+class BroadPhase {
+public:
+    virtual ~BroadPhase() = default;
+
+    /// The passes its stages are timed under, in dispatch order.
+    [[nodiscard]] virtual std::vector<PassId> passes() const = 0;
+    /// Declares its own lists in `lists` and adds its stages to `chain`; they append the candidate
+    /// face pairs (the contract above). Called once, after the candidate list is declared.
+    virtual void addStages(StageChain& chain, AppendLists& lists) = 0;
+    /// Binds its own buffers (tables, boxes) before the chain runs; the lists are bound by the chain.
+    virtual void bind() const = 0;
+    /// Its own buffers, for Engine::allocatedBuffers().
+    [[nodiscard]] virtual std::vector<const gl::Buffer*> buffers() const = 0;
+};
+
+} // namespace glcollide::passes

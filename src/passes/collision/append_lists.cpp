@@ -1,0 +1,130 @@
+#include "passes/collision/append_lists.hpp"
+
+#include <glcollide/error.hpp>
+
+#include <epoxy/gl.h>
+
+#include <bit>
+#include <cstddef>
+#include <string>
+
+namespace glcollide::passes {
+namespace {
+constexpr std::size_t kCountersOffset = offsetof(gpu::GpuCollisionCounters, lists);
+constexpr std::size_t kArgsPerList = 3 * sizeof(std::uint32_t); // glDispatchComputeIndirect's x, y, z
+} // namespace
+
+AppendLists::AppendLists(std::uint64_t byteLimit)
+    : m_byteLimit(byteLimit),
+      m_counters("collisionCounters", sizeof(gpu::GpuCollisionCounters)),
+      m_dispatchArgs("dispatchArgs", GLC_LIST_COUNT * kArgsPerList),
+      m_argsProgram("list_dispatch_args") {
+    const gpu::GpuCollisionCounters zero{};
+    m_counters.upload(0, sizeof zero, &zero);
+}
+
+void AppendLists::declare(std::uint32_t list, const ListSpec& spec) {
+    if (spec.capacity < 1) throw Error(std::string("collision list '") + spec.label + "': capacity must be at least 1");
+    List& l = m_lists.at(list);
+    l.spec = spec;
+    l.capacity = spec.capacityOf >= 0 ? capacity(static_cast<std::uint32_t>(spec.capacityOf)) : spec.capacity;
+    l.storage = gl::Buffer(spec.label, std::size_t{l.capacity} * spec.itemBytes);
+    writeCapacities();
+}
+
+std::uint32_t AppendLists::storedCount(std::uint32_t list) const {
+    const List& l = m_lists.at(list);
+    return l.count < l.capacity ? l.count : l.capacity;
+}
+
+void AppendLists::bind() const {
+    m_counters.bindStorage(GLC_BIND_COLLISION_COUNTERS);
+    m_dispatchArgs.bindStorage(GLC_BIND_DISPATCH_ARGS);
+    for (const List& l : m_lists)
+        if (l.storage) l.storage.bindStorage(l.spec.binding);
+}
+
+void AppendLists::writeCapacities() {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after earlier shader writes to the counters
+    for (std::size_t i = 0; i < m_lists.size(); ++i)
+        m_counters.upload(kCountersOffset + i * sizeof(gpu::GpuListCounter) + offsetof(gpu::GpuListCounter, capacity),
+                          sizeof(std::uint32_t), &m_lists[i].capacity);
+}
+
+void AppendLists::resetCounts(const std::vector<std::uint32_t>& lists, bool contacts) {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    const std::uint32_t zero = 0;
+    for (std::uint32_t list : lists) {
+        m_lists.at(list).count = 0;
+        m_counters.upload(kCountersOffset + list * sizeof(gpu::GpuListCounter) + offsetof(gpu::GpuListCounter, count),
+                          sizeof zero, &zero);
+    }
+    // The statistics belong to the stages at the end of the chain, which rerun with any list.
+    m_counters.upload(offsetof(gpu::GpuCollisionCounters, exactFallbackCount), sizeof zero, &zero);
+    if (contacts) m_counters.upload(offsetof(gpu::GpuCollisionCounters, contactCount), sizeof zero, &zero);
+}
+
+void AppendLists::resetGrowths() {
+    for (List& l : m_lists) l.growths = 0;
+}
+
+void AppendLists::readCounters() {
+    gpu::GpuCollisionCounters c{};
+    m_counters.download(0, sizeof c, &c);
+    for (std::size_t i = 0; i < m_lists.size(); ++i) m_lists[i].count = c.lists[i].count;
+    m_exactFallbacks = c.exactFallbackCount;
+}
+
+void AppendLists::grow(std::uint32_t list) {
+    List& l = m_lists.at(list);
+    ++l.growths;
+    const std::uint32_t count = l.count;
+    const std::uint64_t maxEntries = m_byteLimit / l.spec.itemBytes;
+    // A list is bound whole as one shader storage block: past the limit the items cannot be
+    // stored, and dropping them silently is not an option.
+    if (count > maxEntries)
+        throw Error(std::string("collision list '") + l.spec.label + "' needs " + std::to_string(count) + " " +
+                    l.spec.itemNoun + " (" + std::to_string(std::uint64_t{count} * l.spec.itemBytes) +
+                    " bytes), more than one shader storage block can hold on this device "
+                    "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, " + std::to_string(m_byteLimit) +
+                    " bytes); no pair was dropped: use fewer or smaller bodies, a smaller thickness or a "
+                    "deeper octree");
+    // Next power of two (fewer regrowths) when it fits; 2^31 and up: exact size.
+    std::uint32_t capacity = count <= (1u << 31) ? std::bit_ceil(count) : count;
+    if (capacity > maxEntries) capacity = count;
+    l.capacity = capacity;
+    l.storage = gl::Buffer(l.spec.label, std::size_t{capacity} * l.spec.itemBytes);
+    for (List& follower : m_lists)
+        if (follower.storage && follower.spec.capacityOf == static_cast<int>(list) && follower.capacity < capacity) {
+            follower.capacity = capacity;
+            follower.storage = gl::Buffer(follower.spec.label, std::size_t{capacity} * follower.spec.itemBytes);
+        }
+    writeCapacities();
+    bind();
+}
+
+void AppendLists::dispatchOver(const gl::ComputeProgram& program, std::uint32_t list, std::uint32_t itemsPerGroup,
+                               std::uint32_t zGroups) const {
+    m_argsProgram.use();
+    m_argsProgram.set("u_list", list);
+    m_argsProgram.set("u_itemsPerGroup", itemsPerGroup);
+    m_argsProgram.set("u_zGroups", zGroups);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
+    program.use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_dispatchArgs.name());
+    glDispatchComputeIndirect(static_cast<GLintptr>(list * kArgsPerList));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+std::vector<const gl::Buffer*> AppendLists::buffers() const {
+    std::vector<const gl::Buffer*> b;
+    for (const List& l : m_lists)
+        if (l.storage) b.push_back(&l.storage);
+    b.push_back(&m_counters);
+    b.push_back(&m_dispatchArgs);
+    return b;
+}
+
+} // namespace glcollide::passes

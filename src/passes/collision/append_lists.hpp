@@ -1,0 +1,84 @@
+#pragma once
+// The collision pipeline's append lists (GLC_LIST_* of shaders/common/layout.glsl), written once
+// for every stage that produces or consumes one: each list is a storage buffer, a capacity and an
+// exact count, all counters live in one GpuCollisionCounters array read back with one download.
+// A writer appends with GLC_APPEND (shaders/common/lists.glsl), so the count is exact even when
+// the list is full; grow() then makes room and the stage chain reruns the writer: nothing is dropped.
+
+#include "gl/handles.hpp"
+#include "gl/layout.hpp"
+#include "gl/program.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace glcollide::passes {
+
+/// What a list holds and where the kernels find it.
+struct ListSpec {
+    const char* label = "";       ///< buffer label; names the list in errors
+    const char* itemNoun = "";    ///< "pairs", "indices": errors say "needs N <noun>"
+    std::size_t itemBytes = 0;    ///< 8 for uvec2 pairs, 4 for uint indices
+    std::uint32_t binding = 0;    ///< GLC_BIND_* storage binding
+    std::uint32_t capacity = 1;   ///< first capacity, >= 1
+    /// A list whose items are a subset of another list's entries (the undecided candidate
+    /// indices) keeps that list's capacity, so it never overflows on its own; -1: none.
+    int capacityOf = -1;
+};
+
+class AppendLists {
+public:
+    /// The counter and indirect-argument buffers; no list is declared yet. `byteLimit`: bytes one
+    /// list may grow to (a list is bound whole as one shader storage block).
+    explicit AppendLists(std::uint64_t byteLimit);
+
+    void declare(std::uint32_t list, const ListSpec& spec);
+    [[nodiscard]] bool declared(std::uint32_t list) const { return static_cast<bool>(m_lists.at(list).storage); }
+    [[nodiscard]] const gl::Buffer& storage(std::uint32_t list) const { return m_lists.at(list).storage; }
+    [[nodiscard]] std::uint32_t capacity(std::uint32_t list) const { return m_lists.at(list).capacity; }
+    /// Exact count at the last readCounters() (may exceed the capacity: the list overflowed).
+    [[nodiscard]] std::uint32_t count(std::uint32_t list) const { return m_lists.at(list).count; }
+    [[nodiscard]] std::uint32_t storedCount(std::uint32_t list) const;
+    [[nodiscard]] bool overflowed(std::uint32_t list) const { return count(list) > capacity(list); }
+    /// Times grow() ran on the list since the last resetGrowths().
+    [[nodiscard]] std::uint32_t growths(std::uint32_t list) const { return m_lists.at(list).growths; }
+    [[nodiscard]] std::uint32_t exactFallbacks() const { return m_exactFallbacks; }
+    [[nodiscard]] const gl::Buffer& counters() const { return m_counters; }
+
+    /// Binds the counters, the indirect arguments and every declared list to their bindings.
+    void bind() const;
+    /// Zeroes the counts of `lists` and the statistics of the stages that rerun with them
+    /// (exactFallbackCount); contactCount too when `contacts`.
+    void resetCounts(const std::vector<std::uint32_t>& lists, bool contacts = false);
+    void resetGrowths();
+    /// One download of every counter.
+    void readCounters();
+    /// Reallocates an overflowed list with room for its exact count (the next power of two when
+    /// it fits), and the lists that keep its capacity; throws glcollide::Error, naming the list,
+    /// when that would exceed the byte limit.
+    void grow(std::uint32_t list);
+    /// Writes the indirect arguments of `list` on the GPU (list_dispatch_args.comp: groups of
+    /// `itemsPerGroup` entries, `zGroups` in z) and dispatches `program` with them.
+    void dispatchOver(const gl::ComputeProgram& program, std::uint32_t list, std::uint32_t itemsPerGroup,
+                      std::uint32_t zGroups = 1) const;
+
+    /// The buffers allocated here, for Engine::allocatedBuffers().
+    [[nodiscard]] std::vector<const gl::Buffer*> buffers() const;
+
+private:
+    struct List {
+        ListSpec spec;
+        gl::Buffer storage;
+        std::uint32_t capacity = 0, count = 0, growths = 0;
+    };
+    void writeCapacities();
+
+    std::uint64_t m_byteLimit;
+    std::array<List, GLC_LIST_COUNT> m_lists;
+    gl::Buffer m_counters, m_dispatchArgs;
+    gl::ComputeProgram m_argsProgram;
+    std::uint32_t m_exactFallbacks = 0;
+};
+
+} // namespace glcollide::passes
