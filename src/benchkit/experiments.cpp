@@ -1,5 +1,7 @@
 #include "benchkit/experiments.hpp"
 
+#include "benchkit/paper_fused_tri_tri.hpp"
+
 #include "cpu/flat_model.hpp"
 #include "cpu/ground_truth.hpp"
 #include "cpu/octree.hpp"
@@ -184,18 +186,58 @@ void scaling(const Experiment& x, ExperimentResult& out, const Progress& progres
         }
 }
 
+/// The paper's fused TriTri (masked or all pairs, benchkit/paper_fused_tri_tri.hpp) on the engine's
+/// final state, as a run of its own next to the engine's pipeline: its time is the GPU time of the
+/// whole scheme per substep (BBUpdate, mask, fused TriTri), its error the exactly intersecting
+/// pairs missing from its candidates, like the broad phases'.
+RunResult paperFusedRun(const Experiment& x, Engine& engine, const Scene& scene, const FaceData& d,
+                        const RunResult& engineRun) {
+    const bool masked = scene.collision.broadPhase == BroadPhase::Masked;
+    PaperFusedTriTri paper(d.model, scene.collision, d.rules.betweenObjects, d.rules.selfCollisions, masked);
+    std::vector<glm::vec3> positions;
+    for (const glm::dvec3& p : engine.readPositions()) positions.emplace_back(p);
+    const PaperFusedAnswer answer = paper.run(positions, x.warmupFrames, std::max(1, x.frames));
+    RunResult r;
+    r.scene = engineRun.scene;
+    r.config = engineRun.config + " (paper: fused TriTri)";
+    r.nodes = engineRun.nodes;
+    r.faces = engineRun.faces;
+    r.substeps = 1;
+    r.frames = static_cast<int>(answer.milliseconds.size());
+    r.passNames = {"fused"};
+    r.passMs = {summarize(answer.milliseconds)};
+    r.gpuMs = r.passMs[0];
+    const Pairs truth = cpu::exactIntersectingPairs(d.model.faceIndices, d.faceObject, positions, d.rules);
+    r.set("exact_intersecting_pairs", double(truth.size()));
+    r.set("candidate_pairs", double(answer.candidates.size()));
+    r.set("reported_intersecting_pairs", double(answer.intersections.size()));
+    r.set("candidates_missing_intersections", double(countMissing(truth, answer.candidates)));
+    r.set("false_negatives", double(countMissing(truth, answer.intersections)));
+    r.set("false_positives", double(countMissing(answer.intersections, truth)));
+    r.time = r.gpuMs.median;
+    r.error = r.metric("candidates_missing_intersections");
+    return r;
+}
+
 void broadOrNarrow(const Experiment& x, ExperimentResult& out, const Progress& progress, bool broad) {
     out.timeLabel = broad ? "collision detection GPU ms per substep" : "TriTri GPU ms per substep";
     out.errorLabel = broad ? "intersecting pairs missed by the broad phase" : "disagreements with the exact oracle";
     out.errorIsCount = true;
+    bool paperRuns = false;
     for (const SceneEntry& s : x.scenes)
         for (const ConfigEntry& c : x.configs) {
             progress(s.name + " / " + c.name);
+            std::optional<RunResult> paper;
             RunResult r = runScene(x, s, c, nullptr, [&](Engine& engine, const Scene& scene, RunResult& run) {
                 if (!scene.effects.has(Effect::Collisions) && !scene.effects.has(Effect::SelfCollisions))
                     throw Error(s.source + " (config \"" + c.name + "\"): a " + kindName(x.kind) +
                                 " experiment needs the collisions or self_collisions effect");
-                compareWithOracle(engine, faceData(scene), run);
+                const FaceData data = faceData(scene);
+                compareWithOracle(engine, data, run);
+                if (broad && scene.collision.broadPhase != BroadPhase::Octree) {
+                    progress(s.name + " / " + c.name + " (paper: fused TriTri)");
+                    paper = paperFusedRun(x, engine, scene, data, run);
+                }
             });
             if (broad) {
                 r.time = passMedian(r, {"BBUpdate", "BBCollision", "TriTri"}) / r.substeps;
@@ -205,6 +247,10 @@ void broadOrNarrow(const Experiment& x, ExperimentResult& out, const Progress& p
                 r.error = r.metric("false_negatives") + r.metric("false_positives");
             }
             out.runs.push_back(std::move(r));
+            if (paper) {
+                out.runs.push_back(std::move(*paper));
+                paperRuns = true;
+            }
         }
     if (broad)
         out.notes.push_back("Ground truth: every valid face pair of the final state tested by the exact rational "
@@ -213,6 +259,12 @@ void broadOrNarrow(const Experiment& x, ExperimentResult& out, const Progress& p
     else
         out.notes.push_back("Ground truth: the exact rational oracle on every valid face pair of the final state. "
                             "Disagreements = false positives + false negatives of the reported intersecting pairs.");
+    if (paperRuns)
+        out.notes.push_back("\"(paper: fused TriTri)\": the paper's own scheme (seeds/002 Alg. 2-3) on the final "
+                            "state: every valid face pair tested by the fast triangle test in one kernel (masked: "
+                            "behind the leaf-box overlap mask), GPU ms per run of BBUpdate + mask + fused TriTri. "
+                            "The engine's masked and all-pairs broad phases instead append candidates and run "
+                            "TriTri on that list.");
 }
 
 /// A family of triangle pairs with its exact answers.
