@@ -1,8 +1,8 @@
 #include "passes/collision_detection.hpp"
 
-#include "cpu/collision_twin.hpp"
+#include "core/gpu_layout.hpp"
 #include "gl/debug_output.hpp"
-#include "gl/layout.hpp"
+#include "model/face_box.hpp"
 
 #include <glcollide/error.hpp>
 
@@ -14,11 +14,6 @@
 
 namespace glcollide::passes {
 namespace {
-
-static_assert(cpu::kOwnVertex0 == GLC_OWN_VERTEX0 && cpu::kOwnVertex1 == GLC_OWN_VERTEX1 &&
-              cpu::kOwnVertex2 == GLC_OWN_VERTEX2 && cpu::kOwnEdge01 == GLC_OWN_EDGE01 &&
-              cpu::kOwnEdge12 == GLC_OWN_EDGE12 && cpu::kOwnEdge20 == GLC_OWN_EDGE20,
-              "cpu/octree.hpp and layout.glsl disagree on the owned-feature bits");
 
 // Mirrors of shaders/common/collision.glsl and the work-group sizes of the collision shaders.
 constexpr std::uint32_t kRuleBetweenObjects = 1u, kRuleSelf = 2u;
@@ -71,12 +66,12 @@ void dispatchUpperTriangle(const gl::ComputeProgram& program, std::uint32_t n, s
 
 } // namespace
 
-CollisionDetection::CollisionDetection(const CollisionConfig& config, const cpu::FlatModel& model)
+CollisionDetection::CollisionDetection(const CollisionConfig& config, const model::FlatModel& model)
     : m_config(config),
       m_pairRules((config.betweenObjects ? kRuleBetweenObjects : 0u) | (config.selfCollisions ? kRuleSelf : 0u)),
-      m_halfThickness(cpu::halfThicknessFloat(config.settings.thickness)),
+      m_halfThickness(model::halfThicknessFloat(config.settings.thickness)),
       m_faceCount(static_cast<std::uint32_t>(model.faceCount())),
-      m_layout(cpu::buildOctree(model, config.settings.octreeDepth)) {
+      m_layout(model::buildOctree(model, config.settings.octreeDepth)) {
     const CollisionSettings& s = config.settings;
     if (s.initialCapacity < 1) throw Error("collision: initialCapacity must be at least 1");
     const auto initial = [&](std::uint32_t listCapacity) { return listCapacity ? listCapacity : s.initialCapacity; };
@@ -96,7 +91,7 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const cpu:
     m_faceInfo = makeBuffer("faceInfo", info);
     std::vector<gpu::GpuObject> objects;
     for (std::size_t o = 0; o < model.objects.size(); ++o) {
-        const cpu::ObjectRange& r = model.objects[o];
+        const model::ObjectRange& r = model.objects[o];
         objects.push_back({r.firstNode, r.nodeCount, r.firstFace, r.faceCount, r.firstSpring, r.springCount,
                            m_layout.firstBox[o], m_layout.closed[o]});
     }

@@ -11,8 +11,8 @@
 // TriTriExact (indirect dispatch from that count) decides those exactly (docs/narrow-phase.md). Lists never drop data: an overflowing
 // list is grown to the next power of two >= its exact count and the stage is rerun.
 
-#include "cpu/flat_model.hpp"
-#include "cpu/octree.hpp"
+#include "model/flat_model.hpp"
+#include "model/octree_layout.hpp"
 #include "gl/gpu_timer.hpp"
 #include "gl/handles.hpp"
 #include "gl/program.hpp"
@@ -61,7 +61,7 @@ public:
     /// info and object table, compiles the programs the mode needs and allocates every pair list
     /// with settings.initialCapacity (>= 1) entries. Needs a current GL 4.3 context; throws
     /// glcollide::Error on bad settings or shader errors.
-    CollisionDetection(const CollisionConfig& config, const cpu::FlatModel& model);
+    CollisionDetection(const CollisionConfig& config, const model::FlatModel& model);
 
     /// Pass names in dispatch order: {"BBUpdate","BBCollision","TriTri"}, or {"TriTri"} in
     /// all-pairs mode.
@@ -83,7 +83,7 @@ public:
     [[nodiscard]] const gl::Buffer& counters() const { return m_counters; }
     /// GpuBox per leaf box (empty buffer in all-pairs mode).
     [[nodiscard]] const gl::Buffer& boxes() const { return m_boxes; }
-    [[nodiscard]] const cpu::OctreeLayout& layout() const { return m_layout; }
+    [[nodiscard]] const model::OctreeLayout& layout() const { return m_layout; }
     [[nodiscard]] const CollisionCounts& lastCounts() const { return m_counts; }
     /// Binds faceInfo (6), objects (8), candidates (10), intersections (5), counters (18) for a
     /// later pass (the contact response).
@@ -118,7 +118,7 @@ private:
     std::uint32_t m_pairRules = 0;
     float m_halfThickness = 0.0f;
     std::uint32_t m_faceCount = 0;
-    cpu::OctreeLayout m_layout;
+    model::OctreeLayout m_layout;
 
     gl::ComputeProgram m_bbUpdate, m_boxPairs, m_boxMask, m_expand, m_args, m_triTri, m_triTriExact;
 

@@ -6,10 +6,10 @@
 //    Its disagreements with the oracle are counted per set and printed (docs/narrow-phase.md
 //    publishes them); the only assertions are sanity bounds.
 
-#include "cpu/exact_tri_tri.hpp"
+#include "core/gpu_layout.hpp"
 #include "cpu/fast_tri_tri.hpp"
-#include "cpu/tri_tri_cases.hpp"
-#include "gl/layout.hpp"
+#include "cpu/oracle/exact_tri_tri.hpp"
+#include "cpu/oracle/tri_tri_cases.hpp"
 #include "passes/tri_tri_query_pass.hpp"
 
 #include <gtest/gtest.h>

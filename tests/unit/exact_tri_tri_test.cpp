@@ -3,7 +3,7 @@
 // with answers derived by hand, and on random pairs against an independent double-precision
 // separating-axis test wherever that test is decided by a clear margin.
 
-#include "cpu/exact_tri_tri.hpp"
+#include "cpu/oracle/exact_tri_tri.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,9 +5,9 @@
 // out by hand on axis-aligned boxes.
 
 #include "cpu/collision_twin.hpp"
-#include "cpu/exact_tri_tri.hpp"
-#include "cpu/flat_model.hpp"
-#include "cpu/ground_truth.hpp"
+#include "cpu/oracle/exact_tri_tri.hpp"
+#include "cpu/oracle/ground_truth.hpp"
+#include "model/flat_model.hpp"
 #include "scene/scene_detail.hpp"
 
 #include <gtest/gtest.h>

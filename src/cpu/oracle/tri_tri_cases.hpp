@@ -4,7 +4,7 @@
 // huge) and seeded random sets, uniform and near-degenerate. All coordinates are floats, the
 // precision the GPU works in; the oracle gets them widened to double exactly.
 
-#include "cpu/exact_tri_tri.hpp"
+#include "cpu/oracle/exact_tri_tri.hpp"
 
 #include <array>
 #include <cstddef>
