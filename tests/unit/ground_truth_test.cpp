@@ -141,7 +141,7 @@ TEST(GroundTruthPairs, NoRulesMeansNoPairs) {
 Soup soupOf(const std::vector<Body>& bodies) {
     Scene scene;
     scene.bodies = bodies;
-    const FlatModel m = flatten(scene);
+    const model::FlatModel m = model::flatten(scene);
     Soup s;
     s.faceIndices = m.faceIndices;
     for (std::uint32_t o = 0; o < m.objects.size(); ++o)
@@ -205,7 +205,7 @@ struct Model {
 Model modelOf(const std::vector<Body>& bodies, const std::vector<glm::dvec3>& probes = {}) {
     Scene scene;
     scene.bodies = bodies;
-    const FlatModel m = flatten(scene);
+    const model::FlatModel m = model::flatten(scene);
     Model model{m.faceIndices, {}, {}, m.positions};
     for (std::uint32_t o = 0; o < m.objects.size(); ++o) {
         model.faceObject.insert(model.faceObject.end(), m.objects[o].faceCount, o);
