@@ -2,7 +2,7 @@
 // CPU twin of the collision broad and narrow phase (BBUpdate, BBCollision, TriTri; seeds/002
 // Alg. 1-3): brute force over all face pairs, in the same float arithmetic as the GPU for the
 // boxes, so the candidate set and the leaf boxes must match the GPU's exactly; the intersection
-// set comes from the exact rational oracle (exact_tri_tri.hpp) on the float positions widened to
+// set comes from the exact rational oracle (oracle/exact_tri_tri.hpp) on the float positions widened to
 // double, which the robust GPU narrow phase must reproduce (docs/broad-phase.md).
 
 #include "model/flat_model.hpp"

@@ -1,4 +1,4 @@
-// Ground truth of the benchmark (src/cpu/ground_truth.cpp). exactIntersectingPairs is compared
+// Ground truth of the benchmark (src/cpu/oracle/ground_truth.cpp). exactIntersectingPairs is compared
 // with brute force: the exact oracle on EVERY valid pair for soups small enough (so the box sweep
 // and the double filter are checked to lose nothing), and twinIntersections(twinCandidates) with
 // thickness 0 for meshes of a few thousand faces. deepestPenetration is compared with depths worked
