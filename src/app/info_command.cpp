@@ -1,8 +1,8 @@
 #include "app/commands.hpp"
 #include "app/self_check_report.hpp"
 
+#include "engine/robust_self_check.hpp"
 #include "gl/program_cache.hpp"
-#include "passes/robust_self_check.hpp"
 
 #include <glcollide/gl_info.hpp>
 #include <glcollide/headless_context.hpp>
@@ -48,8 +48,8 @@ int infoCommand(const InfoOptions& options) {
                           {"binary_formats", binaryFormats}};
     // The robust self-check on this device: run now, or the remembered pass. info reports a
     // failure rather than failing (it is what a user runs to find out).
-    const SelfCheckMode mode = passes::effectiveSelfCheckMode(SelfCheckMode::Error);
-    SelfCheckReport selfCheck = passes::runRobustSelfCheck(mode == SelfCheckMode::Error ? SelfCheckMode::Warn : mode);
+    const SelfCheckMode mode = engine::effectiveSelfCheckMode(SelfCheckMode::Error);
+    SelfCheckReport selfCheck = engine::runRobustSelfCheck(mode == SelfCheckMode::Error ? SelfCheckMode::Warn : mode);
     selfCheck.mode = mode; // report the mode in force, not the one info ran it in
     j["robust_self_check"] = selfCheckJson(selfCheck);
     if (options.json) {

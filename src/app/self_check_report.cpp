@@ -1,6 +1,6 @@
 #include "app/self_check_report.hpp"
 
-#include "passes/robust_self_check.hpp"
+#include "engine/robust_self_check.hpp"
 
 #include <iostream>
 #include <sstream>
@@ -19,7 +19,7 @@ nlohmann::json orNull(const std::string& text) { return text.empty() ? nlohmann:
 } // namespace
 
 nlohmann::json selfCheckJson(const SelfCheckReport& r) {
-    return {{"status", status(r)},           {"mode", passes::toString(r.mode)}, {"remembered", r.remembered},
+    return {{"status", status(r)},           {"mode", engine::toString(r.mode)}, {"remembered", r.remembered},
             {"cases", r.cases},              {"wrong", r.wrong},                 {"first_wrong", orNull(r.firstWrong)},
             {"ms", r.milliseconds},          {"marker", orNull(r.marker)}};
 }
@@ -38,7 +38,7 @@ std::string selfCheckLine(const SelfCheckReport& r) {
 }
 
 SelfCheckReport checkRobustBeforeUse() {
-    const SelfCheckReport report = passes::runRobustSelfCheck(passes::effectiveSelfCheckMode(SelfCheckMode::Error));
+    const SelfCheckReport report = engine::runRobustSelfCheck(engine::effectiveSelfCheckMode(SelfCheckMode::Error));
     if (!report.message.empty()) std::cerr << "glcollide: warning: " << report.message << "\n";
     return report;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// How the CLI shows the on-device self-check of robust precision (passes/robust_self_check.hpp):
+// How the CLI shows the on-device self-check of robust precision (engine/robust_self_check.hpp):
 // one JSON object for --stats and `info --json`, one line of text for `info`, and the check run
 // before a command answers with robust precision.
 

@@ -2,13 +2,13 @@
 
 #include "benchkit/paper_fused_tri_tri.hpp"
 
-#include "cpu/flat_model.hpp"
-#include "cpu/ground_truth.hpp"
-#include "cpu/octree.hpp"
-#include "cpu/tri_tri_cases.hpp"
+#include "core/gpu_layout.hpp"
+#include "cpu/oracle/ground_truth.hpp"
+#include "cpu/oracle/tri_tri_cases.hpp"
 #include "gl/gpu_timer.hpp"
 #include "gl/handles.hpp"
-#include "gl/layout.hpp"
+#include "model/features.hpp"
+#include "model/flat_model.hpp"
 #include "passes/tri_tri_query_pass.hpp"
 
 #include <glcollide/engine.hpp>
@@ -117,7 +117,7 @@ std::size_t countMissing(const Pairs& wanted, const Pairs& have) {
 
 /// The faces' objects and the pair rules of the scene's collision effects.
 struct FaceData {
-    cpu::FlatModel model;
+    model::FlatModel model;
     std::vector<std::uint32_t> faceObject, nodeObject;
     std::vector<bool> closed;
     cpu::PairRules rules;
@@ -125,12 +125,12 @@ struct FaceData {
 
 FaceData faceData(const Scene& scene) {
     FaceData d;
-    d.model = cpu::flatten(scene);
+    d.model = model::flatten(scene);
     for (std::uint32_t o = 0; o < d.model.objects.size(); ++o) {
-        const cpu::ObjectRange& r = d.model.objects[o];
+        const model::ObjectRange& r = d.model.objects[o];
         d.faceObject.insert(d.faceObject.end(), r.faceCount, o);
         d.nodeObject.insert(d.nodeObject.end(), r.nodeCount, o);
-        d.closed.push_back(cpu::isClosedSurface(d.model.faceIndices, r.firstFace, r.faceCount));
+        d.closed.push_back(model::isClosedSurface(d.model.faceIndices, r.firstFace, r.faceCount));
     }
     d.rules.betweenObjects = scene.effects.has(Effect::Collisions);
     d.rules.selfCollisions = scene.effects.has(Effect::SelfCollisions);
@@ -389,7 +389,7 @@ Ballistic ballisticOf(const Scene& scene, const std::string& source) {
     for (Effect e : scene.effects.list())
         if (e != Effect::Gravity && e != Effect::Springs) return fail("effect " + std::string(effectName(e)) + " is on");
     if (!scene.effects.has(Effect::Gravity)) return fail("gravity is off");
-    const cpu::FlatModel m = cpu::flatten(scene);
+    const model::FlatModel m = model::flatten(scene);
     Ballistic b;
     b.start = m.positions;
     b.velocity = m.velocities;
@@ -403,7 +403,7 @@ Ballistic ballisticOf(const Scene& scene, const std::string& source) {
         shared = m.velocities[i];
     }
     if (scene.effects.has(Effect::Springs))
-        for (const cpu::FlatSpring& sp : m.springs)
+        for (const model::FlatSpring& sp : m.springs)
             if (b.pinned[sp.a] != b.pinned[sp.b])
                 return fail("a spring joins pinned node " + std::to_string(b.pinned[sp.a] ? sp.a : sp.b) + " to a free one");
     return b;

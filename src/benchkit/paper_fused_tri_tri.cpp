@@ -1,9 +1,9 @@
 #include "benchkit/paper_fused_tri_tri.hpp"
 
-#include "cpu/collision_twin.hpp"
-#include "cpu/octree.hpp"
+#include "model/face_box.hpp"
+#include "model/octree_layout.hpp"
 #include "gl/gpu_timer.hpp"
-#include "gl/layout.hpp"
+#include "core/gpu_layout.hpp"
 #include "passes/broad_phase/leaf_boxes.hpp"
 #include "passes/broad_phase/upper_triangle.hpp"
 #include "passes/collision/append_lists.hpp"
@@ -20,7 +20,7 @@ namespace glcollide::benchkit {
 using passes::PassId;
 
 struct PaperFusedTriTri::Impl {
-    cpu::OctreeLayout layout;
+    model::OctreeLayout layout;
     passes::CollisionTables tables;
     gl::Buffer faces, positions;
     std::uint32_t faceCount;
@@ -30,12 +30,12 @@ struct PaperFusedTriTri::Impl {
     gl::ComputeProgram boxMask, fused;
     passes::StageChain chain;
 
-    Impl(const cpu::FlatModel& model, const CollisionSettings& s, std::uint32_t rules, bool masked)
-        : layout(cpu::buildOctree(model, s.octreeDepth)), tables(model, layout),
+    Impl(const model::FlatModel& model, const CollisionSettings& s, std::uint32_t rules, bool masked)
+        : layout(model::buildOctree(model, s.octreeDepth)), tables(model, layout),
           faces(gl::makeBuffer("faces", model.faceIndices)),
           faceCount(static_cast<std::uint32_t>(model.faceCount())),
           fused(masked ? "paper_masked_tri_tri" : "paper_all_pairs_tri_tri") {
-        const float halfThickness = cpu::halfThicknessFloat(s.thickness);
+        const float halfThickness = model::halfThicknessFloat(s.thickness);
         lists.declare(GLC_LIST_CANDIDATES, {"candidates", "pairs", 8, GLC_BIND_FACE_PAIRS, s.initialCapacity});
         lists.declare(GLC_LIST_INTERSECTIONS, {"intersections", "pairs", 8, GLC_BIND_INTERSECTIONS, s.initialCapacity});
         fused.set("u_faceCount", faceCount);
@@ -76,7 +76,7 @@ struct PaperFusedTriTri::Impl {
     }
 };
 
-PaperFusedTriTri::PaperFusedTriTri(const cpu::FlatModel& model, const CollisionSettings& settings,
+PaperFusedTriTri::PaperFusedTriTri(const model::FlatModel& model, const CollisionSettings& settings,
                                    bool betweenObjects, bool selfCollisions, bool masked)
     : m_impl(std::make_unique<Impl>(model, settings,
                                     (betweenObjects ? GLC_RULE_BETWEEN_OBJECTS : 0u) | (selfCollisions ? GLC_RULE_SELF : 0u),

@@ -4,7 +4,7 @@
 // overlap mask. The engine's masked and all-pairs broad phases emit candidates and let TriTri run
 // on the list; this keeps the paper's own shape measurable next to them (shaders/bench/).
 
-#include "cpu/flat_model.hpp"
+#include "model/flat_model.hpp"
 
 #include <glcollide/scene.hpp>
 
@@ -28,7 +28,7 @@ public:
     /// `masked`: the paper's masked scheme (BBUpdate, box mask, masked fused TriTri) over the
     /// octree of settings.octreeDepth; otherwise its all-pairs scheme (fused TriTri alone).
     /// Needs a current GL 4.3 context.
-    PaperFusedTriTri(const cpu::FlatModel& model, const CollisionSettings& settings, bool betweenObjects,
+    PaperFusedTriTri(const model::FlatModel& model, const CollisionSettings& settings, bool betweenObjects,
                      bool selfCollisions, bool masked);
     ~PaperFusedTriTri();
     PaperFusedTriTri(const PaperFusedTriTri&) = delete;

@@ -2,7 +2,7 @@
 
 #include "scene/json_errors.hpp"
 
-#include "cpu/tri_tri_cases.hpp"
+#include "cpu/oracle/tri_tri_cases.hpp"
 
 #include <glcollide/error.hpp>
 

@@ -1,14 +1,13 @@
 #include "cpu/collision_twin.hpp"
 
-#include "cpu/exact_tri_tri.hpp"
+#include "cpu/oracle/exact_tri_tri.hpp"
+#include "model/face_box.hpp"
 
 #include <glm/common.hpp>
 
 #include <limits>
 
 namespace glcollide::cpu {
-
-float halfThicknessFloat(double thickness) { return static_cast<float>(0.5 * thickness); }
 
 bool boxesOverlap(const FloatBox& a, const FloatBox& b) {
     return a.lo.x <= b.hi.x && a.lo.y <= b.hi.y && a.lo.z <= b.hi.z && b.lo.x <= a.hi.x &&
@@ -39,9 +38,9 @@ bool validFacePair(const std::vector<std::uint32_t>& faceIndices, const std::vec
     return true;
 }
 
-std::vector<FloatBox> twinLeafBoxes(const OctreeLayout& layout, const std::vector<std::uint32_t>& faceIndices,
+std::vector<FloatBox> twinLeafBoxes(const model::OctreeLayout& layout, const std::vector<std::uint32_t>& faceIndices,
                                     const std::vector<glm::vec3>& positions, double thickness) {
-    const float half = halfThicknessFloat(thickness);
+    const float half = model::halfThicknessFloat(thickness);
     constexpr float kInf = std::numeric_limits<float>::infinity();
     std::vector<FloatBox> boxes(layout.boxCount, FloatBox{glm::vec3(kInf), glm::vec3(-kInf)});
     for (std::uint32_t b = 0; b < layout.boxCount; ++b) {
@@ -64,7 +63,7 @@ std::vector<FacePair> twinCandidates(const std::vector<std::uint32_t>& faceIndic
                                      const std::vector<std::uint32_t>& faceObject,
                                      const std::vector<glm::vec3>& positions, double thickness,
                                      const PairRules& rules) {
-    const float half = halfThicknessFloat(thickness);
+    const float half = model::halfThicknessFloat(thickness);
     const auto faces = static_cast<std::uint32_t>(faceIndices.size() / 3);
     std::vector<FloatBox> boxes(faces);
     for (std::uint32_t f = 0; f < faces; ++f) boxes[f] = faceBox(faceIndices, positions, f, half);

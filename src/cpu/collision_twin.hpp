@@ -2,11 +2,11 @@
 // CPU twin of the collision broad and narrow phase (BBUpdate, BBCollision, TriTri; seeds/002
 // Alg. 1-3): brute force over all face pairs, in the same float arithmetic as the GPU for the
 // boxes, so the candidate set and the leaf boxes must match the GPU's exactly; the intersection
-// set comes from the exact rational oracle (exact_tri_tri.hpp) on the float positions widened to
+// set comes from the exact rational oracle (oracle/exact_tri_tri.hpp) on the float positions widened to
 // double, which the robust GPU narrow phase must reproduce (docs/broad-phase.md).
 
-#include "cpu/flat_model.hpp"
-#include "cpu/octree.hpp"
+#include "model/flat_model.hpp"
+#include "model/octree_layout.hpp"
 
 #include <glm/vec3.hpp>
 
@@ -29,8 +29,7 @@ struct FloatBox {
     glm::vec3 lo{0.0f}, hi{0.0f};
 };
 
-/// Half the contact thickness as the GPU gets it (uniform u_halfThickness): float(0.5 * h), h in m.
-float halfThicknessFloat(double thickness);
+/// Boxes below are inflated by model::halfThicknessFloat(thickness) (model/face_box.hpp), as on the GPU.
 
 /// Closed overlap: lo_a <= hi_b and lo_b <= hi_a on every axis.
 bool boxesOverlap(const FloatBox& a, const FloatBox& b);
@@ -46,7 +45,7 @@ bool validFacePair(const std::vector<std::uint32_t>& faceIndices, const std::vec
 
 /// Leaf boxes of BBUpdate: per box, the union of its faces' vertices inflated by half, in float;
 /// lo = +inf, hi = -inf for a box without faces.
-std::vector<FloatBox> twinLeafBoxes(const OctreeLayout& layout, const std::vector<std::uint32_t>& faceIndices,
+std::vector<FloatBox> twinLeafBoxes(const model::OctreeLayout& layout, const std::vector<std::uint32_t>& faceIndices,
                                     const std::vector<glm::vec3>& positions, double thickness);
 
 /// Candidates: valid pairs whose face boxes overlap, sorted. O(faces^2).

@@ -1,14 +1,13 @@
 #include "cpu/contact_twin.hpp"
 
+#include "model/features.hpp"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 
 namespace glcollide::cpu {
 namespace {
-
-// GLC_OWN_* of shaders/common/layout.glsl (cpu does not include the GL layout header).
-constexpr std::uint32_t kOwnVertex0 = 1u, kOwnEdge01 = 8u;
 
 // contact_response.comp's ownsClosestFeature: the interior always counts, the edge opposite vertex
 // k (w[k] = 0) with its ownership bit, vertex k (w[k] = 1) with its bit and only from the lower
@@ -18,8 +17,8 @@ bool ownsClosestFeature(std::uint32_t p, const std::array<std::uint32_t, 3>& fac
     const int zeros = (w.x == 0.0) + (w.y == 0.0) + (w.z == 0.0);
     if (zeros == 0) return true;
     for (int k = 0; k < 3; ++k) {
-        if (zeros == 2 && w[k] == 1.0) return (owned & (kOwnVertex0 << k)) != 0 && p < face[static_cast<std::size_t>(k)];
-        if (zeros == 1 && w[k] == 0.0) return (owned & (kOwnEdge01 << ((k + 1) % 3))) != 0;
+        if (zeros == 2 && w[k] == 1.0) return (owned & (GLC_OWN_VERTEX0 << k)) != 0 && p < face[static_cast<std::size_t>(k)];
+        if (zeros == 1 && w[k] == 0.0) return (owned & (GLC_OWN_EDGE01 << ((k + 1) % 3))) != 0;
     }
     return true;
 }
@@ -166,13 +165,13 @@ ContactResult contactForces(const ContactParams& params, const ContactInput& in,
         const std::uint32_t oa = (*in.faceOwned)[a], ob = (*in.faceOwned)[b];
         const bool closedA = (*in.faceClosed)[a] != 0, closedB = (*in.faceClosed)[b] != 0;
         for (std::uint32_t k = 0; k < 3; ++k) {
-            if (oa & (kOwnVertex0 << k)) solver.vertexFace(fa[k], fb, ob, closedB);
-            if (ob & (kOwnVertex0 << k)) solver.vertexFace(fb[k], fa, oa, closedA);
+            if (oa & (GLC_OWN_VERTEX0 << k)) solver.vertexFace(fa[k], fb, ob, closedB);
+            if (ob & (GLC_OWN_VERTEX0 << k)) solver.vertexFace(fb[k], fa, oa, closedA);
         }
         for (std::uint32_t e = 0; e < 3; ++e) {
-            if (!(oa & (kOwnEdge01 << e))) continue;
+            if (!(oa & (GLC_OWN_EDGE01 << e))) continue;
             for (std::uint32_t g = 0; g < 3; ++g) {
-                if (!(ob & (kOwnEdge01 << g))) continue;
+                if (!(ob & (GLC_OWN_EDGE01 << g))) continue;
                 solver.edgeEdge(fa[e], fa[(e + 1) % 3], fb[g], fb[(g + 1) % 3]);
             }
         }

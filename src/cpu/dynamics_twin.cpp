@@ -8,7 +8,7 @@
 namespace glcollide::cpu {
 
 void nodeForce(const NodeForceParams& params, const std::vector<std::uint32_t>& faceIndices,
-               const Csr& nodeFaces, NodeState& state) {
+               const model::Csr& nodeFaces, NodeState& state) {
     const std::size_t n = state.positions.size();
     state.forces.assign(n, glm::dvec3(0.0));
     for (std::size_t i = 0; i < n; ++i) {
@@ -40,14 +40,14 @@ void nodeForce(const NodeForceParams& params, const std::vector<std::uint32_t>& 
     }
 }
 
-void springUpdate(const SpringUpdateParams& params, const std::vector<FlatSpring>& springs,
-                  const Csr& nodeSprings, NodeState& state) {
+void springUpdate(const SpringUpdateParams& params, const std::vector<model::FlatSpring>& springs,
+                  const model::Csr& nodeSprings, NodeState& state) {
     const std::size_t n = state.positions.size();
     if (!params.accumulate) state.forces.assign(n, glm::dvec3(0.0));
     for (std::size_t i = 0; i < n; ++i) {
         glm::dvec3 f(0.0);
         for (std::uint32_t k = nodeSprings.offsets[i]; k < nodeSprings.offsets[i + 1]; ++k) {
-            const FlatSpring& s = springs[nodeSprings.items[k]];
+            const model::FlatSpring& s = springs[nodeSprings.items[k]];
             const std::uint32_t j = s.a == i ? s.b : s.a;
             const glm::dvec3 d = state.positions[j] - state.positions[i];
             const double length = glm::length(d);
@@ -96,7 +96,7 @@ void nodeUpdate(const NodeUpdateParams& params, NodeState& state) {
 
 Energy energy(const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& velocities,
               const std::vector<double>& masses, const std::vector<double>& inverseMasses,
-              const glm::dvec3* gravity, const std::vector<FlatSpring>* springs) {
+              const glm::dvec3* gravity, const std::vector<model::FlatSpring>* springs) {
     Energy e;
     for (std::size_t i = 0; i < positions.size(); ++i) {
         if (inverseMasses[i] <= 0.0) continue; // pinned nodes neither move nor change energy
@@ -104,7 +104,7 @@ Energy energy(const std::vector<glm::dvec3>& positions, const std::vector<glm::d
         if (gravity) e.gravitational -= masses[i] * glm::dot(*gravity, positions[i]);
     }
     if (springs)
-        for (const FlatSpring& s : *springs) {
+        for (const model::FlatSpring& s : *springs) {
             const double stretch = glm::length(positions[s.b] - positions[s.a]) - s.restLength;
             e.elastic += 0.5 * s.stiffness * stretch * stretch;
         }

@@ -4,7 +4,7 @@
 // order of operations, so the differential GL tests compare like with like.
 
 #include "core/dynamics_params.hpp"
-#include "cpu/flat_model.hpp"
+#include "model/flat_model.hpp"
 
 #include <glm/vec3.hpp>
 
@@ -23,12 +23,12 @@ struct NodeState {
 /// Twin of node_force.comp: gravity, viscous damping and face wind drag for each free node;
 /// pinned nodes get zero force. `faceIndices`/`nodeFaces` are read only when params.wind.
 void nodeForce(const NodeForceParams& params, const std::vector<std::uint32_t>& faceIndices,
-               const Csr& nodeFaces, NodeState& state);
+               const model::Csr& nodeFaces, NodeState& state);
 
 /// Twin of spring_update.comp: Hooke force plus damping along each spring, gathered per node in
 /// CSR order; adds to state.forces when params.accumulate, else overwrites them.
-void springUpdate(const SpringUpdateParams& params, const std::vector<FlatSpring>& springs,
-                  const Csr& nodeSprings, NodeState& state);
+void springUpdate(const SpringUpdateParams& params, const std::vector<model::FlatSpring>& springs,
+                  const model::Csr& nodeSprings, NodeState& state);
 
 /// Twin of node_update.comp: v += h·w·f; x += h·v; then the ground plane.
 void nodeUpdate(const NodeUpdateParams& params, NodeState& state);
@@ -40,6 +40,6 @@ struct Energy {
 };
 Energy energy(const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& velocities,
               const std::vector<double>& masses, const std::vector<double>& inverseMasses,
-              const glm::dvec3* gravity, const std::vector<FlatSpring>* springs);
+              const glm::dvec3* gravity, const std::vector<model::FlatSpring>* springs);
 
 } // namespace glcollide::cpu

@@ -7,7 +7,7 @@
 
 namespace glcollide::cpu {
 
-StabilityLimit stableSubstep(const FlatModel& model, bool springs, const NodeForceParams& forces,
+StabilityLimit stableSubstep(const model::FlatModel& model, bool springs, const NodeForceParams& forces,
                              double safety, const ContactParams* contacts) {
     StabilityLimit limit;
     limit.maxSubstep = std::numeric_limits<double>::infinity();

@@ -4,7 +4,7 @@
 
 #include "core/contact_params.hpp"
 #include "core/dynamics_params.hpp"
-#include "cpu/flat_model.hpp"
+#include "model/flat_model.hpp"
 
 #include <cstdint>
 
@@ -21,7 +21,7 @@ struct StabilityLimit {
 /// γ = 2·w·Σc + c_air + wind drag rate (Gershgorin bounds on M⁻¹K and M⁻¹C), times `safety`.
 /// With `contacts`, every node counts kContactsPerNodeForStability penalty contacts as extra
 /// springs of the contact stiffness and damping.
-StabilityLimit stableSubstep(const FlatModel& model, bool springs, const NodeForceParams& forces,
+StabilityLimit stableSubstep(const model::FlatModel& model, bool springs, const NodeForceParams& forces,
                              double safety = 0.9, const ContactParams* contacts = nullptr);
 
 /// Simultaneous contacts per node the substep rule assumes (a vertex on a face, or an edge

@@ -1,18 +1,18 @@
 #include <glcollide/engine.hpp>
 
+#include "core/gpu_layout.hpp"
 #include "cpu/dynamics_twin.hpp"
-#include "cpu/flat_model.hpp"
 #include "cpu/stability.hpp"
 #include "engine/pipeline_plan.hpp"
+#include "engine/robust_self_check.hpp"
 #include "gl/debug_output.hpp"
 #include "gl/gpu_timer.hpp"
 #include "gl/host_state.hpp"
-#include "gl/layout.hpp"
 #include "gl/setup_stats_sink.hpp"
+#include "model/flat_model.hpp"
 #include "passes/collision_detection.hpp"
 #include "passes/contact_response.hpp"
 #include "passes/dynamics_passes.hpp"
-#include "passes/robust_self_check.hpp"
 
 #include <glcollide/error.hpp>
 #include <glcollide/gl_info.hpp>
@@ -53,7 +53,7 @@ struct Engine::Impl {
     gl::HostStateGuard::Features glFeatures;
     Scene scene;
     EngineOptions options;
-    cpu::FlatModel model;
+    model::FlatModel model;
     engine::PipelinePlan plan;
     SubstepInfo substeps;
     std::vector<std::string> warnings;
@@ -108,7 +108,7 @@ void Engine::Impl::chooseSubsteps() {
 }
 
 void Engine::Impl::allocate() {
-    const cpu::FlatModel& m = model;
+    const model::FlatModel& m = model;
     buffers.nodeCount = static_cast<std::uint32_t>(m.nodeCount());
     buffers.faceCount = static_cast<std::uint32_t>(m.faceCount());
     buffers.springCount = static_cast<std::uint32_t>(m.springs.size());
@@ -121,7 +121,7 @@ void Engine::Impl::allocate() {
     if (plan.springUpdate) {
         std::vector<gpu::GpuSpring> springs;
         springs.reserve(m.springs.size());
-        for (const cpu::FlatSpring& s : m.springs)
+        for (const model::FlatSpring& s : m.springs)
             springs.push_back({s.a, s.b, static_cast<float>(s.restLength),
                                static_cast<float>(s.stiffness), static_cast<float>(s.damping), 0u, 0u, 0u});
         for (std::size_t o = 0; o < m.objects.size(); ++o)
@@ -171,7 +171,7 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
     d.scene = scene;
     d.options = options;
     d.plan = engine::planPipeline(scene);
-    d.model = cpu::flatten(scene);
+    d.model = model::flatten(scene);
     d.plan.nodeUpdateParams.checkFinite = options.checkFinite;
     d.chooseSubsteps();
     d.allocate();
@@ -188,7 +188,7 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
         // Robust precision promises the oracle's answers; check that this device delivers them
         // before relying on it (once per device, driver and shader; docs/narrow-phase.md).
         if (d.plan.collision.precision == TriTriPrecision::Robust) {
-            d.setup.robustSelfCheck = passes::runRobustSelfCheck(passes::effectiveSelfCheckMode(options.robustSelfCheck));
+            d.setup.robustSelfCheck = engine::runRobustSelfCheck(engine::effectiveSelfCheckMode(options.robustSelfCheck));
             if (!d.setup.robustSelfCheck.message.empty()) d.warnings.push_back(d.setup.robustSelfCheck.message);
         }
     }
@@ -256,7 +256,7 @@ void Engine::Impl::readHealth() {
     r.substep = static_cast<int>(health.badSubstep);
     r.globalNode = health.firstBadNode;
     for (std::size_t o = 0; o < model.objects.size(); ++o) {
-        const cpu::ObjectRange& range = model.objects[o];
+        const model::ObjectRange& range = model.objects[o];
         if (health.firstBadNode >= range.firstNode && health.firstBadNode - range.firstNode < range.nodeCount) {
             r.object = static_cast<std::uint32_t>(o);
             r.node = health.firstBadNode - range.firstNode;
@@ -337,7 +337,7 @@ CollisionStats Engine::detectCollisions() {
 
 std::vector<std::uint32_t> Engine::bodyFirstFaces() const {
     std::vector<std::uint32_t> first;
-    for (const cpu::ObjectRange& o : m_impl->model.objects) first.push_back(o.firstFace);
+    for (const model::ObjectRange& o : m_impl->model.objects) first.push_back(o.firstFace);
     return first;
 }
 const SubstepInfo& Engine::substepInfo() const { return m_impl->substeps; }
@@ -349,7 +349,7 @@ std::uint32_t Engine::springCount() const { return m_impl->buffers.springCount; 
 
 std::vector<std::uint32_t> Engine::bodyFirstNodes() const {
     std::vector<std::uint32_t> first;
-    for (const cpu::ObjectRange& o : m_impl->model.objects) first.push_back(o.firstNode);
+    for (const model::ObjectRange& o : m_impl->model.objects) first.push_back(o.firstNode);
     return first;
 }
 

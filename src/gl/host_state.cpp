@@ -1,6 +1,6 @@
 #include "gl/host_state.hpp"
 
-#include "gl/layout.hpp"
+#include "core/gpu_layout.hpp"
 
 #include <epoxy/gl.h>
 

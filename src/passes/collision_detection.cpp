@@ -1,7 +1,7 @@
 #include "passes/collision_detection.hpp"
 
-#include "cpu/collision_twin.hpp"
-#include "gl/layout.hpp"
+#include "model/face_box.hpp"
+#include "core/gpu_layout.hpp"
 #include "passes/broad_phase/create_broad_phase.hpp"
 
 #include <glcollide/error.hpp>
@@ -12,11 +12,6 @@
 
 namespace glcollide::passes {
 namespace {
-
-static_assert(cpu::kOwnVertex0 == GLC_OWN_VERTEX0 && cpu::kOwnVertex1 == GLC_OWN_VERTEX1 &&
-              cpu::kOwnVertex2 == GLC_OWN_VERTEX2 && cpu::kOwnEdge01 == GLC_OWN_EDGE01 &&
-              cpu::kOwnEdge12 == GLC_OWN_EDGE12 && cpu::kOwnEdge20 == GLC_OWN_EDGE20,
-              "cpu/octree.hpp and layout.glsl disagree on the owned-feature bits");
 
 constexpr std::size_t kPairBytes = 2 * sizeof(std::uint32_t); // uvec2
 
@@ -39,14 +34,14 @@ std::uint64_t listByteLimit(const CollisionConfig& c) {
 
 } // namespace
 
-CollisionTables::CollisionTables(const cpu::FlatModel& model, const cpu::OctreeLayout& layout) {
+CollisionTables::CollisionTables(const model::FlatModel& model, const model::OctreeLayout& layout) {
     std::vector<gpu::GpuFaceInfo> info(model.faceCount());
     for (std::size_t f = 0; f < info.size(); ++f)
         info[f] = {layout.faceObject[f], layout.faceBox[f], layout.faceOwned[f], 0u};
     faceInfo = gl::makeBuffer("faceInfo", info);
     std::vector<gpu::GpuObject> table;
     for (std::size_t o = 0; o < model.objects.size(); ++o) {
-        const cpu::ObjectRange& r = model.objects[o];
+        const model::ObjectRange& r = model.objects[o];
         table.push_back({r.firstNode, r.nodeCount, r.firstFace, r.faceCount, r.firstSpring, r.springCount,
                          layout.firstBox[o], layout.closed[o]});
     }
@@ -58,9 +53,9 @@ void CollisionTables::bind() const {
     objects.bindStorage(GLC_BIND_OBJECTS);
 }
 
-CollisionDetection::CollisionDetection(const CollisionConfig& config, const cpu::FlatModel& model)
+CollisionDetection::CollisionDetection(const CollisionConfig& config, const model::FlatModel& model)
     : m_faceCount(static_cast<std::uint32_t>(model.faceCount())),
-      m_layout(cpu::buildOctree(model, checked(config.settings).octreeDepth)),
+      m_layout(model::buildOctree(model, checked(config.settings).octreeDepth)),
       m_tables(model, m_layout),
       m_lists(std::make_unique<AppendLists>(listByteLimit(config))),
       m_narrowPhase(config.settings.precision) {
@@ -72,7 +67,7 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const cpu:
                                               initial(config.intersectionCapacity)});
     BroadPhaseContext context{model, m_layout, s};
     context.pairRules = pairRules(config);
-    context.halfThickness = cpu::halfThicknessFloat(s.thickness);
+    context.halfThickness = model::halfThicknessFloat(s.thickness);
     context.boxPairCapacity = config.boxPairCapacity;
     m_broadPhase = createBroadPhase(context);
     m_broadPhase->addStages(m_chain, *m_lists);

@@ -8,8 +8,8 @@
 // It also uploads the per-face and per-object tables (CollisionTables) the kernels and the
 // contact response read.
 
-#include "cpu/flat_model.hpp"
-#include "cpu/octree.hpp"
+#include "model/flat_model.hpp"
+#include "model/octree_layout.hpp"
 #include "gl/gpu_timer.hpp"
 #include "gl/handles.hpp"
 #include "passes/broad_phase/broad_phase.hpp"
@@ -53,7 +53,7 @@ struct CollisionCounts {
 
 /// The per-face and per-object tables of the collision kernels and the contact response.
 struct CollisionTables {
-    CollisionTables(const cpu::FlatModel& model, const cpu::OctreeLayout& layout);
+    CollisionTables(const model::FlatModel& model, const model::OctreeLayout& layout);
     void bind() const;
     gl::Buffer faceInfo; ///< GpuFaceInfo per face (object, leaf box, owned features)
     gl::Buffer objects;  ///< GpuObject per object
@@ -65,7 +65,7 @@ public:
     /// uploads the tables, makes the broad phase of config.settings.broadPhase and the narrow
     /// phase, and allocates every list with its first capacity. Needs a current GL 4.3 context;
     /// throws glcollide::Error on bad settings or shader errors.
-    CollisionDetection(const CollisionConfig& config, const cpu::FlatModel& model);
+    CollisionDetection(const CollisionConfig& config, const model::FlatModel& model);
     CollisionDetection(const CollisionDetection&) = delete; // the chain's stages point into it
     CollisionDetection& operator=(const CollisionDetection&) = delete;
 
@@ -92,7 +92,7 @@ public:
     /// buffer when it has none.
     [[nodiscard]] const gl::Buffer& broadPhaseBuffer(const std::string& label) const;
     [[nodiscard]] const gl::Buffer& boxes() const { return broadPhaseBuffer("boxes"); }
-    [[nodiscard]] const cpu::OctreeLayout& layout() const { return m_layout; }
+    [[nodiscard]] const model::OctreeLayout& layout() const { return m_layout; }
     [[nodiscard]] const CollisionCounts& lastCounts() const { return m_counts; }
 
     /// Read-backs for tests and tools, sorted.
@@ -106,7 +106,7 @@ private:
     [[nodiscard]] std::vector<const gl::Buffer*> allBuffers() const;
 
     std::uint32_t m_faceCount = 0;
-    cpu::OctreeLayout m_layout;
+    model::OctreeLayout m_layout;
     CollisionTables m_tables;
     std::unique_ptr<AppendLists> m_lists;
     std::unique_ptr<BroadPhase> m_broadPhase;

@@ -1,6 +1,6 @@
 #include "passes/contact_response.hpp"
 
-#include "gl/layout.hpp"
+#include "core/gpu_layout.hpp"
 
 #include <glcollide/error.hpp>
 

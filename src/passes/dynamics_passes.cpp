@@ -1,6 +1,6 @@
 #include "passes/dynamics_passes.hpp"
 
-#include "gl/layout.hpp"
+#include "core/gpu_layout.hpp"
 
 #include <epoxy/gl.h>
 

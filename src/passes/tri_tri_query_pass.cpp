@@ -1,6 +1,6 @@
 #include "passes/tri_tri_query_pass.hpp"
 
-#include "gl/layout.hpp"
+#include "core/gpu_layout.hpp"
 
 #include <glcollide/error.hpp>
 

@@ -7,10 +7,10 @@
 // moved away from the rest pose the octree was built on. Discrete outputs: no tolerance anywhere;
 // both sides compute the face boxes in the same float operations.
 
+#include "core/gpu_layout.hpp"
 #include "cpu/collision_twin.hpp"
-#include "cpu/flat_model.hpp"
-#include "cpu/octree.hpp"
-#include "gl/layout.hpp"
+#include "model/flat_model.hpp"
+#include "model/octree_layout.hpp"
 #include "passes/collision_detection.hpp"
 
 #include <glcollide/error.hpp>
@@ -34,7 +34,7 @@ using Pairs = std::vector<std::array<std::uint32_t, 2>>;
 constexpr double kThickness = 0.01; // m
 
 struct Soup {
-    cpu::FlatModel model;             // rest pose (the octree is built on it)
+    model::FlatModel model;             // rest pose (the octree is built on it)
     std::vector<glm::vec3> current;   // positions the GPU detects on
 };
 
@@ -46,11 +46,11 @@ Soup makeSoup(std::uint32_t faces, std::uint32_t objects, std::uint32_t seed, gl
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f), step(-0.15f, 0.15f), jitter(-0.03f, 0.03f);
     Soup s;
-    cpu::FlatModel& m = s.model;
+    model::FlatModel& m = s.model;
     std::uint32_t faceBegin = 0;
     for (std::uint32_t o = 0; o < objects; ++o) {
         const std::uint32_t n = faces / objects + (o + 1 == objects ? faces % objects : 0u);
-        cpu::ObjectRange r;
+        model::ObjectRange r;
         r.firstNode = static_cast<std::uint32_t>(m.positions.size());
         r.firstFace = faceBegin;
         r.faceCount = n;
@@ -125,7 +125,7 @@ const Expected& expected(const Soup& soup, std::uint32_t faces, const cpu::PairR
     const auto key = std::make_tuple(faces, rules.betweenObjects, rules.selfCollisions);
     auto it = cache.find(key);
     if (it != cache.end()) return it->second;
-    const cpu::OctreeLayout layout = cpu::buildOctree(soup.model, 1);
+    const model::OctreeLayout layout = model::buildOctree(soup.model, 1);
     Expected e;
     e.candidates = cpu::twinCandidates(soup.model.faceIndices, layout.faceObject, soup.current, kThickness, rules);
     e.intersections = cpu::twinIntersections(soup.model.faceIndices, soup.current, e.candidates);
@@ -201,7 +201,7 @@ TEST(CollisionDetectionGlCases, GridSnappedSoupWithTouchingAndCoplanarFaces) {
     for (glm::dvec3& p : soup.model.positions) p = glm::round(p * 8.0) / 8.0;
     const passes::DeviceBuffers buffers = upload(soup);
     const cpu::PairRules rules{true, true};
-    const cpu::OctreeLayout layout = cpu::buildOctree(soup.model, 1);
+    const model::OctreeLayout layout = model::buildOctree(soup.model, 1);
     const Pairs candidates = cpu::twinCandidates(soup.model.faceIndices, layout.faceObject, soup.current, kThickness, rules);
     const Pairs intersections = cpu::twinIntersections(soup.model.faceIndices, soup.current, candidates);
     EXPECT_GT(intersections.size(), 100u);
@@ -307,7 +307,7 @@ TEST(CollisionDetectionGlCases, LeafBoxesMatchTheTwin) {
         passes::CollisionDetection detection(configFor({BroadPhase::Octree, depth}, {true, true}, TriTriPrecision::Robust),
                                              soup.model);
         detection.detect(buffers, nullptr);
-        const cpu::OctreeLayout& layout = detection.layout();
+        const model::OctreeLayout& layout = detection.layout();
         const auto twin = cpu::twinLeafBoxes(layout, soup.model.faceIndices, soup.current, kThickness);
         std::vector<gpu::GpuBox> gpu(layout.boxCount);
         detection.boxes().download(0, gpu.size() * sizeof(gpu::GpuBox), gpu.data());
@@ -328,7 +328,7 @@ TEST(CollisionDetectionGlCases, FaceInfoAndObjectsAreUploaded) {
     const Soup soup = makeSoup(129, 3, 5);
     passes::CollisionDetection detection(configFor({BroadPhase::Octree, 2}, {true, true}, TriTriPrecision::Robust),
                                          soup.model);
-    const cpu::OctreeLayout& layout = detection.layout();
+    const model::OctreeLayout& layout = detection.layout();
     std::vector<gpu::GpuFaceInfo> info(soup.model.faceCount());
     detection.faceInfo().download(0, info.size() * sizeof(gpu::GpuFaceInfo), info.data());
     for (std::size_t f = 0; f < info.size(); ++f) {

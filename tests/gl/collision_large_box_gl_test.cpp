@@ -6,7 +6,7 @@
 // every depth must give exactly the brute-force twin's candidates.
 
 #include "cpu/collision_twin.hpp"
-#include "cpu/flat_model.hpp"
+#include "model/flat_model.hpp"
 #include "passes/collision_detection.hpp"
 #include "scene/scene_detail.hpp"
 
@@ -26,7 +26,7 @@ TEST(CollisionLargeBoxGl, BoxesWithThousandsOfFacesLoseNoCandidate) {
     const glm::dmat4 rotate = glm::rotate(glm::dmat4(1.0), glm::radians(20.0), glm::normalize(glm::dvec3(1, 1, 1)));
     for (glm::dvec3& p : b.positions) p = glm::dvec3(rotate * glm::dvec4(p, 1.0)) + glm::dvec3(1.05, 0.05, 0.0);
     scene.bodies.push_back(std::move(b));
-    const cpu::FlatModel model = cpu::flatten(scene);
+    const model::FlatModel model = model::flatten(scene);
 
     std::vector<glm::vec4> packed;
     std::vector<glm::vec3> floats;

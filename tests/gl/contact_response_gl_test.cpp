@@ -1,8 +1,8 @@
 // ContactResponse against its double-precision twin (src/cpu/contact_twin.cpp) and against
 // hand-computed forces. The GPU gets float positions; the twin the same floats widened to double.
 
+#include "core/gpu_layout.hpp"
 #include "cpu/contact_twin.hpp"
-#include "gl/layout.hpp"
 #include "passes/contact_response.hpp"
 
 #include <gtest/gtest.h>

@@ -5,8 +5,8 @@
 // Tolerances are float rounding bounds: u = 2^-24 (unit roundoff of float) times the sum of the
 // magnitudes each result is built from, times a small constant for the operation count.
 
+#include "core/gpu_layout.hpp"
 #include "cpu/dynamics_twin.hpp"
-#include "gl/layout.hpp"
 #include "passes/dynamics_passes.hpp"
 
 #include <gtest/gtest.h>
@@ -24,10 +24,10 @@ constexpr double kUnitRoundoff = 1.0 / 16777216.0; // 2^-24
 
 struct RandomModel {
     cpu::NodeState state;
-    std::vector<cpu::FlatSpring> springs;
-    cpu::Csr nodeSprings;
+    std::vector<model::FlatSpring> springs;
+    model::Csr nodeSprings;
     std::vector<std::uint32_t> faceIndices;
-    cpu::Csr nodeFaces;
+    model::Csr nodeFaces;
 };
 
 double toFloat(double v) { return static_cast<double>(static_cast<float>(v)); }
@@ -71,8 +71,8 @@ RandomModel makeRandomModel(std::uint32_t nodes, std::uint32_t seed) {
             m.faceIndices.insert(m.faceIndices.end(), {a, b, c});
         }
     }
-    m.nodeSprings = cpu::buildSpringAdjacency(nodes, m.springs);
-    m.nodeFaces = cpu::buildAdjacency(nodes, m.faceIndices, 3);
+    m.nodeSprings = model::buildSpringAdjacency(nodes, m.springs);
+    m.nodeFaces = model::buildAdjacency(nodes, m.faceIndices, 3);
     return m;
 }
 
@@ -174,7 +174,7 @@ TEST_P(DynamicsGl, SpringUpdateMatchesTwin) {
         for (std::uint32_t i = 0; i < n; ++i) {
             double scale = accumulate ? glm::length(initialForces[i]) : 0.0;
             for (std::uint32_t k = m.nodeSprings.offsets[i]; k < m.nodeSprings.offsets[i + 1]; ++k) {
-                const cpu::FlatSpring& s = m.springs[m.nodeSprings.items[k]];
+                const model::FlatSpring& s = m.springs[m.nodeSprings.items[k]];
                 const glm::dvec3 xa = m.state.positions[s.a], xb = m.state.positions[s.b];
                 const double length = glm::length(xb - xa);
                 const double coords = glm::length(xa) + glm::length(xb);

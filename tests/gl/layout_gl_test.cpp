@@ -1,13 +1,13 @@
 // The one-declaration rule of DESIGN.md, checked against the driver: every SSBO block of every
 // embedded shader sits at the binding layout.glsl names, and the offsets and strides the driver
-// reports for the shared structs equal the C++ offsetof/sizeof of src/gl/layout.hpp.
+// reports for the shared structs equal the C++ offsetof/sizeof of src/core/gpu_layout.hpp.
 
 #include <glcollide/error.hpp>
 
-#include "gl/layout.hpp"
-#include "support/gl_test_environment.hpp"
+#include "core/gpu_layout.hpp"
 #include "gl/program.hpp"
 #include "passes/dynamics_passes.hpp"
+#include "support/gl_test_environment.hpp"
 
 #include <gtest/gtest.h>
 

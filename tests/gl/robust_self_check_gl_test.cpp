@@ -1,4 +1,4 @@
-// The on-device self-check of robust precision (src/passes/robust_self_check.hpp) on this device:
+// The on-device self-check of robust precision (src/engine/robust_self_check.hpp) on this device:
 // it passes; a disagreement (injected by inverting expected answers through the test hook, while
 // every case still runs on the device) is an Error naming the device, the driver, the first wrong
 // case and the count, or a warning in warn mode; a pass is remembered by the marker file across
@@ -7,7 +7,7 @@
 // Every test starts from a fresh cache folder and forgets the process's remembered passes, so
 // each one decides for itself whether the check runs.
 
-#include "passes/robust_self_check.hpp"
+#include "engine/robust_self_check.hpp"
 #include "scoped_cache_dir.hpp"
 #include "support/two_tet_boxes_scene.hpp"
 
@@ -25,14 +25,14 @@
 namespace glcollide {
 namespace {
 
-using passes::runRobustSelfCheck;
+using engine::runRobustSelfCheck;
 using test::FreshCacheDir;
 using test::ScopedEnv;
 
 class RobustSelfCheckGl : public ::testing::Test {
 protected:
-    void SetUp() override { passes::forgetRememberedSelfChecks(); }
-    void TearDown() override { passes::forgetRememberedSelfChecks(); }
+    void SetUp() override { engine::forgetRememberedSelfChecks(); }
+    void TearDown() override { engine::forgetRememberedSelfChecks(); }
     FreshCacheDir dir;
 };
 
@@ -44,7 +44,7 @@ std::size_t markerFiles(const FreshCacheDir& dir) {
 }
 
 std::size_t caseIndex(const std::string& namePrefix) {
-    const auto& cases = passes::builtinSelfCheckCases();
+    const auto& cases = engine::builtinSelfCheckCases();
     for (std::size_t i = 0; i < cases.size(); ++i)
         if (cases[i].name.rfind(namePrefix, 0) == 0) return i;
     ADD_FAILURE() << "no case " << namePrefix;
@@ -56,7 +56,7 @@ TEST_F(RobustSelfCheckGl, PassesOnThisDevice) {
     EXPECT_TRUE(r.needed);
     EXPECT_TRUE(r.passed);
     EXPECT_FALSE(r.remembered);
-    EXPECT_EQ(r.cases, passes::builtinSelfCheckCases().size());
+    EXPECT_EQ(r.cases, engine::builtinSelfCheckCases().size());
     EXPECT_GE(r.cases, 300u);
     EXPECT_EQ(r.wrong, 0u);
     EXPECT_EQ(r.message, "");
@@ -69,7 +69,7 @@ TEST_F(RobustSelfCheckGl, PassesOnThisDevice) {
 TEST_F(RobustSelfCheckGl, TheMarkerMakesTheNextProcessSkipTheRun) {
     const SelfCheckReport first = runRobustSelfCheck(SelfCheckMode::Error);
     ASSERT_TRUE(first.passed);
-    passes::forgetRememberedSelfChecks(); // as a new process would start
+    engine::forgetRememberedSelfChecks(); // as a new process would start
     const SelfCheckReport second = runRobustSelfCheck(SelfCheckMode::Error);
     EXPECT_TRUE(second.passed);
     EXPECT_TRUE(second.remembered);
@@ -81,7 +81,7 @@ TEST_F(RobustSelfCheckGl, AMarkerWithAnotherKeyDoesNotCount) {
     const SelfCheckReport first = runRobustSelfCheck(SelfCheckMode::Error);
     ASSERT_TRUE(first.passed);
     std::ofstream(first.marker, std::ios::trunc) << "glcollide robust self-check 1\nsome other device\n";
-    passes::forgetRememberedSelfChecks();
+    engine::forgetRememberedSelfChecks();
     const SelfCheckReport second = runRobustSelfCheck(SelfCheckMode::Error);
     EXPECT_FALSE(second.remembered);
     EXPECT_EQ(second.cases, first.cases) << "ran again";
@@ -103,9 +103,9 @@ TEST_F(RobustSelfCheckGl, WithoutACacheTheProcessRemembersThePass) {
 TEST_F(RobustSelfCheckGl, ADisagreementIsAnErrorNamingDeviceDriverAndCase) {
     const std::size_t hypotenuse = caseIndex("coplanar, one float step off the hypotenuse");
     const std::size_t denormal = caseIndex("denormal triangle pierced");
-    const passes::SelfCheckInjection injection{{denormal, hypotenuse}};
+    const engine::SelfCheckInjection injection{{denormal, hypotenuse}};
     const GlInfo gl = queryGlInfo();
-    const auto& c = passes::builtinSelfCheckCases()[std::min(hypotenuse, denormal)];
+    const auto& c = engine::builtinSelfCheckCases()[std::min(hypotenuse, denormal)];
     const bool truth = cpu::exactPairIntersects(c.pair);
     try {
         (void)runRobustSelfCheck(SelfCheckMode::Error, injection);
@@ -114,8 +114,8 @@ TEST_F(RobustSelfCheckGl, ADisagreementIsAnErrorNamingDeviceDriverAndCase) {
         const std::string m = e.what();
         EXPECT_NE(m.find("device \"" + gl.renderer + "\""), std::string::npos) << m;
         EXPECT_NE(m.find("driver \"" + gl.vendor + " " + gl.version + "\""), std::string::npos) << m;
-        EXPECT_NE(m.find("2 of " + std::to_string(passes::builtinSelfCheckCases().size())), std::string::npos) << m;
-        EXPECT_NE(m.find("\"" + c.name + "\": " + passes::formatTriPair(c.pair)), std::string::npos) << m;
+        EXPECT_NE(m.find("2 of " + std::to_string(engine::builtinSelfCheckCases().size())), std::string::npos) << m;
+        EXPECT_NE(m.find("\"" + c.name + "\": " + engine::formatTriPair(c.pair)), std::string::npos) << m;
         // The device answered the truth; the injected expectation is its inverse.
         EXPECT_NE(m.find(std::string("expected ") + (truth ? "0" : "1") + " "), std::string::npos) << m;
         EXPECT_NE(m.find(std::string("got ") + (truth ? "1" : "0") + " "), std::string::npos) << m;
@@ -124,7 +124,7 @@ TEST_F(RobustSelfCheckGl, ADisagreementIsAnErrorNamingDeviceDriverAndCase) {
 }
 
 TEST_F(RobustSelfCheckGl, WarnModeReturnsTheDisagreementAndRemembersNothing) {
-    const passes::SelfCheckInjection injection{{caseIndex("far away, crossing")}};
+    const engine::SelfCheckInjection injection{{caseIndex("far away, crossing")}};
     for (int i = 0; i < 2; ++i) {
         const SelfCheckReport r = runRobustSelfCheck(SelfCheckMode::Warn, injection);
         EXPECT_FALSE(r.passed);
@@ -147,19 +147,19 @@ TEST_F(RobustSelfCheckGl, OffRunsNothing) {
 TEST_F(RobustSelfCheckGl, TheEnvironmentVariableWins) {
     {
         const ScopedEnv env("GLCOLLIDE_SELF_CHECK", "off");
-        EXPECT_EQ(passes::effectiveSelfCheckMode(SelfCheckMode::Error), SelfCheckMode::Off);
+        EXPECT_EQ(engine::effectiveSelfCheckMode(SelfCheckMode::Error), SelfCheckMode::Off);
     }
     {
         const ScopedEnv env("GLCOLLIDE_SELF_CHECK", "warn");
-        EXPECT_EQ(passes::effectiveSelfCheckMode(SelfCheckMode::Error), SelfCheckMode::Warn);
+        EXPECT_EQ(engine::effectiveSelfCheckMode(SelfCheckMode::Error), SelfCheckMode::Warn);
     }
     {
         const ScopedEnv env("GLCOLLIDE_SELF_CHECK", "error");
-        EXPECT_EQ(passes::effectiveSelfCheckMode(SelfCheckMode::Off), SelfCheckMode::Error);
+        EXPECT_EQ(engine::effectiveSelfCheckMode(SelfCheckMode::Off), SelfCheckMode::Error);
     }
-    EXPECT_EQ(passes::effectiveSelfCheckMode(SelfCheckMode::Warn), SelfCheckMode::Warn) << "unset: the option";
+    EXPECT_EQ(engine::effectiveSelfCheckMode(SelfCheckMode::Warn), SelfCheckMode::Warn) << "unset: the option";
     const ScopedEnv env("GLCOLLIDE_SELF_CHECK", "sometimes");
-    EXPECT_THROW((void)passes::effectiveSelfCheckMode(SelfCheckMode::Error), Error);
+    EXPECT_THROW((void)engine::effectiveSelfCheckMode(SelfCheckMode::Error), Error);
 }
 
 TEST_F(RobustSelfCheckGl, AnEngineWithRobustCollisionsRunsItOnce) {
@@ -167,7 +167,7 @@ TEST_F(RobustSelfCheckGl, AnEngineWithRobustCollisionsRunsItOnce) {
     const SelfCheckReport& r = first.setupStats().robustSelfCheck;
     EXPECT_TRUE(r.needed);
     EXPECT_TRUE(r.passed);
-    EXPECT_EQ(r.cases, passes::builtinSelfCheckCases().size());
+    EXPECT_EQ(r.cases, engine::builtinSelfCheckCases().size());
     bool queryProgram = false;
     for (const ProgramSetup& p : first.setupStats().programs) queryProgram |= p.shader == "tri_tri_query_filtered";
     EXPECT_TRUE(queryProgram) << "the check's programs count as setup";

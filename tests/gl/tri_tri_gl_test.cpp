@@ -1,15 +1,15 @@
 // The narrow phase on the GPU (shaders/common/tri_tri.glsl through the TriTriQuery pass):
-//  - robust must equal the exact rational oracle (src/cpu/exact_tri_tri.cpp) on every pair: the
+//  - robust must equal the exact rational oracle (src/cpu/oracle/exact_tri_tri.cpp) on every pair: the
 //    hand-made hard cases in all corner rotations and both orders, and seeded random sets, uniform
-//    and near-degenerate (src/cpu/tri_tri_cases.cpp);
+//    and near-degenerate (src/cpu/oracle/tri_tri_cases.cpp);
 //  - fast is compared with its float CPU twin (src/cpu/fast_tri_tri.cpp) and with the oracle.
 //    Its disagreements with the oracle are counted per set and printed (docs/narrow-phase.md
 //    publishes them); the only assertions are sanity bounds.
 
-#include "cpu/exact_tri_tri.hpp"
+#include "core/gpu_layout.hpp"
 #include "cpu/fast_tri_tri.hpp"
-#include "cpu/tri_tri_cases.hpp"
-#include "gl/layout.hpp"
+#include "cpu/oracle/exact_tri_tri.hpp"
+#include "cpu/oracle/tri_tri_cases.hpp"
 #include "passes/tri_tri_query_pass.hpp"
 
 #include <gtest/gtest.h>

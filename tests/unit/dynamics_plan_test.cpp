@@ -2,10 +2,10 @@
 // and the mapping of driver compile logs to real file names.
 
 #include "cpu/dynamics_twin.hpp"
-#include "cpu/flat_model.hpp"
 #include "cpu/stability.hpp"
 #include "engine/pipeline_plan.hpp"
 #include "gl/program.hpp"
+#include "model/flat_model.hpp"
 
 #include <glcollide/error.hpp>
 
@@ -87,7 +87,7 @@ TEST(PipelinePlan, ContactForceScaleLeavesHeadroomAndIsAPowerOfTwo) {
 }
 
 TEST(Stability, ContactsStiffenEveryFreeNode) {
-    const cpu::FlatModel model = cpu::flatten(twoNodeScene(400, 0, 0.25));
+    const model::FlatModel model = model::flatten(twoNodeScene(400, 0, 0.25));
     CollisionSettings s;
     s.stiffness = 1000;
     const ContactParams contacts = contactParams(s);
@@ -100,7 +100,7 @@ TEST(Stability, SingleSpringLimitIsTheBoundOnTwoOverOmega) {
     // One free node on one spring: ω² = k/m exactly; the Gershgorin bound used is 2k/m, so the
     // rule gives h = safety · 2/√(2k/m).
     const double k = 400, m = 0.25;
-    const cpu::FlatModel model = cpu::flatten(twoNodeScene(k, 0, m));
+    const model::FlatModel model = model::flatten(twoNodeScene(k, 0, m));
     const cpu::StabilityLimit limit = cpu::stableSubstep(model, true, {}, 1.0);
     EXPECT_DOUBLE_EQ(limit.maxSubstep, 2.0 / std::sqrt(2.0 * k / m));
     EXPECT_EQ(limit.node, 1u);
@@ -109,7 +109,7 @@ TEST(Stability, SingleSpringLimitIsTheBoundOnTwoOverOmega) {
 
 TEST(Stability, DampingShrinksTheStepToTheJuryBound) {
     const double k = 400, c = 3, m = 0.25;
-    const cpu::FlatModel model = cpu::flatten(twoNodeScene(k, c, m));
+    const model::FlatModel model = model::flatten(twoNodeScene(k, c, m));
     const cpu::StabilityLimit limit = cpu::stableSubstep(model, true, {}, 1.0);
     const double h = limit.maxSubstep, w2 = limit.omega * limit.omega, g = limit.gamma;
     EXPECT_NEAR(h * h * w2 + 2 * h * g, 4.0, 1e-12) << "h solves h²ω² + 2hγ = 4";
@@ -120,7 +120,7 @@ TEST(Stability, ExplicitEulerOnTheTwinIsStableAtTheLimitAndUnstableAboveTheExact
     // The CPU twin integrates one spring: at the rule's step it stays bounded; at 1.05× the exact
     // limit 2/ω it grows, showing the rule is not vacuous.
     const double k = 400, m = 0.25;
-    const cpu::FlatModel model = cpu::flatten(twoNodeScene(k, 0, m));
+    const model::FlatModel model = model::flatten(twoNodeScene(k, 0, m));
     auto run = [&](double h) {
         cpu::NodeState s{model.positions, model.velocities, {}, model.inverseMasses};
         s.positions[1].y -= 0.1;
@@ -150,7 +150,7 @@ TEST(FlatModel, ConcatenatesBodiesAndSortsAdjacency) {
     Scene scene = twoNodeScene(10, 0, 1);
     scene.bodies.push_back(scene.bodies[0]);
     scene.bodies[1].faces = {{0, 1, 1}};
-    const cpu::FlatModel m = cpu::flatten(scene);
+    const model::FlatModel m = model::flatten(scene);
     ASSERT_EQ(m.nodeCount(), 4u);
     EXPECT_EQ(m.springs[1].a, 2u);
     EXPECT_EQ(m.springs[1].b, 3u);

@@ -1,9 +1,9 @@
-// The exact triangle-triangle oracle (src/cpu/exact_tri_tri.cpp) on the hard cases of issue 3 —
+// The exact triangle-triangle oracle (src/cpu/oracle/exact_tri_tri.cpp) on the hard cases of issue 3 —
 // coplanar, touching, shared edges, one float step away, far from the origin, tiny, zero-area —
 // with answers derived by hand, and on random pairs against an independent double-precision
 // separating-axis test wherever that test is decided by a clear margin.
 
-#include "cpu/exact_tri_tri.hpp"
+#include "cpu/oracle/exact_tri_tri.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,13 +1,13 @@
-// Ground truth of the benchmark (src/cpu/ground_truth.cpp). exactIntersectingPairs is compared
+// Ground truth of the benchmark (src/cpu/oracle/ground_truth.cpp). exactIntersectingPairs is compared
 // with brute force: the exact oracle on EVERY valid pair for soups small enough (so the box sweep
 // and the double filter are checked to lose nothing), and twinIntersections(twinCandidates) with
 // thickness 0 for meshes of a few thousand faces. deepestPenetration is compared with depths worked
 // out by hand on axis-aligned boxes.
 
 #include "cpu/collision_twin.hpp"
-#include "cpu/exact_tri_tri.hpp"
-#include "cpu/flat_model.hpp"
-#include "cpu/ground_truth.hpp"
+#include "cpu/oracle/exact_tri_tri.hpp"
+#include "cpu/oracle/ground_truth.hpp"
+#include "model/flat_model.hpp"
 #include "scene/scene_detail.hpp"
 
 #include <gtest/gtest.h>
@@ -141,7 +141,7 @@ TEST(GroundTruthPairs, NoRulesMeansNoPairs) {
 Soup soupOf(const std::vector<Body>& bodies) {
     Scene scene;
     scene.bodies = bodies;
-    const FlatModel m = flatten(scene);
+    const model::FlatModel m = model::flatten(scene);
     Soup s;
     s.faceIndices = m.faceIndices;
     for (std::uint32_t o = 0; o < m.objects.size(); ++o)
@@ -205,7 +205,7 @@ struct Model {
 Model modelOf(const std::vector<Body>& bodies, const std::vector<glm::dvec3>& probes = {}) {
     Scene scene;
     scene.bodies = bodies;
-    const FlatModel m = flatten(scene);
+    const model::FlatModel m = model::flatten(scene);
     Model model{m.faceIndices, {}, {}, m.positions};
     for (std::uint32_t o = 0; o < m.objects.size(); ++o) {
         model.faceObject.insert(model.faceObject.end(), m.objects[o].faceCount, o);

@@ -1,8 +1,8 @@
-// The pure parts of the robust self-check (src/passes/robust_self_check.hpp): the built-in case
+// The pure parts of the robust self-check (src/engine/robust_self_check.hpp): the built-in case
 // set, the mode's spelling, and the printed coordinates, which must name every float exactly. The
 // check itself runs on the device in tests/gl/robust_self_check_gl_test.cpp.
 
-#include "passes/robust_self_check.hpp"
+#include "engine/robust_self_check.hpp"
 
 #include <glcollide/error.hpp>
 
@@ -14,7 +14,7 @@
 #include <limits>
 #include <string>
 
-namespace glcollide::passes {
+namespace glcollide::engine {
 namespace {
 
 TEST(RobustSelfCheckCases, HardCasesThenSeededFamilies) {
@@ -67,4 +67,4 @@ TEST(RobustSelfCheckFormat, CoordinatesReadBackExactly) {
 }
 
 } // namespace
-} // namespace glcollide::passes
+} // namespace glcollide::engine

@@ -12,8 +12,8 @@
 // (tests/CMakeLists.txt), which lets the compiler contract, reassociate and flush denormals as a
 // relaxed GPU compiler may. A floating-point step whose result mattered would disagree there.
 
+#include "cpu/oracle/tri_tri_cases.hpp"
 #include "cpu/shader_library.hpp"
-#include "cpu/tri_tri_cases.hpp"
 
 #include <gmpxx.h>
 #include <gtest/gtest.h>

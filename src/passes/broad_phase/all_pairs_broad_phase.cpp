@@ -1,6 +1,6 @@
 #include "passes/broad_phase/all_pairs_broad_phase.hpp"
 
-#include "gl/layout.hpp"
+#include "core/gpu_layout.hpp"
 #include "passes/broad_phase/upper_triangle.hpp"
 
 namespace glcollide::passes {

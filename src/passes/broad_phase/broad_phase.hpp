@@ -20,8 +20,8 @@
 #include "passes/collision/stage_chain.hpp"
 #include "passes/pass_id.hpp"
 
-#include "cpu/flat_model.hpp"
-#include "cpu/octree.hpp"
+#include "model/flat_model.hpp"
+#include "model/octree_layout.hpp"
 
 #include <glcollide/scene.hpp>
 
@@ -32,13 +32,13 @@ namespace glcollide::passes {
 
 /// What every broad phase is built from.
 struct BroadPhaseContext {
-    const cpu::FlatModel& model;
+    const model::FlatModel& model;
     /// The octree of settings.octreeDepth over the rest pose (face -> leaf box), built once by
     /// the collision detection: GpuFaceInfo.box comes from it.
-    const cpu::OctreeLayout& layout;
+    const model::OctreeLayout& layout;
     const CollisionSettings& settings;
     std::uint32_t pairRules = 0;    ///< GLC_RULE_* bits of the scene's collision effects
-    float halfThickness = 0.0f;     ///< face-box inflation, cpu::halfThicknessFloat(settings.thickness)
+    float halfThickness = 0.0f;     ///< face-box inflation, model::halfThicknessFloat(settings.thickness)
     /// First capacity of a list of the broad phase's own; 0 = settings.initialCapacity (tests
     /// overflow one list at a time).
     std::uint32_t boxPairCapacity = 0;

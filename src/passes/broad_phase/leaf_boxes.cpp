@@ -1,6 +1,6 @@
 #include "passes/broad_phase/leaf_boxes.hpp"
 
-#include "gl/layout.hpp"
+#include "core/gpu_layout.hpp"
 
 #include <epoxy/gl.h>
 

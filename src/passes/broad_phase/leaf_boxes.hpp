@@ -1,6 +1,6 @@
 #pragma once
 // The AABB-octree's leaf boxes on the GPU (seeds/002, Alg. 1 BBUpdate): the face -> leaf-box
-// assignment of the rest pose (cpu::OctreeLayout) uploaded once, the boxes refit every substep.
+// assignment of the rest pose (model::OctreeLayout) uploaded once, the boxes refit every substep.
 // Shared by the octree and masked broad phases.
 
 #include "gl/handles.hpp"

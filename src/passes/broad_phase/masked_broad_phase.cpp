@@ -1,6 +1,6 @@
 #include "passes/broad_phase/masked_broad_phase.hpp"
 
-#include "gl/layout.hpp"
+#include "core/gpu_layout.hpp"
 #include "passes/broad_phase/upper_triangle.hpp"
 
 #include <glcollide/error.hpp>
@@ -8,7 +8,7 @@
 namespace glcollide::passes {
 namespace {
 
-std::uint32_t checkedBoxCount(const cpu::OctreeLayout& layout) {
+std::uint32_t checkedBoxCount(const model::OctreeLayout& layout) {
     if (layout.boxCount > 65535)
         throw Error("collision: masked broad phase supports at most 65535 leaf boxes (the mask is boxes^2)");
     return layout.boxCount;

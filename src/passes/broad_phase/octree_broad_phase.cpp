@@ -1,6 +1,6 @@
 #include "passes/broad_phase/octree_broad_phase.hpp"
 
-#include "gl/layout.hpp"
+#include "core/gpu_layout.hpp"
 #include "passes/broad_phase/upper_triangle.hpp"
 
 #include <glcollide/error.hpp>
@@ -13,7 +13,7 @@ namespace {
 
 /// z slices per box pair so that no expansion invocation loops more than 2^15 times: llvmpipe
 /// stops an invocation after 65535 loop iterations. The flat index needs nA x nB < 2^32.
-std::uint32_t expandSlices(const cpu::OctreeLayout& layout) {
+std::uint32_t expandSlices(const model::OctreeLayout& layout) {
     std::uint64_t largest = 0;
     for (std::size_t b = 0; b + 1 < layout.boxFaces.offsets.size(); ++b)
         largest = std::max<std::uint64_t>(largest, layout.boxFaces.offsets[b + 1] - layout.boxFaces.offsets[b]);

@@ -6,7 +6,7 @@
 // the list is full; grow() then makes room and the stage chain reruns the writer: nothing is dropped.
 
 #include "gl/handles.hpp"
-#include "gl/layout.hpp"
+#include "core/gpu_layout.hpp"
 #include "gl/program.hpp"
 
 #include <array>

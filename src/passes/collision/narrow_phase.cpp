@@ -1,6 +1,6 @@
 #include "passes/collision/narrow_phase.hpp"
 
-#include "gl/layout.hpp"
+#include "core/gpu_layout.hpp"
 
 namespace glcollide::passes {
 

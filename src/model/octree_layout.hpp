@@ -3,20 +3,16 @@
 // object's rest-pose bounding box is split into 2^depth cells per axis; every face belongs to the
 // leaf box of the cell holding its rest centroid, for the whole simulation. Only the boxes'
 // extents change at run time (BBUpdate refits them); the face→box assignment is built here once.
-// Also the per-face data the collision passes need (object, leaf box, owned features) and the
-// per-object closed flags. Built on the CPU from the FlatModel; the GPU gets the arrays as is.
+// Also the per-face data the collision passes need (object, leaf box, owned features from
+// features.hpp) and the per-object closed flags. Built on the CPU from the FlatModel; the GPU gets
+// the arrays as is.
 
-#include "cpu/flat_model.hpp"
+#include "model/flat_model.hpp"
 
 #include <cstdint>
 #include <vector>
 
-namespace glcollide::cpu {
-
-/// GpuFaceInfo.owned bits; equal to GLC_OWN_* in shaders/common/layout.glsl (checked by a
-/// static_assert in src/passes/collision_detection.cpp, the first module that sees both).
-inline constexpr std::uint32_t kOwnVertex0 = 1u, kOwnVertex1 = 2u, kOwnVertex2 = 4u;
-inline constexpr std::uint32_t kOwnEdge01 = 8u, kOwnEdge12 = 16u, kOwnEdge20 = 32u;
+namespace glcollide::model {
 
 struct OctreeLayout {
     int depth = 0;                     ///< 1..3
@@ -25,10 +21,10 @@ struct OctreeLayout {
     std::uint32_t boxCount = 0;        ///< objects * boxesPerObject
     std::vector<std::uint32_t> faceObject; ///< object of each face
     std::vector<std::uint32_t> faceBox;    ///< global leaf box of each face (firstBox + cell)
-    std::vector<std::uint32_t> faceOwned;  ///< kOwn* bits of each face
+    std::vector<std::uint32_t> faceOwned;  ///< owned-feature bits (GLC_OWN_*) of each face: ownedFeatures
     Csr boxFaces;                          ///< faces of each leaf box, in increasing face index
     std::vector<std::uint32_t> firstBox;   ///< per object: o * boxesPerObject
-    std::vector<std::uint8_t> closed;      ///< per object: 1 when every edge has exactly two faces
+    std::vector<std::uint8_t> closed;      ///< per object: isClosedSurface (every edge has exactly two faces)
 };
 
 /// Leaf cell (0 .. 8^depth - 1, x fastest) of a point in the box [lo, hi] split into `cellsPerAxis`
@@ -37,17 +33,8 @@ struct OctreeLayout {
 std::uint32_t octreeCell(const glm::dvec3& point, const glm::dvec3& lo, const glm::dvec3& hi,
                          std::uint32_t cellsPerAxis);
 
-/// Owned-feature bits of every face: a node is owned by the lowest-indexed face containing it,
-/// an edge (unordered node pair) by the lowest-indexed face containing it.
-std::vector<std::uint32_t> ownedFeatures(const std::vector<std::uint32_t>& faceIndices);
-
-/// 1 when every edge of faces [firstFace, firstFace + faceCount) has exactly two of those faces;
-/// 0 otherwise, and for an object without faces (it bounds no volume).
-bool isClosedSurface(const std::vector<std::uint32_t>& faceIndices, std::uint32_t firstFace,
-                     std::uint32_t faceCount);
-
 /// Builds the layout from the rest pose `model.positions`. `depth` must be 1, 2 or 3 (throws
 /// glcollide::Error otherwise).
 OctreeLayout buildOctree(const FlatModel& model, int depth);
 
-} // namespace glcollide::cpu
+} // namespace glcollide::model

@@ -1,4 +1,4 @@
-#include "passes/robust_self_check.hpp"
+#include "engine/robust_self_check.hpp"
 
 #include "gl/program_cache.hpp"
 #include "gl/setup_stats_sink.hpp"
@@ -16,7 +16,7 @@
 #include <set>
 #include <utility>
 
-namespace glcollide::passes {
+namespace glcollide::engine {
 namespace {
 
 // Passes remembered in this process, by key: a fact about a device, driver and shader, so sharing
@@ -86,9 +86,9 @@ bool markerHolds(const std::filesystem::path& path, const std::string& key) {
 
 // Builds the robust query pass with its own sink, to learn the programs' sources, and passes the
 // programs on to the caller's sink (an Engine's setup statistics) as setup cost.
-TriTriQueryPass buildQueryPass(std::vector<ProgramSetup>& programs) {
+passes::TriTriQueryPass buildQueryPass(std::vector<ProgramSetup>& programs) {
     SetupStats local;
-    std::optional<TriTriQueryPass> pass;
+    std::optional<passes::TriTriQueryPass> pass;
     {
         const gl::SetupStatsScope scope(&local);
         pass.emplace(TriTriPrecision::Robust);
@@ -182,7 +182,7 @@ SelfCheckReport runRobustSelfCheck(SelfCheckMode mode, const SelfCheckInjection&
         if (i >= cases.size())
             throw Error("self-check injection: case " + std::to_string(i) + " of " + std::to_string(cases.size()));
     std::vector<ProgramSetup> programs;
-    const TriTriQueryPass pass = buildQueryPass(programs);
+    const passes::TriTriQueryPass pass = buildQueryPass(programs);
     const gl::DriverIdentity driver = gl::currentDriverIdentity();
     const std::string key = rememberKey(driver, programs, cases, injection);
     const std::optional<std::filesystem::path> marker = markerPath(key);
@@ -195,10 +195,10 @@ SelfCheckReport runRobustSelfCheck(SelfCheckMode mode, const SelfCheckInjection&
         return report;
     }
 
-    std::vector<TriTriPair> pairs;
+    std::vector<passes::TriTriPair> pairs;
     pairs.reserve(cases.size());
     for (const SelfCheckCase& c : cases) pairs.push_back(c.pair);
-    const TriTriQueryResult got = pass.run(pairs);
+    const passes::TriTriQueryResult got = pass.run(pairs);
     std::vector<bool> inverted(cases.size(), false);
     for (std::size_t i : injection.invertExpected) inverted[i] = true;
     report.cases = static_cast<std::uint32_t>(cases.size());
@@ -229,4 +229,4 @@ SelfCheckReport runRobustSelfCheck(SelfCheckMode mode, const SelfCheckInjection&
     return report;
 }
 
-} // namespace glcollide::passes
+} // namespace glcollide::engine

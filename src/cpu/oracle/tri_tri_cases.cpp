@@ -1,4 +1,4 @@
-#include "cpu/tri_tri_cases.hpp"
+#include "cpu/oracle/tri_tri_cases.hpp"
 
 #include <glm/geometric.hpp>
 

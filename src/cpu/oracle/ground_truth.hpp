@@ -2,6 +2,11 @@
 // Ground truth for the benchmark's accuracy measurements: the exact set of intersecting face pairs
 // of a whole scene (the same answer as twinIntersections(twinCandidates(...)) with thickness 0,
 // but fast enough for ~10^6 faces), and the deepest penetration of nodes into closed bodies.
+//
+// Where things live: src/model/ holds the model the GPU and the twins share (no GL, no GMP);
+// src/cpu/ the CPU twins of the GPU passes; src/cpu/oracle/ (here) the references they and the GPU
+// are judged by: exact_tri_tri (GMP), ground_truth (exact intersecting pairs of a scene, deepest
+// penetration) and tri_tri_cases (the triangle pairs, with the oracle on a float pair).
 
 #include "cpu/collision_twin.hpp"
 

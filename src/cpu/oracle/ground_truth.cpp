@@ -1,6 +1,6 @@
-#include "cpu/ground_truth.hpp"
+#include "cpu/oracle/ground_truth.hpp"
 
-#include "cpu/exact_tri_tri.hpp"
+#include "cpu/oracle/exact_tri_tri.hpp"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>

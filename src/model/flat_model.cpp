@@ -1,8 +1,8 @@
-#include "cpu/flat_model.hpp"
+#include "model/flat_model.hpp"
 
 #include <glcollide/error.hpp>
 
-namespace glcollide::cpu {
+namespace glcollide::model {
 
 Csr buildAdjacency(std::size_t nodeCount, const std::vector<std::uint32_t>& itemNodes,
                    std::size_t perItem) {
@@ -59,4 +59,4 @@ FlatModel flatten(const Scene& scene) {
     return m;
 }
 
-} // namespace glcollide::cpu
+} // namespace glcollide::model

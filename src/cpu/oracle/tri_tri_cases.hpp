@@ -3,8 +3,13 @@
 // cases (hand-made, touching / coplanar / one ulp apart / tiny / far / zero-area / denormal /
 // huge) and seeded random sets, uniform and near-degenerate. All coordinates are floats, the
 // precision the GPU works in; the oracle gets them widened to double exactly.
+//
+// Where things live: src/model/ holds the model the GPU and the twins share (no GL, no GMP);
+// src/cpu/ the CPU twins of the GPU passes; src/cpu/oracle/ (here) the references they and the GPU
+// are judged by: exact_tri_tri (GMP), ground_truth (exact intersecting pairs of a scene, deepest
+// penetration) and tri_tri_cases (the triangle pairs, with the oracle on a float pair).
 
-#include "cpu/exact_tri_tri.hpp"
+#include "cpu/oracle/exact_tri_tri.hpp"
 
 #include <array>
 #include <cstddef>

@@ -1,4 +1,6 @@
-#include "cpu/octree.hpp"
+#include "model/octree_layout.hpp"
+
+#include "model/features.hpp"
 
 #include <glcollide/error.hpp>
 
@@ -6,16 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
-#include <utility>
 
-namespace glcollide::cpu {
+namespace glcollide::model {
 namespace {
-
-std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
-    if (a > b) std::swap(a, b);
-    return (static_cast<std::uint64_t>(a) << 32) | b;
-}
 
 std::uint32_t axisCell(double x, double lo, double hi, std::uint32_t n) {
     if (!(hi > lo)) return 0;
@@ -31,47 +26,6 @@ std::uint32_t octreeCell(const glm::dvec3& point, const glm::dvec3& lo, const gl
     const std::uint32_t n = cellsPerAxis;
     return axisCell(point.x, lo.x, hi.x, n) +
            n * (axisCell(point.y, lo.y, hi.y, n) + n * axisCell(point.z, lo.z, hi.z, n));
-}
-
-std::vector<std::uint32_t> ownedFeatures(const std::vector<std::uint32_t>& faceIndices) {
-    const std::size_t faces = faceIndices.size() / 3;
-    std::unordered_map<std::uint32_t, std::uint32_t> nodeOwner;
-    std::unordered_map<std::uint64_t, std::uint32_t> edgeOwner;
-    nodeOwner.reserve(faces * 3);
-    edgeOwner.reserve(faces * 3);
-    // Visiting faces in increasing index, the first face to see a feature is its lowest face.
-    for (std::uint32_t f = 0; f < faces; ++f)
-        for (int k = 0; k < 3; ++k) {
-            const std::uint32_t a = faceIndices[3 * f + static_cast<std::size_t>(k)];
-            const std::uint32_t b = faceIndices[3 * f + static_cast<std::size_t>((k + 1) % 3)];
-            nodeOwner.try_emplace(a, f);
-            edgeOwner.try_emplace(edgeKey(a, b), f);
-        }
-    constexpr std::uint32_t kVertexBit[3] = {kOwnVertex0, kOwnVertex1, kOwnVertex2};
-    constexpr std::uint32_t kEdgeBit[3] = {kOwnEdge01, kOwnEdge12, kOwnEdge20};
-    std::vector<std::uint32_t> owned(faces, 0u);
-    for (std::uint32_t f = 0; f < faces; ++f)
-        for (int k = 0; k < 3; ++k) {
-            const std::uint32_t a = faceIndices[3 * f + static_cast<std::size_t>(k)];
-            const std::uint32_t b = faceIndices[3 * f + static_cast<std::size_t>((k + 1) % 3)];
-            if (nodeOwner.at(a) == f) owned[f] |= kVertexBit[k];
-            if (edgeOwner.at(edgeKey(a, b)) == f) owned[f] |= kEdgeBit[k];
-        }
-    return owned;
-}
-
-bool isClosedSurface(const std::vector<std::uint32_t>& faceIndices, std::uint32_t firstFace,
-                     std::uint32_t faceCount) {
-    if (faceCount == 0) return false;
-    std::unordered_map<std::uint64_t, std::uint32_t> edgeFaces;
-    edgeFaces.reserve(static_cast<std::size_t>(faceCount) * 3);
-    for (std::uint32_t f = firstFace; f < firstFace + faceCount; ++f)
-        for (int k = 0; k < 3; ++k) {
-            const std::uint32_t a = faceIndices[3 * f + static_cast<std::size_t>(k)];
-            const std::uint32_t b = faceIndices[3 * f + static_cast<std::size_t>((k + 1) % 3)];
-            ++edgeFaces[edgeKey(a, b)];
-        }
-    return std::all_of(edgeFaces.begin(), edgeFaces.end(), [](const auto& e) { return e.second == 2; });
 }
 
 OctreeLayout buildOctree(const FlatModel& model, int depth) {
@@ -117,4 +71,4 @@ OctreeLayout buildOctree(const FlatModel& model, int depth) {
     return o;
 }
 
-} // namespace glcollide::cpu
+} // namespace glcollide::model

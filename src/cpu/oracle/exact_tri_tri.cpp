@@ -1,4 +1,4 @@
-#include "cpu/exact_tri_tri.hpp"
+#include "cpu/oracle/exact_tri_tri.hpp"
 
 #include <gmpxx.h>
 

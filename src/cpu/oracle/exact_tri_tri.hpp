@@ -7,6 +7,11 @@
 // intersecting); coplanar pairs are decided in their common plane; a zero-area triangle is the
 // segment between its two farthest vertices (or the point, when all three coincide), so
 // degenerate input is decided exactly too instead of being dropped.
+//
+// Where things live: src/model/ holds the model the GPU and the twins share (no GL, no GMP);
+// src/cpu/ the CPU twins of the GPU passes; src/cpu/oracle/ (here) the references they and the GPU
+// are judged by: exact_tri_tri (GMP), ground_truth (exact intersecting pairs of a scene, deepest
+// penetration) and tri_tri_cases (the triangle pairs, with the oracle on a float pair).
 
 #include <glm/vec3.hpp>
 

@@ -1,6 +1,7 @@
 #pragma once
 // C++ view of shaders/common/layout.glsl: the one declaration of the SSBO structs and bindings,
-// included inside a namespace with glm aliases so the same text compiles as C++.
+// included inside a namespace with glm aliases so the same text compiles as C++. GL-free (glm
+// only), so modules below gl (model: the owned-feature bits GLC_OWN_*) use it too.
 
 #include <glm/vec4.hpp>
 

@@ -1,7 +1,8 @@
 #pragma once
 // A scene flattened into the global arrays the GPU holds: all bodies' nodes, faces and springs
 // concatenated, plus per-node adjacency in CSR form. Built once on the CPU; the engine uploads it
-// and the CPU twins run on it, so both sides see exactly the same data.
+// and the CPU twins run on it, so both sides see exactly the same data. Module `model` (no GL, no
+// GMP): this file, features.hpp, octree_layout.hpp, face_box.hpp.
 
 #include <glcollide/scene.hpp>
 
@@ -10,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace glcollide::cpu {
+namespace glcollide::model {
 
 struct FlatSpring {
     std::uint32_t a = 0, b = 0; ///< global node indices
@@ -53,4 +54,4 @@ Csr buildAdjacency(std::size_t nodeCount, const std::vector<std::uint32_t>& item
 /// Node→spring adjacency of a spring list (each spring appears in both of its nodes' rows).
 Csr buildSpringAdjacency(std::size_t nodeCount, const std::vector<FlatSpring>& springs);
 
-} // namespace glcollide::cpu
+} // namespace glcollide::model

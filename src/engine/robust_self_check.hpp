@@ -8,8 +8,10 @@
 // says) naming the device, the driver and the first wrong case. A pass is remembered per device,
 // driver, query shader sources and case set: a marker file in the program cache folder (across
 // processes) and a set of keys in this process (when the cache is off), so the check runs once.
+// Part of the engine (which runs it before robust collisions), not of passes: it needs the exact
+// oracle and its cases (cpu/oracle/), and passes links no GMP.
 
-#include "cpu/tri_tri_cases.hpp"
+#include "cpu/oracle/tri_tri_cases.hpp"
 
 #include <glcollide/setup_stats.hpp>
 
@@ -18,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-namespace glcollide::passes {
+namespace glcollide::engine {
 
 /// One case: a named pair; the expected answer comes from the oracle when the check runs.
 struct SelfCheckCase {
@@ -60,4 +62,4 @@ void forgetRememberedSelfChecks();
 /// which names every float exactly (9 digits round-trip binary32).
 std::string formatTriPair(const cpu::FloatTriPair& pair);
 
-} // namespace glcollide::passes
+} // namespace glcollide::engine

@@ -1,0 +1,44 @@
+#include "model/features.hpp"
+
+#include <algorithm>
+#include <unordered_map>
+
+namespace glcollide::model {
+
+std::vector<std::uint32_t> ownedFeatures(const std::vector<std::uint32_t>& faceIndices) {
+    const std::size_t faces = faceIndices.size() / 3;
+    std::unordered_map<std::uint32_t, std::uint32_t> nodeOwner;
+    std::unordered_map<std::uint64_t, std::uint32_t> edgeOwner;
+    nodeOwner.reserve(faces * 3);
+    edgeOwner.reserve(faces * 3);
+    // Visiting faces in increasing index, the first face to see a feature is its lowest face.
+    for (std::uint32_t f = 0; f < faces; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const auto [a, b] = faceEdge(faceIndices, f, k);
+            nodeOwner.try_emplace(a, f);
+            edgeOwner.try_emplace(edgeKey(a, b), f);
+        }
+    std::vector<std::uint32_t> owned(faces, 0u);
+    for (std::uint32_t f = 0; f < faces; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const auto [a, b] = faceEdge(faceIndices, f, k);
+            if (nodeOwner.at(a) == f) owned[f] |= ownVertexBit(k);
+            if (edgeOwner.at(edgeKey(a, b)) == f) owned[f] |= ownEdgeBit(k);
+        }
+    return owned;
+}
+
+bool isClosedSurface(const std::vector<std::uint32_t>& faceIndices, std::uint32_t firstFace,
+                     std::uint32_t faceCount) {
+    if (faceCount == 0) return false;
+    std::unordered_map<std::uint64_t, std::uint32_t> edgeFaces;
+    edgeFaces.reserve(static_cast<std::size_t>(faceCount) * 3);
+    for (std::uint32_t f = firstFace; f < firstFace + faceCount; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const auto [a, b] = faceEdge(faceIndices, f, k);
+            ++edgeFaces[edgeKey(a, b)];
+        }
+    return std::all_of(edgeFaces.begin(), edgeFaces.end(), [](const auto& e) { return e.second == 2; });
+}
+
+} // namespace glcollide::model
