@@ -1,6 +1,6 @@
 // glcollide shared data layout: compiled both as GLSL (std430 buffers) and as C++
-// (src/gl/layout.hpp includes it inside a namespace with glm aliases).
-// Rules (DESIGN.md): members only float int uint vec4 ivec4 uvec4 mat4; no vec3; bindings as
+// (src/core/gpu_layout.hpp includes it inside a namespace with glm aliases).
+// Rules (docs/design/decisions/0001-ssbo-layout-shared-by-glsl-and-cpp.md): members only float int uint vec4 ivec4 uvec4 mat4; no vec3; bindings as
 // #define; vec4 members first so std430 and C++ offsets agree. C++ static_asserts every
 // size and offset, and layout_gl_test compares them with what the driver reports.
 
@@ -105,7 +105,7 @@ struct GpuFaceInfo {
 // One append list's counter. A writer does i = atomicAdd(count, 1) and stores only if
 // i < capacity (GLC_APPEND), so after a pass `count` is the exact number of items found, even on
 // overflow; the host then grows the list to at least `count` and reruns the stage that wrote it
-// (lists never drop data; docs/design/).
+// (docs/design/decisions/0012-append-list-and-stage-chain-written-once.md).
 struct GpuListCounter {
     uint count;
     uint capacity;

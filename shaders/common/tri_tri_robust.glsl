@@ -1,5 +1,5 @@
 // Robust triangle-triangle intersection: the answer of the exact rational oracle
-// (src/cpu/exact_tri_tri.cpp) for every finite float input, on any conforming device. Compiled as
+// (src/cpu/oracle/exact_tri_tri.cpp) for every finite float input, on any conforming device. Compiled as
 // GLSL and as C++ (src/cpu/shader_library.hpp), so the CPU tests run the very same code.
 // Design and proofs: docs/narrow-phase.md.
 //

@@ -1,7 +1,7 @@
 #version 430 core
 // BBUpdate — refit the leaf boxes of the AABB-octree to the current node positions (seeds/002,
 // Alg. 1 "BBUpdate Compute Shader"). Each leaf box is the union of the current vertices of the
-// faces assigned to it (src/cpu/octree.cpp), inflated by half the contact thickness; a box without
+// faces assigned to it (src/model/octree_layout.cpp), inflated by half the contact thickness; a box without
 // faces is empty (lo = +inf > hi = -inf). One work group per box: its threads stride over the
 // box's faces and a shared-memory min/max tree reduces them. min and max are exact, so the result
 // does not depend on thread order (no float atomics). CPU twin: cpu::twinLeafBoxes.
@@ -16,7 +16,7 @@ layout(std430, binding = GLC_BIND_BOX_FACE_LIST) readonly buffer BoxFaceListBuf 
 layout(std430, binding = GLC_BIND_BOX_FACE_OFFSETS) readonly buffer BoxFaceOffsetsBuf { uint g_boxFaceOffsets[]; };
 
 uniform uint u_boxCount;
-uniform float u_halfThickness; // m: float(0.5 * thickness), as cpu::halfThicknessFloat
+uniform float u_halfThickness; // m: float(0.5 * thickness), as model::halfThicknessFloat
 
 shared vec3 s_lo[GLC_BB_UPDATE_GROUP];
 shared vec3 s_hi[GLC_BB_UPDATE_GROUP];

@@ -1,4 +1,4 @@
-// glcollide — the command-line tool: a thin layer over the engine (DESIGN.md, module app).
+// glcollide — the command-line tool: a thin layer over the engine (docs/design/README.md, "Modules").
 
 #include "app/commands.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 // The face-box inflation both sides use: the GPU passes pass it as the uniform u_halfThickness
-// (bb_update.comp, bb_collision.comp, tri_tri.comp), the CPU twin (cpu/collision_twin.hpp) inflates
+// (bb_update.comp and the face-pair kernels: octree_expand, all_face_pairs, masked_face_pairs), the CPU twin (cpu/collision_twin.hpp) inflates
 // its boxes by it, so the float boxes agree bit for bit.
 
 namespace glcollide::model {

@@ -1,6 +1,6 @@
 #pragma once
 // Everything the renderer changes in a context, captured on construction and put back on
-// destruction, so rendering inside a host's context leaves it as it was (DESIGN.md: a host that
+// destruction, so rendering inside a host's context leaves it as it was (docs/design/decisions/0016-host-gl-state-contract.md: a host that
 // embeds glcollide sees no surprise changes to its GL state).
 
 #include <epoxy/gl.h>

@@ -1,6 +1,6 @@
 // Differential tests of NodeForce, SpringUpdate and NodeUpdate against their double-precision CPU
 // twins (src/cpu/dynamics_twin.cpp) on seeded random inputs at sizes 1, L-1, L+1 and a large
-// prime, L = GLC_WORKGROUP_SIZE (DESIGN.md, Tests). The GPU gets float inputs; the twin gets the
+// prime, L = GLC_WORKGROUP_SIZE (docs/design/decisions/0010-cpu-twins-and-exact-oracles.md). The GPU gets float inputs; the twin gets the
 // same float values widened to double, so only the GPU's float arithmetic is being measured.
 // Tolerances are float rounding bounds: u = 2^-24 (unit roundoff of float) times the sum of the
 // magnitudes each result is built from, times a small constant for the operation count.

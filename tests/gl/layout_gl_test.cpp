@@ -1,4 +1,4 @@
-// The one-declaration rule of DESIGN.md, checked against the driver: every SSBO block of every
+// The one-declaration rule (docs/design/decisions/0001-ssbo-layout-shared-by-glsl-and-cpp.md), checked against the driver: every SSBO block of every
 // embedded shader sits at the binding layout.glsl names, and the offsets and strides the driver
 // reports for the shared structs equal the C++ offsetof/sizeof of src/core/gpu_layout.hpp.
 
