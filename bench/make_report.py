@@ -5,9 +5,11 @@ Every folder bench/results/<device>/ holding a report.md (written by `glcollide 
 bench/results/{device}`) becomes one section of docs/benchmarks.md, between the markers
 <!-- results:begin --> and <!-- results:end -->, with its plot links made relative to docs/.
 The README's block between <!-- bench-headline:begin --> and <!-- bench-headline:end --> gets
-the headline table of a GPU device when one was measured, else llvmpipe's.
+every device's headline table (GPUs first), each under a line naming the device, the commit and
+the suite it was measured with (from its bench.json context).
 Run by scripts/bench-report.sh; it only rearranges text, it measures nothing.
 """
+import json
 import os
 import re
 import sys
@@ -35,6 +37,17 @@ def devices():
     return sorted(found, key=lambda d: (d == "llvmpipe", d))
 
 
+def label(device):
+    """'NVIDIA H100 80GB HBM3, commit fabad4e, suite `default`' from the device's bench.json."""
+    try:
+        ctx = json.load(open(os.path.join(RESULTS, device, "bench.json"), encoding="utf-8"))["context"]
+    except (OSError, ValueError, KeyError):
+        return device + " (no bench.json: device and commit unknown)"
+    renderer = ctx.get("gl_renderer", device).split("/")[0]
+    commit = (ctx.get("git_commit") or "unknown").split()[0]
+    return f"{renderer}, commit {commit}, suite `{ctx.get('suite', '?')}`"
+
+
 def main():
     found = devices()
     if not found:
@@ -46,9 +59,12 @@ def main():
         sections.append(report.rstrip() + f"\n\nRaw results: [bench/results/{device}/bench.json](../bench/results/{device}/bench.json).\n")
     splice(os.path.join(ROOT, "docs", "benchmarks.md"), "<!-- results:begin -->", "<!-- results:end -->",
            "\n".join(sections))
-    headline = open(os.path.join(RESULTS, found[0], "headline.md"), encoding="utf-8").read()
+    headlines = []
+    for device in found:
+        headline = open(os.path.join(RESULTS, device, "headline.md"), encoding="utf-8").read()
+        headlines.append(f"#### {label(device)}\n\n" + headline.rstrip() + "\n")
     splice(os.path.join(ROOT, "README.md"), "<!-- bench-headline:begin -->", "<!-- bench-headline:end -->",
-           headline.rstrip() + "\n\nAll tables and plots: [docs/benchmarks.md](docs/benchmarks.md).")
+           "\n".join(headlines) + "\nAll tables and plots: [docs/benchmarks.md](docs/benchmarks.md).")
     print("docs/benchmarks.md: " + ", ".join(found))
 
 

@@ -22,5 +22,6 @@ mesa_driver=$(ls /usr/lib/*/dri/swrast_dri.so 2>/dev/null | head -1 || true)
 LD_PRELOAD="${mesa_driver}${LD_PRELOAD:+:$LD_PRELOAD}" \
   ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)"
 # Repeatable fuzzing: 30,000 inputs per target from seed 1 (about 1-10 s each on llvmpipe's 2-core
-# machine), capped at FUZZ_SECONDS; scripts/fuzz.sh alone explores further with a random seed.
+# machine); FUZZ_SECONDS is a safety net: a target it stops before its 30,000 runs fails.
+# scripts/fuzz.sh alone explores further with a random seed.
 GLCOLLIDE_FUZZ_RUNS=${GLCOLLIDE_FUZZ_RUNS:-30000} scripts/fuzz.sh "$fuzz_seconds" "$build_dir"

@@ -59,7 +59,9 @@ rc=$?
 check "bad suite exits non-zero" test "$rc" -ne 0
 check "bad suite names the pointer" grep -q "bad.json: /experiments/0/kind: unknown kind" "$work/err"
 "$bin" bench --suite smoke --only nonsense --out "$work/bad" >/dev/null 2>"$work/err"
-check "unknown experiment is an error" grep -q -- "--only nonsense: no such experiment" "$work/err"
+rc=$?
+check "unknown experiment exits non-zero" test "$rc" -ne 0
+check "unknown experiment is an error naming it" grep -q -- "--only nonsense: no such experiment" "$work/err"
 
 [ "$failures" -eq 0 ] && echo "all bench CLI checks passed"
 exit "$failures"

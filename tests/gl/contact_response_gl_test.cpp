@@ -91,6 +91,20 @@ ContactParams testParams(double thickness) {
     return contactParams(settings);
 }
 
+constexpr double kFloatU = 0x1p-24; // unit roundoff of float
+
+// Bound on |GPU - k (h - d)| for penalty forces on a probe whose offset d from the closest point is
+// exact in float (a face lying exactly in a coordinate plane: the closest point's normal
+// coordinate is exactly 0 and its rounding in the other two enters |diff| only at second order;
+// or the closest point is a corner). The float evaluation rounds h (u h), the length d (2u d),
+// h - d (u (h - d)), k times the depth (u f) and the direction's component (2u f): k (u h + 2u d
+// + u h) + 3u f <= 4u (k h + f); doubled, 8u (k h + f), for the weights when the force is spread
+// over a face's corners. The fixed-point sum adds at most 0.5/forceScale per contribution (round
+// to nearest; the scale is a power of two, so f * scale is exact).
+double penaltyTolerance(const ContactParams& p, double force, int contributions) {
+    return 8.0 * kFloatU * (p.stiffness * p.thickness + std::abs(force)) + contributions * 0.5 / p.forceScale;
+}
+
 // Isolated triangles (no shared nodes, so every face owns all its features) scattered in a box
 // small enough that many come within the thickness; pairs between the two objects are candidates.
 Soup randomSoup(std::uint32_t faceCount, std::uint32_t seed) {
@@ -178,8 +192,9 @@ TEST(ContactResponseGl, VertexAboveAFaceIsPushedOutWithThePenaltyForce) {
     const GpuResult gpu = runGpu(probeAboveFace(height, false), params);
     const double expected = params.stiffness * (params.thickness - height); // k (h - d)
     EXPECT_EQ(gpu.contacts, 1u);
-    EXPECT_NEAR(gpu.forces[3].y, expected, expected * 1e-5); // float rounding of h - d
-    EXPECT_NEAR(gpu.forces[0].y + gpu.forces[1].y + gpu.forces[2].y, -expected, expected * 1e-5);
+    // The face lies exactly in y = 0; the probe's force is one contribution, the face's three.
+    EXPECT_NEAR(gpu.forces[3].y, expected, penaltyTolerance(params, expected, 1));
+    EXPECT_NEAR(gpu.forces[0].y + gpu.forces[1].y + gpu.forces[2].y, -expected, penaltyTolerance(params, expected, 3));
     EXPECT_EQ(gpu.forces[4], glm::dvec3(0.0));
 }
 
@@ -187,11 +202,14 @@ TEST(ContactResponseGl, ClosedObjectsPushAShallowPenetrationOutAlongTheNormal) {
     const ContactParams params = testParams(0.1);
     const double depthBelow = static_cast<float>(0.03);
     // Closed: the vertex 0.03 below the face is pushed up with k (h + 0.03).
+    // Tolerances: penaltyTolerance (the face lies exactly in y = 0; the signed distance is exact).
     const GpuResult closed = runGpu(probeAboveFace(-depthBelow, true), params);
-    EXPECT_NEAR(closed.forces[3].y, params.stiffness * (params.thickness + depthBelow), 1e-3);
+    const double pushedOut = params.stiffness * (params.thickness + depthBelow);
+    EXPECT_NEAR(closed.forces[3].y, pushedOut, penaltyTolerance(params, pushedOut, 1));
     // Open (cloth): the same vertex is on the other side and is pushed further down, k (h - 0.03).
     const GpuResult open = runGpu(probeAboveFace(-depthBelow, false), params);
-    EXPECT_NEAR(open.forces[3].y, -params.stiffness * (params.thickness - depthBelow), 1e-3);
+    const double pushedDown = -params.stiffness * (params.thickness - depthBelow);
+    EXPECT_NEAR(open.forces[3].y, pushedDown, penaltyTolerance(params, pushedDown, 1));
     // Out of range on either side: nothing.
     EXPECT_EQ(runGpu(probeAboveFace(0.2, true), params).contacts, 0u);
     EXPECT_EQ(runGpu(probeAboveFace(-0.2, true), params).contacts, 0u);
@@ -209,7 +227,9 @@ TEST(ContactResponseGl, AVertexSharedByTwoCandidateFacesActsOnce) {
     const ContactParams params = testParams(0.1);
     const GpuResult gpu = runGpu(s, params);
     EXPECT_EQ(gpu.contacts, 1u);
-    EXPECT_NEAR(gpu.forces[3].y, params.stiffness * 0.05, 1e-2);
+    // One contact's force k (h - d), d the float probe height; two would give twice that.
+    const double once = params.stiffness * (params.thickness - static_cast<float>(0.05));
+    EXPECT_NEAR(gpu.forces[3].y, once, penaltyTolerance(params, once, 1));
 }
 
 // A probe vertex near a vertex or an edge of a mesh is near every face around that feature; the
@@ -252,8 +272,9 @@ TEST(ContactResponseGl, AVertexNearAVertexOfAFanGetsOneContact) {
     const double expected = params.stiffness * (params.thickness - height); // one k (h - d), not six
     EXPECT_EQ(gpu.contacts, 1u);
     EXPECT_EQ(cpu.contacts, 1u);
-    EXPECT_NEAR(gpu.forces[7].y, expected, expected * 1e-5); // float rounding of h - d
-    EXPECT_NEAR(gpu.forces[0].y, -expected, expected * 1e-5); // all on the apex
+    // The closest point is the apex, a corner (weight exactly 1): penaltyTolerance applies.
+    EXPECT_NEAR(gpu.forces[7].y, expected, penaltyTolerance(params, expected, 1));
+    EXPECT_NEAR(gpu.forces[0].y, -expected, penaltyTolerance(params, expected, 1)); // all on the apex
     EXPECT_NEAR(cpu.forces[7].y, expected, expected * 1e-12);
 }
 
@@ -271,7 +292,9 @@ TEST(ContactResponseGl, AVertexNearAnEdgeOfTwoFacesGetsOneContact) {
     EXPECT_EQ(gpu.contacts, 1u);
     EXPECT_EQ(cpu.contacts, 1u);
     const double force = glm::length(gpu.forces[7]);
-    EXPECT_NEAR(force, glm::length(cpu.forces[7]), 1e-3 * force);
+    // The per-contribution bound of MatchesTheTwinOnRandomTriangleSoups (2^-16 of the cap in float
+    // evaluation, 0.5/forceScale fixed point) on each of three components: sqrt(3) of it on the length.
+    EXPECT_NEAR(force, glm::length(cpu.forces[7]), std::sqrt(3.0) * (params.forceCap / 65536.0 + 0.5 / params.forceScale));
     EXPECT_LT(force, params.stiffness * params.thickness); // one contact's force at most
 }
 

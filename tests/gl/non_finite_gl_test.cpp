@@ -1,6 +1,6 @@
-// Non-finite states (issue 6, "Reliability"): NodeUpdate detects a non-finite position or velocity
-// on the device and the engine reports the first one (frame, substep, object, node) in
-// StepStats::nonFinite instead of continuing silently.
+// Non-finite states (docs/reliability.md, "Non-finite states"): NodeUpdate detects a non-finite
+// position or velocity on the device and the engine reports the first one (frame, substep,
+// object, node) in StepStats::nonFinite instead of continuing silently.
 
 #include <glcollide/engine.hpp>
 #include <glcollide/scene.hpp>

@@ -89,35 +89,23 @@ TEST(TriTriGl, RobustMatchesOracleOnHardCases) {
 }
 
 TEST(TriTriGl, HardCasesHaveTheHandDerivedAnswers) {
-    // Independent of the oracle: the answers stated by the case names (derived by hand).
+    // Independent of the oracle: every hard case carries the answer derived by hand from its
+    // construction (src/cpu/oracle/tri_tri_cases.cpp, with a one-line reason). A case without one fails.
     const TriTriQueryPass robust(TriTriPrecision::Robust);
+    const std::vector<cpu::NamedTriPair> cases = cpu::hardTriTriCases();
     std::vector<FloatTriPair> pairs;
-    std::vector<int> expected;
-    for (const auto& c : cpu::hardTriTriCases()) {
-        const std::string& n = c.name;
-        int e = -1;
-        if (n.rfind("coplanar overlap", 0) == 0 || n.rfind("shared", 0) == 0 || n.rfind("identical", 0) == 0 ||
-            n.rfind("vertex touching", 0) == 0 || n.rfind("edge crosses edge", 0) == 0 ||
-            n.rfind("apex on a slanted", 0) == 0 || n.rfind("apex one ulp below", 0) == 0 ||
-            n.rfind("point on the face", 0) == 0 || n.rfind("same point", 0) == 0 ||
-            n.rfind("two degenerate segments crossing", 0) == 0 || n.rfind("collinear segments touching", 0) == 0 ||
-            n.rfind("huge triangles crossing", 0) == 0 || n.rfind("denormal triangle pierced", 0) == 0)
-            e = 1;
-        if (n.rfind("coplanar disjoint", 0) == 0 || n.rfind("coplanar, one float step", 0) == 0 ||
-            n.rfind("one denormal step above the face", 0) == 0 || n.rfind("1e-30 above", 0) == 0 ||
-            n.rfind("edge crossing moved", 0) == 0 || n.rfind("apex one ulp above", 0) == 0 ||
-            n.rfind("point one denormal step above", 0) == 0 || n.rfind("points one ulp apart", 0) == 0 ||
-            n.rfind("skew degenerate", 0) == 0 || n.rfind("collinear segments apart", 0) == 0 ||
-            n.rfind("collinear segments one ulp apart", 0) == 0 || n.rfind("parallel segments", 0) == 0 ||
-            n.rfind("huge triangle, vertex a denormal step above", 0) == 0 || n.rfind("degenerate segment missing", 0) == 0)
-            e = 0;
-        if (e < 0) continue;
+    for (const auto& c : cases) {
+        EXPECT_NE(c.expected, cpu::HandAnswer::Missing) << c.name << ": no hand-derived answer";
         pairs.push_back(c.pair);
-        expected.push_back(e);
     }
-    ASSERT_GT(pairs.size(), 100u);
+    ASSERT_EQ(pairs.size(), 330u); // 55 families x 6 variants, none skipped
     const passes::TriTriQueryResult gpu = robust.run(pairs);
-    for (std::size_t i = 0; i < pairs.size(); ++i) EXPECT_EQ(gpu.intersect[i], expected[i]) << "pair " << i;
+    ASSERT_EQ(gpu.intersect.size(), pairs.size());
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+        if (cases[i].expected == cpu::HandAnswer::Missing) continue; // failed above
+        const int expected = cases[i].expected == cpu::HandAnswer::Intersect ? 1 : 0;
+        EXPECT_EQ(gpu.intersect[i], expected) << cases[i].name << ": " << cases[i].reason;
+    }
 }
 
 TEST(TriTriGl, RobustMatchesOracleOnRandomSets) {

@@ -1,9 +1,11 @@
-// The exact triangle-triangle oracle (src/cpu/oracle/exact_tri_tri.cpp) on the hard cases of issue 3 —
-// coplanar, touching, shared edges, one float step away, far from the origin, tiny, zero-area —
-// with answers derived by hand, and on random pairs against an independent double-precision
+// The exact triangle-triangle oracle (src/cpu/oracle/exact_tri_tri.cpp) on hard cases — coplanar,
+// touching, shared edges, one float step away, far from the origin, tiny, zero-area — with answers
+// derived by hand (here in double, and the float hard cases of src/cpu/oracle/tri_tri_cases.cpp
+// with the answers recorded there), and on random pairs against an independent double-precision
 // separating-axis test wherever that test is decided by a clear margin.
 
 #include "cpu/oracle/exact_tri_tri.hpp"
+#include "cpu/oracle/tri_tri_cases.hpp"
 
 #include <gtest/gtest.h>
 
@@ -109,6 +111,18 @@ TEST(ExactTriTri, ZeroAreaTriangles) {
     const Triangle collinearA = tri({0, 0, 0}, {1, 0, 0}, {2, 0, 0});
     expectIntersect(collinearA, tri({2, 0, 0}, {3, 0, 0}, {4, 0, 0}), true, "collinear segments touching at an end");
     expectIntersect(collinearA, tri({2.5, 0, 0}, {3, 0, 0}, {4, 0, 0}), false, "collinear segments apart");
+}
+
+// The float hard cases the GPU tests and the benchmark use (src/cpu/oracle/tri_tri_cases.cpp): the oracle
+// must give every one the answer derived by hand from its construction; a case without one fails.
+TEST(ExactTriTri, HardFloatCasesHaveTheHandDerivedAnswers) {
+    const std::vector<NamedTriPair> cases = hardTriTriCases();
+    EXPECT_EQ(cases.size(), 330u); // 55 families x 6 variants
+    for (const NamedTriPair& c : cases) {
+        ASSERT_NE(c.expected, HandAnswer::Missing) << c.name << ": no hand-derived answer";
+        EXPECT_FALSE(c.reason.empty()) << c.name << ": no reason for the answer";
+        EXPECT_EQ(exactPairIntersects(c.pair), c.expected == HandAnswer::Intersect) << c.name << ": " << c.reason;
+    }
 }
 
 // Independent check: separating-axis theorem in double. Candidate axes are both normals, the nine

@@ -34,14 +34,20 @@ FTri shifted(const FTri& t, glm::dvec3 o) {
     return r;
 }
 
-void addVariants(std::vector<NamedTriPair>& out, const std::string& name, const FTri& a, const FTri& b) {
+// Rotating the corners and swapping the triangles change neither set, so the six variants share
+// the hand-derived answer.
+void addVariants(std::vector<NamedTriPair>& out, const std::string& name, HandAnswer expected, const char* reason,
+                 const FTri& a, const FTri& b) {
     for (std::size_t r = 0; r < 3; ++r) {
         const FTri ar{a[r], a[(r + 1) % 3], a[(r + 2) % 3]};
         const FTri br{b[(r + 1) % 3], b[(r + 2) % 3], b[r]};
-        out.push_back({name + " (rotation " + std::to_string(r) + ")", pairOf(ar, br)});
-        out.push_back({name + " (swapped, rotation " + std::to_string(r) + ")", pairOf(br, ar)});
+        out.push_back({name + " (rotation " + std::to_string(r) + ")", pairOf(ar, br), expected, reason});
+        out.push_back({name + " (swapped, rotation " + std::to_string(r) + ")", pairOf(br, ar), expected, reason});
     }
 }
+
+constexpr HandAnswer kMeet = HandAnswer::Intersect;
+constexpr HandAnswer kApart = HandAnswer::Disjoint;
 
 float up(float v) { return std::nextafter(v, std::numeric_limits<float>::infinity()); }
 float down(float v) { return std::nextafter(v, -std::numeric_limits<float>::infinity()); }
@@ -74,90 +80,199 @@ std::vector<NamedTriPair> hardTriTriCases() {
     std::vector<NamedTriPair> c;
     const FTri unit = tri({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
     // Coplanar.
-    addVariants(c, "coplanar overlap", unit, tri({0.25f, 0.25f, 0}, {2, 0.25f, 0}, {0.25f, 2, 0}));
-    addVariants(c, "coplanar, one inside the other", unit, tri({0.1f, 0.1f, 0}, {0.2f, 0.1f, 0}, {0.1f, 0.2f, 0}));
-    addVariants(c, "coplanar disjoint across the hypotenuse", unit, tri({1, 1, 0}, {2, 1, 0}, {1, 2, 0}));
-    addVariants(c, "coplanar, vertex on the hypotenuse", unit, tri({0.5f, 0.5f, 0}, {2, 0.5f, 0}, {0.5f, 2, 0}));
-    addVariants(c, "coplanar, one float step off the hypotenuse", unit,
+    addVariants(c, "coplanar overlap", kMeet,
+                "B's corner (0.25, 0.25, 0) lies inside A (x, y > 0, x + y < 1)",
+                unit, tri({0.25f, 0.25f, 0}, {2, 0.25f, 0}, {0.25f, 2, 0}));
+    addVariants(c, "coplanar, one inside the other", kMeet,
+                "all of B's corners have x, y > 0 and x + y <= 0.4 < 1: B lies inside A",
+                unit, tri({0.1f, 0.1f, 0}, {0.2f, 0.1f, 0}, {0.1f, 0.2f, 0}));
+    addVariants(c, "coplanar disjoint across the hypotenuse", kApart,
+                "B has x + y >= 2 everywhere, A has x + y <= 1",
+                unit, tri({1, 1, 0}, {2, 1, 0}, {1, 2, 0}));
+    addVariants(c, "coplanar, vertex on the hypotenuse", kMeet,
+                "B's corner (0.5, 0.5, 0) has x + y = 1 exactly: on A's hypotenuse",
+                unit, tri({0.5f, 0.5f, 0}, {2, 0.5f, 0}, {0.5f, 2, 0}));
+    addVariants(c, "coplanar, one float step off the hypotenuse", kApart,
+                "B has x >= 0.5 + 2^-24 and y >= 0.5 everywhere, so x + y > 1 >= A's x + y",
+                unit,
                 tri({up(0.5f), 0.5f, 0}, {2, 0.5f, 0}, {up(0.5f), 2, 0}));
-    addVariants(c, "coplanar, edges overlapping collinearly", unit, tri({0.5f, 0, 0}, {2, 0, 0}, {1, -1, 0}));
-    addVariants(c, "coplanar, edges collinear and apart", unit, tri({up(1.0f), 0, 0}, {2, 0, 0}, {1.5f, -1, 0}));
+    addVariants(c, "coplanar, edges overlapping collinearly", kMeet,
+                "B's corner (0.5, 0, 0) lies on A's edge y = 0, 0 <= x <= 1",
+                unit, tri({0.5f, 0, 0}, {2, 0, 0}, {1, -1, 0}));
+    addVariants(c, "coplanar, edges collinear and apart", kApart,
+                "B has x >= 1 + 2^-23 everywhere, A has x <= 1",
+                unit, tri({up(1.0f), 0, 0}, {2, 0, 0}, {1.5f, -1, 0}));
     // Touching.
-    addVariants(c, "shared vertex", unit, tri({1, 0, 0}, {2, 0, 1}, {2, 1, 0}));
-    addVariants(c, "shared edge", unit, tri({0, 0, 0}, {1, 0, 0}, {0, -1, 0.5f}));
-    addVariants(c, "identical triangles", unit, unit);
-    addVariants(c, "vertex touching the face", unit, tri({0.25f, 0.25f, 0}, {0.25f, 0.25f, 1}, {1, 1, 1}));
-    addVariants(c, "one denormal step above the face", unit, tri({0.25f, 0.25f, up(0.0f)}, {0.25f, 0.25f, 1}, {1, 1, 1}));
-    addVariants(c, "1e-30 above the face", unit, tri({0.25f, 0.25f, 1e-30f}, {0.25f, 0.25f, 1}, {1, 1, 1}));
-    addVariants(c, "vertex on an edge from above", unit, tri({0.5f, 0, 0}, {0.5f, -1, 1}, {0.5f, 1, 1}));
+    addVariants(c, "shared vertex", kMeet,
+                "both contain the corner (1, 0, 0)",
+                unit, tri({1, 0, 0}, {2, 0, 1}, {2, 1, 0}));
+    addVariants(c, "shared edge", kMeet,
+                "both contain the edge (0, 0, 0)-(1, 0, 0)",
+                unit, tri({0, 0, 0}, {1, 0, 0}, {0, -1, 0.5f}));
+    addVariants(c, "identical triangles", kMeet,
+                "the same triangle",
+                unit, unit);
+    addVariants(c, "vertex touching the face", kMeet,
+                "B's corner (0.25, 0.25, 0) lies inside A",
+                unit, tri({0.25f, 0.25f, 0}, {0.25f, 0.25f, 1}, {1, 1, 1}));
+    addVariants(c, "one denormal step above the face", kApart,
+                "B's corners all have z > 0 (the smallest denormal, 1, 1); A lies in z = 0",
+                unit, tri({0.25f, 0.25f, up(0.0f)}, {0.25f, 0.25f, 1}, {1, 1, 1}));
+    addVariants(c, "1e-30 above the face", kApart,
+                "B's corners all have z > 0 (1e-30, 1, 1); A lies in z = 0",
+                unit, tri({0.25f, 0.25f, 1e-30f}, {0.25f, 0.25f, 1}, {1, 1, 1}));
+    addVariants(c, "vertex on an edge from above", kMeet,
+                "B's corner (0.5, 0, 0) lies on A's edge y = 0",
+                unit, tri({0.5f, 0, 0}, {0.5f, -1, 1}, {0.5f, 1, 1}));
     // Edge crossing edge at one point: T2 in the plane x = 0.5 meets z = 0 along y in [-5/3, 0].
     const FTri t2 = tri({0.5f, -1, -1}, {0.5f, 1, 1}, {0.5f, -3, 2});
-    addVariants(c, "edge crosses edge at one point", unit, t2);
-    addVariants(c, "edge crossing moved 2^-20 away", unit, shifted(t2, {0, -0x1p-20, 0}));
-    addVariants(c, "edge crossing moved one ulp away", unit,
+    addVariants(c, "edge crosses edge at one point", kMeet,
+                "B meets z = 0 along y in [-5/3, 0] at x = 0.5; A holds (0.5, 0, 0)",
+                unit, t2);
+    addVariants(c, "edge crossing moved 2^-20 away", kApart,
+                "the shift is exact in float: B meets z = 0 only at y <= -2^-20 < 0, A has y >= 0",
+                unit, shifted(t2, {0, -0x1p-20, 0}));
+    addVariants(c, "edge crossing moved one ulp away", kApart,
+                "B meets z = 0 only at y <= -3 * 2^-25 < 0 (its corners' y moved down one ulp), A has y >= 0",
+                unit,
                 tri({0.5f, down(-1.0f), -1}, {0.5f, down(1.0f), 1}, {0.5f, -3, 2}));
     // Slanted plane z = x/2 + y/4: (0.25, 0.25) lies at z = 0.1875 exactly.
     const FTri slanted = tri({0, 0, 0}, {1, 0, 0.5f}, {0, 1, 0.25f});
     const float z = 0.1875f;
-    addVariants(c, "apex on a slanted plane", slanted, tri({0.25f, 0.25f, z}, {0.25f, 0.25f, 2}, {1, 1, 2}));
-    addVariants(c, "apex one ulp above a slanted plane", slanted, tri({0.25f, 0.25f, up(z)}, {0.25f, 0.25f, 2}, {1, 1, 2}));
-    addVariants(c, "apex one ulp below a slanted plane", slanted, tri({0.25f, 0.25f, down(z)}, {0.25f, 0.25f, 2}, {1, 1, 2}));
+    addVariants(c, "apex on a slanted plane", kMeet,
+                "(0.25, 0.25, 0.1875) satisfies z = x/2 + y/4 exactly and lies inside A's projection",
+                slanted, tri({0.25f, 0.25f, z}, {0.25f, 0.25f, 2}, {1, 1, 2}));
+    addVariants(c, "apex one ulp above a slanted plane", kApart,
+                "all of B's corners lie above the plane z = x/2 + y/4 of A",
+                slanted, tri({0.25f, 0.25f, up(z)}, {0.25f, 0.25f, 2}, {1, 1, 2}));
+    addVariants(c, "apex one ulp below a slanted plane", kMeet,
+                "B's vertical edge at (0.25, 0.25) runs from below A's plane to above it, crossing inside A",
+                slanted, tri({0.25f, 0.25f, down(z)}, {0.25f, 0.25f, 2}, {1, 1, 2}));
     // Small triangles far from the origin (float spacing at 1e4 is 2^-10 ~ 1e-3: near-degenerate).
     const glm::dvec3 o{1e4, -1e4, 1e4};
     const FTri farA = shifted(tri({0, 0, 0}, {1e-3f, 0, 0}, {0, 1e-3f, 0}), o);
-    addVariants(c, "far away, crossing", farA, shifted(tri({2e-4f, 2e-4f, -1e-3f}, {2e-4f, 2e-4f, 1e-3f}, {5e-4f, 3e-4f, 0}), o));
-    addVariants(c, "far away, above", farA, shifted(tri({2e-4f, 2e-4f, 1e-9f}, {2e-4f, 2e-4f, 1e-3f}, {5e-4f, 3e-4f, 1e-3f}), o));
+    addVariants(c, "far away, crossing", kMeet,
+                "rounded to float (spacing 2^-10 at 1e4), B's edge at A's corner (x0, y0) spans z0 -/+ 2^-10: it passes through that corner",
+                farA, shifted(tri({2e-4f, 2e-4f, -1e-3f}, {2e-4f, 2e-4f, 1e-3f}, {5e-4f, 3e-4f, 0}), o));
+    addVariants(c, "far away, above", kMeet,
+                "1e-9 is below half the float spacing at 1e4, so after rounding B's first corner is A's corner (x0, y0, z0): touching",
+                farA, shifted(tri({2e-4f, 2e-4f, 1e-9f}, {2e-4f, 2e-4f, 1e-3f}, {5e-4f, 3e-4f, 1e-3f}), o));
     FTri touching = shifted(tri({2e-4f, 2e-4f, 0}, {2e-4f, 2e-4f, 1e-3f}, {5e-4f, 3e-4f, 1e-3f}), o);
-    addVariants(c, "far away, touching", farA, touching);
+    addVariants(c, "far away, touching", kMeet,
+                "after rounding B's first corner is A's corner (x0, y0, z0)",
+                farA, touching);
     touching[0].z = up(touching[0].z);
-    addVariants(c, "far away, one ulp above", farA, touching);
+    addVariants(c, "far away, one ulp above", kApart,
+                "after rounding all of B's corners have z = z0 + 2^-10, A lies in z = z0",
+                farA, touching);
     const FTri farB = shifted(tri({0, 0, 0}, {0.0625f, 0, 0}, {0, 0.0625f, 0}), {1e4, 1e4, 1e4});
-    addVariants(c, "far away exact, apex on the face", farB,
+    addVariants(c, "far away exact, apex on the face", kMeet,
+                "all offsets are exact in float; B's apex o + (1/64, 1/64, 0) lies inside A (legs 1/16)",
+                farB,
                 shifted(tri({0.015625f, 0.015625f, 0}, {0.015625f, 0.015625f, 1}, {0.03125f, 0, 1}), {1e4, 1e4, 1e4}));
     // Tiny.
     const FTri tiny = tri({0, 0, 0}, {1e-6f, 0, 0}, {0, 1e-6f, 0});
-    addVariants(c, "tiny crossing", tiny, tri({2e-7f, 2e-7f, -1e-6f}, {2e-7f, 2e-7f, 1e-6f}, {5e-7f, 3e-7f, 0}));
-    addVariants(c, "tiny, 1e-13 above", tiny, tri({2e-7f, 2e-7f, 1e-13f}, {2e-7f, 2e-7f, 1e-6f}, {5e-7f, 3e-7f, 1e-6f}));
-    addVariants(c, "tiny, touching", tiny, tri({2.5e-7f, 2.5e-7f, 0}, {2e-7f, 2e-7f, 1e-6f}, {5e-7f, 3e-7f, 1e-6f}));
+    addVariants(c, "tiny crossing", kMeet,
+                "B's edge x = y = 2e-7 spans z = -1e-6 .. 1e-6 and crosses z = 0 inside A (x + y = 4e-7 < 1e-6)",
+                tiny, tri({2e-7f, 2e-7f, -1e-6f}, {2e-7f, 2e-7f, 1e-6f}, {5e-7f, 3e-7f, 0}));
+    addVariants(c, "tiny, 1e-13 above", kApart,
+                "B's corners all have z > 0; A lies in z = 0",
+                tiny, tri({2e-7f, 2e-7f, 1e-13f}, {2e-7f, 2e-7f, 1e-6f}, {5e-7f, 3e-7f, 1e-6f}));
+    addVariants(c, "tiny, touching", kMeet,
+                "B's corner (2.5e-7, 2.5e-7, 0) lies inside A (x + y = 5e-7 < 1e-6)",
+                tiny, tri({2.5e-7f, 2.5e-7f, 0}, {2e-7f, 2e-7f, 1e-6f}, {5e-7f, 3e-7f, 1e-6f}));
     // Zero-area triangles.
     const FTri segment = tri({0.25f, 0.25f, -1}, {0.25f, 0.25f, 1}, {0.25f, 0.25f, 0.5f});
-    addVariants(c, "degenerate segment piercing the face", unit, segment);
-    addVariants(c, "degenerate segment missing", unit, shifted(segment, {1, 1, 0}));
-    addVariants(c, "degenerate segment ending on the face", unit, tri({0.25f, 0.25f, 0}, {0.25f, 0.25f, 1}, {0.25f, 0.25f, 0.5f}));
-    addVariants(c, "degenerate segment in the plane, crossing an edge", unit, tri({-1, 0.5f, 0}, {0, 0.5f, 0}, {1, 0.5f, 0}));
-    addVariants(c, "degenerate segment in the plane, outside", unit, tri({-1, -0.5f, 0}, {0, -0.5f, 0}, {1, -0.5f, 0}));
+    addVariants(c, "degenerate segment piercing the face", kMeet,
+                "the segment x = y = 0.25, z in [-1, 1] passes (0.25, 0.25, 0) inside A",
+                unit, segment);
+    addVariants(c, "degenerate segment missing", kApart,
+                "the segment x = y = 1.25 meets z = 0 only at x + y = 2.5 > 1, outside A",
+                unit, shifted(segment, {1, 1, 0}));
+    addVariants(c, "degenerate segment ending on the face", kMeet,
+                "the segment's end (0.25, 0.25, 0) lies inside A",
+                unit, tri({0.25f, 0.25f, 0}, {0.25f, 0.25f, 1}, {0.25f, 0.25f, 0.5f}));
+    addVariants(c, "degenerate segment in the plane, crossing an edge", kMeet,
+                "the segment y = 0.5, x in [-1, 1] holds (0, 0.5, 0), on A's edge x = 0",
+                unit, tri({-1, 0.5f, 0}, {0, 0.5f, 0}, {1, 0.5f, 0}));
+    addVariants(c, "degenerate segment in the plane, outside", kApart,
+                "the segment has y = -0.5 < 0, A has y >= 0",
+                unit, tri({-1, -0.5f, 0}, {0, -0.5f, 0}, {1, -0.5f, 0}));
     const FTri point = tri({0.25f, 0.25f, 0}, {0.25f, 0.25f, 0}, {0.25f, 0.25f, 0});
-    addVariants(c, "point on the face", unit, point);
-    addVariants(c, "point on an edge", unit, tri({0.5f, 0, 0}, {0.5f, 0, 0}, {0.5f, 0, 0}));
-    addVariants(c, "point one denormal step above", unit,
+    addVariants(c, "point on the face", kMeet,
+                "the point (0.25, 0.25, 0) lies inside A",
+                unit, point);
+    addVariants(c, "point on an edge", kMeet,
+                "the point (0.5, 0, 0) lies on A's edge y = 0",
+                unit, tri({0.5f, 0, 0}, {0.5f, 0, 0}, {0.5f, 0, 0}));
+    addVariants(c, "point one denormal step above", kApart,
+                "the point has z > 0; A lies in z = 0",
+                unit,
                 tri({0.25f, 0.25f, up(0.0f)}, {0.25f, 0.25f, up(0.0f)}, {0.25f, 0.25f, up(0.0f)}));
-    addVariants(c, "same point", point, point);
-    addVariants(c, "points one ulp apart", point, tri({up(0.25f), 0.25f, 0}, {up(0.25f), 0.25f, 0}, {up(0.25f), 0.25f, 0}));
-    addVariants(c, "point on a degenerate segment", point, tri({0, 0, 0}, {0.5f, 0.5f, 0}, {0.125f, 0.125f, 0}));
-    addVariants(c, "point just off a degenerate segment", point, tri({0, 0, 0}, {0.5f, up(0.5f), 0}, {0, 0, 0}));
+    addVariants(c, "same point", kMeet,
+                "the same point",
+                point, point);
+    addVariants(c, "points one ulp apart", kApart,
+                "the points differ in x by one ulp",
+                point, tri({up(0.25f), 0.25f, 0}, {up(0.25f), 0.25f, 0}, {up(0.25f), 0.25f, 0}));
+    addVariants(c, "point on a degenerate segment", kMeet,
+                "(0.25, 0.25, 0) lies on the segment from (0, 0, 0) to (0.5, 0.5, 0)",
+                point, tri({0, 0, 0}, {0.5f, 0.5f, 0}, {0.125f, 0.125f, 0}));
+    addVariants(c, "point just off a degenerate segment", kApart,
+                "the segment from 0 to (0.5, 0.5 + 2^-24, 0) has y = 0.25 + 2^-25 at x = 0.25",
+                point, tri({0, 0, 0}, {0.5f, up(0.5f), 0}, {0, 0, 0}));
     const FTri s1 = tri({0, 0, 0}, {1, 1, 0}, {0.5f, 0.5f, 0});
     const FTri s2 = tri({0, 1, 0}, {1, 0, 0}, {0.25f, 0.75f, 0});
-    addVariants(c, "two degenerate segments crossing", s1, s2);
-    addVariants(c, "skew degenerate segments", s1, shifted(s2, {0, 0, 1e-9}));
-    addVariants(c, "degenerate segments one ulp apart", s1, tri({0, 1, up(0.0f)}, {1, 0, up(0.0f)}, {0.25f, 0.75f, up(0.0f)}));
+    addVariants(c, "two degenerate segments crossing", kMeet,
+                "the diagonals y = x and x + y = 1 of the unit square cross at (0.5, 0.5, 0), in both",
+                s1, s2);
+    addVariants(c, "skew degenerate segments", kApart,
+                "one segment lies in z = 0, the other in z = float(1e-9) > 0",
+                s1, shifted(s2, {0, 0, 1e-9}));
+    addVariants(c, "degenerate segments one ulp apart", kApart,
+                "one segment lies in z = 0, the other in z = the smallest denormal > 0",
+                s1, tri({0, 1, up(0.0f)}, {1, 0, up(0.0f)}, {0.25f, 0.75f, up(0.0f)}));
     const FTri collinearA = tri({0, 0, 0}, {1, 0, 0}, {2, 0, 0});
-    addVariants(c, "collinear segments touching at an end", collinearA, tri({2, 0, 0}, {3, 0, 0}, {4, 0, 0}));
-    addVariants(c, "collinear segments apart", collinearA, tri({2.5f, 0, 0}, {3, 0, 0}, {4, 0, 0}));
-    addVariants(c, "collinear segments one ulp apart", collinearA, tri({up(2.0f), 0, 0}, {3, 0, 0}, {4, 0, 0}));
-    addVariants(c, "parallel segments", collinearA, tri({0, up(0.0f), 0}, {3, up(0.0f), 0}, {1, up(0.0f), 0}));
+    addVariants(c, "collinear segments touching at an end", kMeet,
+                "[0, 2] and [2, 4] on the x axis share (2, 0, 0)",
+                collinearA, tri({2, 0, 0}, {3, 0, 0}, {4, 0, 0}));
+    addVariants(c, "collinear segments apart", kApart,
+                "[0, 2] and [2.5, 4] on the x axis",
+                collinearA, tri({2.5f, 0, 0}, {3, 0, 0}, {4, 0, 0}));
+    addVariants(c, "collinear segments one ulp apart", kApart,
+                "[0, 2] and [2 + 2^-22, 4] on the x axis",
+                collinearA, tri({up(2.0f), 0, 0}, {3, 0, 0}, {4, 0, 0}));
+    addVariants(c, "parallel segments", kApart,
+                "one segment lies in y = 0, the other in y = the smallest denormal > 0",
+                collinearA, tri({0, up(0.0f), 0}, {3, up(0.0f), 0}, {1, up(0.0f), 0}));
     // Denormal and huge coordinates.
     const float dn = 1e-40f; // denormal
     const FTri denormalTri = tri({0, 0, 0}, {dn, 0, 0}, {0, dn, 0});
-    addVariants(c, "denormal triangle pierced", denormalTri, tri({dn / 4, dn / 4, -dn}, {dn / 4, dn / 4, dn}, {dn, dn, 0}));
-    addVariants(c, "denormal triangle missed", denormalTri, tri({dn, dn, -dn}, {dn, dn, dn}, {2 * dn, 2 * dn, 0}));
-    addVariants(c, "denormal triangle, touching at a corner", denormalTri, tri({dn, 0, 0}, {2 * dn, 0, dn}, {2 * dn, dn, 0}));
+    addVariants(c, "denormal triangle pierced", kMeet,
+                "B's edge x = y = dn/4 (rounded) spans z = -dn .. dn and crosses z = 0 inside A (x + y <= dn/2)",
+                denormalTri, tri({dn / 4, dn / 4, -dn}, {dn / 4, dn / 4, dn}, {dn, dn, 0}));
+    addVariants(c, "denormal triangle missed", kApart,
+                "B meets z = 0 along (dn, dn, 0)-(2dn, 2dn, 0), where x + y >= 2dn > dn, outside A",
+                denormalTri, tri({dn, dn, -dn}, {dn, dn, dn}, {2 * dn, 2 * dn, 0}));
+    addVariants(c, "denormal triangle, touching at a corner", kMeet,
+                "both contain the corner (dn, 0, 0)",
+                denormalTri, tri({dn, 0, 0}, {2 * dn, 0, dn}, {2 * dn, dn, 0}));
     const float h = 3e38f;
     const FTri hugeTri = tri({-h, -h, 0}, {h, -h, 0}, {0, h, 0});
-    addVariants(c, "huge triangles crossing", hugeTri, tri({0, 0, -h}, {0, 0, h}, {h, h, h}));
-    addVariants(c, "huge triangle touched by a vertex", hugeTri, tri({0, 0, 0}, {0, 0, h}, {h, h, h}));
-    addVariants(c, "huge triangle, vertex a denormal step above", hugeTri, tri({0, 0, up(0.0f)}, {0, 0, h}, {h, h, h}));
-    addVariants(c, "huge and tiny: tiny triangle on a huge one", hugeTri, tri({0, 0, 0}, {1e-30f, 0, 0}, {0, 1e-30f, 0}));
-    addVariants(c, "1e30 coordinates, apex on a slanted plane",
+    addVariants(c, "huge triangles crossing", kMeet,
+                "B's edge x = y = 0, z in [-h, h] passes the origin, inside A",
+                hugeTri, tri({0, 0, -h}, {0, 0, h}, {h, h, h}));
+    addVariants(c, "huge triangle touched by a vertex", kMeet,
+                "B's corner (0, 0, 0) lies inside A",
+                hugeTri, tri({0, 0, 0}, {0, 0, h}, {h, h, h}));
+    addVariants(c, "huge triangle, vertex a denormal step above", kApart,
+                "B's corners all have z > 0; A lies in z = 0",
+                hugeTri, tri({0, 0, up(0.0f)}, {0, 0, h}, {h, h, h}));
+    addVariants(c, "huge and tiny: tiny triangle on a huge one", kMeet,
+                "B's corner (0, 0, 0) lies inside A, in A's plane",
+                hugeTri, tri({0, 0, 0}, {1e-30f, 0, 0}, {0, 1e-30f, 0}));
+    addVariants(c, "1e30 coordinates, apex on a slanted plane", kMeet,
+                "float(0.1875e30) is 2^73 below 3/16 float(1e30): the apex is just under A's plane; B's vertical edge crosses it inside A",
                 tri({0, 0, 0}, {1e30f, 0, 0.5e30f}, {0, 1e30f, 0.25e30f}),
                 tri({0.25e30f, 0.25e30f, 0.1875e30f}, {0.25e30f, 0.25e30f, 2e30f}, {1e30f, 1e30f, 2e30f}));
     return c;

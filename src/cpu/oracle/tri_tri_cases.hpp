@@ -22,12 +22,22 @@ namespace glcollide::cpu {
 /// a0 a1 a2 b0 b1 b2, xyz each.
 using FloatTriPair = std::array<float, 18>;
 
+/// A hard case's answer derived by hand from its construction, independently of the oracle.
+enum class HandAnswer : std::uint8_t {
+    Missing,   ///< none recorded: the tests fail on such a case
+    Disjoint,  ///< the closed triangles share no point
+    Intersect, ///< they share at least one point (touching counts)
+};
+
 struct NamedTriPair {
     std::string name;
     FloatTriPair pair;
+    HandAnswer expected = HandAnswer::Missing; ///< hard cases: the hand-derived answer
+    std::string reason = {};                   ///< hard cases: one line saying why, from the construction
 };
 
-/// The hand-made hard cases, each in its six variants (three corner rotations, both orders).
+/// The hand-made hard cases, each in its six variants (three corner rotations, both orders), each
+/// with its hand-derived answer and reason (the same for all six variants).
 std::vector<NamedTriPair> hardTriTriCases();
 
 /// Seeded random sets.
