@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # Installs what a fresh Debian 12 machine lacks to build and test glcollide, Mesa's EGL and
 # llvmpipe included (the GL tests run on it when there is no GPU), and clang with its sanitizer and
-# libFuzzer runtimes plus llvm-symbolizer (scripts/test-sanitizers.sh). Needs root (or sudo).
+# libFuzzer runtimes plus llvm-symbolizer (scripts/test-sanitizers.sh), and clang-format
+# (scripts/format.sh --check). Needs root (or sudo).
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config git python3
   libepoxy-dev libegl-dev libglm-dev nlohmann-json3-dev libcli11-dev libassimp-dev
   libgtest-dev libgmock-dev glslang-tools libgmp-dev libstb-dev
   libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 libopengl0
-  clang libclang-rt-14-dev llvm
+  clang libclang-rt-14-dev llvm clang-format
 )
 missing=()
 for p in "${packages[@]}"; do
