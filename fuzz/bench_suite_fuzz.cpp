@@ -6,7 +6,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(glcollide::fuzz::asText(data, size));
-    glcollide::fuzz::expectOnlyGlcollideErrors(
-        [&] { (void)glcollide::benchkit::parseSuite(text, glcollide::fuzz::scratchDir(), "fuzz_suite.json"); });
+    glcollide::fuzz::expectOnlyGlcollideErrors([&] {
+        (void)glcollide::benchkit::parseSuite(text, glcollide::fuzz::scratchDir(), "fuzz_suite.json");
+    });
     return 0;
 }

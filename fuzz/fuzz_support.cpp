@@ -36,7 +36,8 @@ void loadMeshScene(const std::string& meshName) {
     // A tet mesh rejects bend_stiffness and a surface mesh needs nothing else: the smallest body
     // that every mesh kind accepts.
     const std::string json = R"({"format_version": 1, "effects": ["springs"],
-        "objects": [{"mesh": ")" + meshName + R"(", "mass": 1, "springs": {"stiffness": 100}}]})";
+        "objects": [{"mesh": ")" +
+                             meshName + R"(", "mass": 1, "springs": {"stiffness": 100}}]})";
     expectOnlyGlcollideErrors([&] { (void)parseScene(json, scratchDir(), "fuzz.json"); });
 }
 

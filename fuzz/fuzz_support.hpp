@@ -33,8 +33,7 @@ inline std::string_view asText(const std::uint8_t* data, std::size_t size) {
 void loadMeshScene(const std::string& meshName);
 
 /// Runs `f`, swallowing glcollide::Error only.
-template <typename F>
-void expectOnlyGlcollideErrors(F&& f) {
+template <typename F> void expectOnlyGlcollideErrors(F&& f) {
     try {
         f();
     } catch (const glcollide::Error&) {

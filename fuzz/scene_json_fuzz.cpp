@@ -27,7 +27,8 @@ bool requestsHugeGenerator(const std::string& text) {
     const auto j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
     if (!j.is_object() || !j.contains("objects") || !j["objects"].is_array()) return false;
     for (const auto& object : j["objects"]) {
-        if (!object.is_object() || !object.contains("generator") || !object["generator"].is_object()) continue;
+        if (!object.is_object() || !object.contains("generator") || !object["generator"].is_object())
+            continue;
         const auto& g = object["generator"];
         if (!g.contains("resolution") || !g["resolution"].is_array()) continue;
         double nodes = 1.0;

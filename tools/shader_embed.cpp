@@ -71,7 +71,9 @@ void expandInto(const fs::path& root, const std::string& name, Expansion& out,
     }
 }
 
-std::string stemOf(const std::string& name) { return fs::path(name).stem().string(); }
+std::string stemOf(const std::string& name) {
+    return fs::path(name).stem().string();
+}
 
 /// The switches named on the main file's `// glcollide-features:` line.
 std::vector<std::string> declaredFeatures(const fs::path& root, const std::string& name) {
@@ -87,14 +89,18 @@ std::vector<std::string> declaredFeatures(const fs::path& root, const std::strin
 }
 
 /// Fails when the expanded text tests a GLC_ macro that it neither defines nor declares.
-void checkNoHiddenVariants(const std::string& name, const std::string& text, const std::vector<std::string>& features) {
+void checkNoHiddenVariants(const std::string& name, const std::string& text,
+                           const std::vector<std::string>& features) {
     static const std::regex defineRe(R"(#\s*define\s+(GLC_\w+))");
-    static const std::regex testRe(R"(#\s*(?:ifdef|ifndef|if\s+defined\s*\(?|elif\s+defined\s*\(?)\s*(GLC_\w+))");
+    static const std::regex testRe(
+        R"(#\s*(?:ifdef|ifndef|if\s+defined\s*\(?|elif\s+defined\s*\(?)\s*(GLC_\w+))");
     std::set<std::string> known(features.begin(), features.end());
-    for (std::sregex_iterator it(text.begin(), text.end(), defineRe), end; it != end; ++it) known.insert((*it)[1].str());
+    for (std::sregex_iterator it(text.begin(), text.end(), defineRe), end; it != end; ++it)
+        known.insert((*it)[1].str());
     for (std::sregex_iterator it(text.begin(), text.end(), testRe), end; it != end; ++it)
         if (!known.count((*it)[1].str()))
-            fail(name + ": tests " + (*it)[1].str() + ", which is not a declared feature (// glcollide-features:); "
+            fail(name + ": tests " + (*it)[1].str() +
+                 ", which is not a declared feature (// glcollide-features:); "
                  "put a different kernel in its own file");
 }
 

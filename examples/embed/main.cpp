@@ -41,7 +41,8 @@ EGLDisplay openDisplay() {
     // Client extensions (EGL_EXT_platform_base, EGL_EXT_device_enumeration), looked up by name.
     const auto getPlatformDisplay =
         reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-    const auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    const auto queryDevices =
+        reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
     if (getPlatformDisplay == nullptr) return EGL_NO_DISPLAY;
     // Mesa: the surfaceless platform (a GPU's driver, or llvmpipe on the CPU).
     EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
@@ -59,13 +60,19 @@ EGLDisplay openDisplay() {
 bool createContext(HostContext& host) {
     host.display = openDisplay();
     if (host.display == EGL_NO_DISPLAY || !eglBindAPI(EGL_OPENGL_API)) return false;
-    const EGLint configAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    const EGLint configAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+                                    EGL_NONE};
     EGLConfig config = nullptr;
     EGLint configs = 0;
     if (!eglChooseConfig(host.display, configAttribs, &config, 1, &configs) || configs < 1) return false;
     // glcollide needs desktop GL 4.3 core (compute shaders).
-    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                     4,
+                                     EGL_CONTEXT_MINOR_VERSION,
+                                     3,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                     EGL_NONE};
     host.context = eglCreateContext(host.display, config, EGL_NO_CONTEXT, contextAttribs);
     if (host.context == EGL_NO_CONTEXT) return false;
     // No surface (EGL_KHR_surfaceless_context): we render into our own framebuffer object.
@@ -124,7 +131,8 @@ GLuint compile(GLenum stage, const char* source) {
 
 GLuint linkProgram() {
     const GLuint program = glCreateProgram();
-    const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader), fs = compile(GL_FRAGMENT_SHADER, kFragmentShader);
+    const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader),
+                 fs = compile(GL_FRAGMENT_SHADER, kFragmentShader);
     glAttachShader(program, vs);
     glAttachShader(program, fs);
     glLinkProgram(program);
@@ -220,7 +228,8 @@ int run(const std::filesystem::path& outputDir, int frames) {
     const glm::mat4 viewProjection =
         glm::perspective(glm::radians(40.0f), float(kWidth) / float(kHeight), 0.05f, 20.0f) *
         glm::lookAt(glm::vec3(1.5f, 1.3f, 2.0f), glm::vec3(0.0f, 0.05f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
-    glUniformMatrix4fv(glGetUniformLocation(program, "u_viewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+    glUniformMatrix4fv(glGetUniformLocation(program, "u_viewProjection"), 1, GL_FALSE,
+                       glm::value_ptr(viewProjection));
     glUniform1ui(glGetUniformLocation(program, "u_firstClothFace"), engine.bodyFirstFaces()[1]);
     const auto indices = static_cast<GLsizei>(3 * engine.faceCount());
 
@@ -244,7 +253,8 @@ int run(const std::filesystem::path& outputDir, int frames) {
             char name[32];
             std::snprintf(name, sizeof name, "frame_%03d.ppm", frame);
             const long lit = writePpm(outputDir / name);
-            std::printf("frame %3d: wrote %s (%ld pixels not background)\n", frame, (outputDir / name).c_str(), lit);
+            std::printf("frame %3d: wrote %s (%ld pixels not background)\n", frame,
+                        (outputDir / name).c_str(), lit);
             ++written;
         }
     }

@@ -20,8 +20,8 @@ enum class Effect : std::uint8_t {
     SelfCollisions, ///< contacts within an object (not implemented yet: rejected with an Error)
 };
 
-inline constexpr Effect kAllEffects[] = {Effect::Gravity, Effect::Springs,    Effect::Damping,
-                                         Effect::Wind,    Effect::Ground,     Effect::Collisions,
+inline constexpr Effect kAllEffects[] = {Effect::Gravity,       Effect::Springs, Effect::Damping,
+                                         Effect::Wind,          Effect::Ground,  Effect::Collisions,
                                          Effect::SelfCollisions};
 
 /// The scene-file name of an effect ("gravity", "springs", "damping", "wind", "ground",
@@ -32,7 +32,7 @@ std::optional<Effect> parseEffect(std::string_view name);
 
 /// A small set of effects.
 class EffectSet {
-public:
+  public:
     EffectSet() = default;
     EffectSet(std::initializer_list<Effect> effects) {
         for (Effect e : effects) insert(e);
@@ -45,7 +45,7 @@ public:
     [[nodiscard]] std::vector<Effect> list() const;
     friend bool operator==(EffectSet, EffectSet) = default;
 
-private:
+  private:
     static std::uint32_t bit(Effect e) { return 1u << static_cast<unsigned>(e); }
     std::uint32_t m_bits = 0;
 };

@@ -65,33 +65,35 @@ struct PassTiming {
 
 /// What the collision passes found (effects collisions / self_collisions).
 struct CollisionStats {
-    std::uint32_t boxPairs = 0;          ///< overlapping leaf-box pairs (octree broad phase), last substep
-    std::uint32_t candidatePairs = 0;    ///< face pairs within the contact thickness, last substep
-    std::uint32_t intersectingPairs = 0; ///< face pairs whose closed triangles intersect, last substep
+    std::uint32_t boxPairs = 0;             ///< overlapping leaf-box pairs (octree broad phase), last substep
+    std::uint32_t candidatePairs = 0;       ///< face pairs within the contact thickness, last substep
+    std::uint32_t intersectingPairs = 0;    ///< face pairs whose closed triangles intersect, last substep
     std::uint32_t maxIntersectingPairs = 0; ///< the largest intersectingPairs of the frame's substeps
-    std::uint32_t contacts = 0;          ///< vertex-face and edge-edge contacts with a force, last substep
-    std::uint32_t undecidedPairs = 0;    ///< robust: candidates the filtered test left to the exact pass, last substep
-    std::uint32_t exactFallbacks = 0;    ///< robust: predicates the exact pass evaluated in integers, last substep
-    std::uint32_t listGrowths = 0;       ///< pair lists grown (and passes rerun) during the frame
+    std::uint32_t contacts = 0;             ///< vertex-face and edge-edge contacts with a force, last substep
+    std::uint32_t undecidedPairs =
+        0; ///< robust: candidates the filtered test left to the exact pass, last substep
+    std::uint32_t exactFallbacks =
+        0;                         ///< robust: predicates the exact pass evaluated in integers, last substep
+    std::uint32_t listGrowths = 0; ///< pair lists grown (and passes rerun) during the frame
 };
 
 /// The first non-finite state NodeUpdate produced (EngineOptions::checkFinite).
 struct NonFiniteReport {
     bool found = false;
-    std::uint64_t frame = 0;   ///< the frame (StepStats::frame numbering, from 1) it happened in
-    int substep = 0;           ///< index within that frame, 0 .. substeps-1
-    std::uint32_t object = 0;  ///< body index in scene order
-    std::uint32_t node = 0;    ///< node index within that body (the lowest one found in that substep)
+    std::uint64_t frame = 0;      ///< the frame (StepStats::frame numbering, from 1) it happened in
+    int substep = 0;              ///< index within that frame, 0 .. substeps-1
+    std::uint32_t object = 0;     ///< body index in scene order
+    std::uint32_t node = 0;       ///< node index within that body (the lowest one found in that substep)
     std::uint32_t globalNode = 0; ///< the same node in the global (concatenated) node order
 };
 
 struct StepStats {
-    std::uint64_t frame = 0;      ///< frames completed, this one included
-    double time = 0.0;            ///< s of simulated time after this frame
+    std::uint64_t frame = 0; ///< frames completed, this one included
+    double time = 0.0;       ///< s of simulated time after this frame
     int substeps = 0;
     double wallMilliseconds = 0.0; ///< CPU wall time of step(), including the wait for timings
     std::vector<PassTiming> passes;
-    bool collisions = false;   ///< the collision passes ran (then `collision` is filled)
+    bool collisions = false; ///< the collision passes ran (then `collision` is filled)
     CollisionStats collision;
     /// Set by the first frame whose NodeUpdate produced a non-finite position or velocity (an
     /// infinity or a NaN: the integration diverged) and kept, unchanged, by every later frame.
@@ -100,10 +102,10 @@ struct StepStats {
 
 /// How the substep count was chosen (docs/integration.md).
 struct SubstepInfo {
-    int substeps = 1;           ///< used per frame
-    int stableSubsteps = 1;     ///< what the stability rule asks for
-    double substepLength = 0.0; ///< s
-    double maxStableSubstep = 0.0; ///< s, +inf when nothing limits it
+    int substeps = 1;               ///< used per frame
+    int stableSubsteps = 1;         ///< what the stability rule asks for
+    double substepLength = 0.0;     ///< s
+    double maxStableSubstep = 0.0;  ///< s, +inf when nothing limits it
     std::uint32_t limitingNode = 0; ///< global index of the node that sets the limit
     bool automatic = true;
 };
@@ -129,7 +131,7 @@ struct EnergyReport {
 /// debug callback is changed only when EngineOptions::debugCallback asks for it. Any number of
 /// engines may share a context; they share no state.
 class Engine {
-public:
+  public:
     /// Validates the scene, composes the pass list from its effects, allocates the buffers those
     /// passes need and uploads the state. Throws Error on bad scenes, missing GL 4.3, shader
     /// errors, or effects this version does not implement.
@@ -208,7 +210,7 @@ public:
     /// 0). Read-only for the host: the collision structures are built from the faces once.
     [[nodiscard]] std::uint32_t faceIndexBuffer() const;
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> m_impl;
 };

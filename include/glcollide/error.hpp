@@ -11,7 +11,7 @@ namespace glcollide {
 /// The step loop throws only when a collision pair list would outgrow the device (Engine::step);
 /// other device-side problems (non-finite states) are reported in the step statistics.
 class Error : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 

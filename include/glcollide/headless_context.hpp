@@ -13,13 +13,13 @@ namespace glcollide {
 
 /// One EGL device as enumerated by EGL_EXT_device_enumeration / EGL_EXT_device_base.
 struct EglDeviceInfo {
-    int index = -1;             ///< position in eglQueryDevicesEXT's list (what "<index>" selects)
-    std::string extensions;     ///< device extension string (empty when it could not be queried)
-    bool software = false;      ///< advertises EGL_MESA_device_software
-    std::string drmDeviceFile;  ///< EGL_DRM_DEVICE_FILE_EXT, e.g. "/dev/dri/card0"; empty if none
-    std::string drmRenderNode;  ///< EGL_DRM_RENDER_NODE_FILE_EXT, e.g. "/dev/dri/renderD128"; empty if none
-    int cudaDevice = -1;        ///< EGL_CUDA_DEVICE_NV ordinal; -1 when not an NVIDIA CUDA device
-    bool queryable = true;      ///< false when eglQueryDeviceStringEXT failed (device is skipped by "auto")
+    int index = -1;            ///< position in eglQueryDevicesEXT's list (what "<index>" selects)
+    std::string extensions;    ///< device extension string (empty when it could not be queried)
+    bool software = false;     ///< advertises EGL_MESA_device_software
+    std::string drmDeviceFile; ///< EGL_DRM_DEVICE_FILE_EXT, e.g. "/dev/dri/card0"; empty if none
+    std::string drmRenderNode; ///< EGL_DRM_RENDER_NODE_FILE_EXT, e.g. "/dev/dri/renderD128"; empty if none
+    int cudaDevice = -1;       ///< EGL_CUDA_DEVICE_NV ordinal; -1 when not an NVIDIA CUDA device
+    bool queryable = true;     ///< false when eglQueryDeviceStringEXT failed (device is skipped by "auto")
 
     /// One line for logs, e.g. "EGL device 0 (EGL_MESA_device_software, software)".
     std::string description() const;
@@ -41,16 +41,16 @@ struct DeviceSelector {
 };
 
 struct HeadlessContextOptions {
-    std::string device;       ///< empty: the env variable GLCOLLIDE_EGL_DEVICE if set, else "auto"
-    bool debug = false;       ///< request a debug context (EGL_CONTEXT_OPENGL_DEBUG)
-    bool requireGpu = false;  ///< fail if the chosen renderer is a software rasteriser
-    bool forcePbuffer = false;///< skip the surfaceless path and use a 1x1 pbuffer (tests the fallback)
+    std::string device;        ///< empty: the env variable GLCOLLIDE_EGL_DEVICE if set, else "auto"
+    bool debug = false;        ///< request a debug context (EGL_CONTEXT_OPENGL_DEBUG)
+    bool requireGpu = false;   ///< fail if the chosen renderer is a software rasteriser
+    bool forcePbuffer = false; ///< skip the surfaceless path and use a 1x1 pbuffer (tests the fallback)
 };
 
 /// An EGL display + GL 4.3 core context owned by this object. Move-only.
 /// Construction makes the context current on the calling thread.
 class HeadlessContext {
-public:
+  public:
     /// Chooses a device (see DeviceSelector; "auto" tries GPU devices in enumeration order, then
     /// Mesa's surfaceless platform, then the software device), creates a 4.3 core context and makes
     /// it current. Throws glcollide::Error saying what was tried and why each attempt failed.
@@ -83,7 +83,7 @@ public:
     /// extensions are missing.
     static std::vector<EglDeviceInfo> listDevices();
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> m_impl;
 };

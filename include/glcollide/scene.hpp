@@ -32,12 +32,13 @@ struct Spring {
 /// All per-node vectors have the same length. Indices are local to the body.
 struct Body {
     std::string name;
-    std::vector<glm::dvec3> positions;            ///< m, world space (transform already applied)
-    std::vector<glm::dvec3> velocities;           ///< m/s
-    std::vector<double> masses;                   ///< kg per node, > 0 (lumped)
-    std::vector<std::uint8_t> pinned;             ///< 1 = node never moves (infinite mass)
-    std::vector<std::array<std::uint32_t, 3>> faces; ///< surface triangles, counter-clockwise seen from outside
-    std::vector<std::array<std::uint32_t, 4>> tets;  ///< empty for surface bodies
+    std::vector<glm::dvec3> positions;  ///< m, world space (transform already applied)
+    std::vector<glm::dvec3> velocities; ///< m/s
+    std::vector<double> masses;         ///< kg per node, > 0 (lumped)
+    std::vector<std::uint8_t> pinned;   ///< 1 = node never moves (infinite mass)
+    std::vector<std::array<std::uint32_t, 3>>
+        faces; ///< surface triangles, counter-clockwise seen from outside
+    std::vector<std::array<std::uint32_t, 4>> tets; ///< empty for surface bodies
     std::vector<Spring> springs;
 };
 
@@ -71,11 +72,11 @@ enum class TriTriPrecision : std::uint8_t {
 /// Settings of the `collisions` and `self_collisions` effects.
 struct CollisionSettings {
     BroadPhase broadPhase = BroadPhase::Octree;
-    int octreeDepth = 2;            ///< 1, 2 or 3: 8^depth leaf boxes per object (2 = the paper's 64)
+    int octreeDepth = 2; ///< 1, 2 or 3: 8^depth leaf boxes per object (2 = the paper's 64)
     TriTriPrecision precision = TriTriPrecision::Robust;
-    double thickness = 0.01;        ///< m, > 0: contact distance; boxes are inflated by half of it per side
-    double stiffness = 1.0e4;       ///< N/m, > 0: penalty stiffness per vertex-face or edge-edge contact
-    double damping = 0.0;           ///< N·s/m, >= 0: damping of the normal relative velocity in a contact
+    double thickness = 0.01;  ///< m, > 0: contact distance; boxes are inflated by half of it per side
+    double stiffness = 1.0e4; ///< N/m, > 0: penalty stiffness per vertex-face or edge-edge contact
+    double damping = 0.0;     ///< N·s/m, >= 0: damping of the normal relative velocity in a contact
     std::uint32_t initialCapacity = 4096; ///< >= 1: first size of every pair list (grown on overflow)
 };
 
@@ -89,10 +90,10 @@ struct TimeSettings {
 
 /// Where `glcollide render` looks from; a scene without one is framed automatically.
 struct CameraSettings {
-    glm::dvec3 eye{0.0, 0.0, 5.0};  ///< m
-    glm::dvec3 target{0.0};         ///< m, != eye
-    glm::dvec3 up{0.0, 1.0, 0.0};   ///< non-zero, not parallel to target - eye
-    double fovDeg = 45.0;           ///< vertical field of view in degrees, (0, 180)
+    glm::dvec3 eye{0.0, 0.0, 5.0}; ///< m
+    glm::dvec3 target{0.0};        ///< m, != eye
+    glm::dvec3 up{0.0, 1.0, 0.0};  ///< non-zero, not parallel to target - eye
+    double fovDeg = 45.0;          ///< vertical field of view in degrees, (0, 180)
 };
 
 struct Scene {

@@ -45,8 +45,10 @@ void select(benchkit::Suite& suite, const BenchOptions& options) {
             if (std::none_of(suite.experiments.begin(), suite.experiments.end(),
                              [&](const benchkit::Experiment& e) { return e.name == name; })) {
                 std::string names;
-                for (const benchkit::Experiment& e : suite.experiments) names += (names.empty() ? "" : ", ") + e.name;
-                throw Error("--only " + name + ": no such experiment in " + suite.source + " (it has: " + names + ")");
+                for (const benchkit::Experiment& e : suite.experiments)
+                    names += (names.empty() ? "" : ", ") + e.name;
+                throw Error("--only " + name + ": no such experiment in " + suite.source +
+                            " (it has: " + names + ")");
             }
         std::erase_if(suite.experiments, [&](const benchkit::Experiment& e) {
             return std::find(options.only.begin(), options.only.end(), e.name) == options.only.end();
@@ -82,7 +84,8 @@ int benchCommand(const BenchOptions& options) {
     // The suite measures robust precision against the oracle; first make sure this device computes
     // it exactly on the built-in hard cases (once per device, driver and shader).
     log("robust self-check: " + selfCheckLine(checkRobustBeforeUse()));
-    if (run.softwareRenderer) log("software renderer: these timings are CPU (llvmpipe) timings, not GPU timings");
+    if (run.softwareRenderer)
+        log("software renderer: these timings are CPU (llvmpipe) timings, not GPU timings");
 
     const auto start = std::chrono::steady_clock::now();
     std::vector<benchkit::ExperimentResult> results;

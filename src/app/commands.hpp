@@ -10,14 +10,14 @@
 namespace glcollide::app {
 
 struct RunOptions {
-    std::string scenePath;          ///< empty: the built-in default scene
-    std::optional<int> frames;      ///< overrides the scene's /time/frames
-    std::string exportDir;          ///< empty: no export
+    std::string scenePath;     ///< empty: the built-in default scene
+    std::optional<int> frames; ///< overrides the scene's /time/frames
+    std::string exportDir;     ///< empty: no export
     int exportEvery = 1;
     std::string exportFormat = "obj";
-    std::string statsPath;          ///< empty: no statistics file
-    std::string device;             ///< EGL device selector; empty: env or auto
-    bool quiet = false;             ///< no progress on stderr
+    std::string statsPath; ///< empty: no statistics file
+    std::string device;    ///< EGL device selector; empty: env or auto
+    bool quiet = false;    ///< no progress on stderr
     bool gpuTiming = true;
 };
 
@@ -31,9 +31,9 @@ struct InfoOptions {
 int infoCommand(const InfoOptions& options);
 
 struct QueryTriTriOptions {
-    std::string inPath;                ///< CSV of triangle pairs (docs/narrow-phase.md)
-    std::string outPath;               ///< empty: answers on stdout
-    std::string precision = "robust";  ///< fast or robust
+    std::string inPath;               ///< CSV of triangle pairs (docs/narrow-phase.md)
+    std::string outPath;              ///< empty: answers on stdout
+    std::string precision = "robust"; ///< fast or robust
     std::string device;
 };
 
@@ -41,10 +41,10 @@ struct QueryTriTriOptions {
 int queryTriTriCommand(const QueryTriTriOptions& options);
 
 struct BenchOptions {
-    std::string suite;                  ///< file, or "default" / "smoke" (built in); empty: default
+    std::string suite;                      ///< file, or "default" / "smoke" (built in); empty: default
     std::string outDir = "glcollide-bench"; ///< "{device}" is replaced by the renderer's slug
-    std::vector<std::string> only;      ///< experiment names to run; empty: all
-    std::optional<int> frames;          ///< overrides every experiment's measured frames
+    std::vector<std::string> only;          ///< experiment names to run; empty: all
+    std::optional<int> frames;              ///< overrides every experiment's measured frames
     std::string device;
     bool quiet = false;
 };
@@ -54,11 +54,11 @@ struct BenchOptions {
 int benchCommand(const BenchOptions& options);
 
 struct RenderOptions {
-    std::string scenePath;          ///< empty: the built-in default scene
-    std::optional<int> frames;      ///< frames to simulate; overrides the scene's /time/frames
-    int every = 10;                 ///< write frame 0 and every K-th frame
-    std::string size = "800x600";   ///< WIDTHxHEIGHT in pixels
-    int samples = 4;                ///< multisampling (0 or 1: none)
+    std::string scenePath;        ///< empty: the built-in default scene
+    std::optional<int> frames;    ///< frames to simulate; overrides the scene's /time/frames
+    int every = 10;               ///< write frame 0 and every K-th frame
+    std::string size = "800x600"; ///< WIDTHxHEIGHT in pixels
+    int samples = 4;              ///< multisampling (0 or 1: none)
     std::string outDir = "glcollide-render";
     std::string device;
     bool quiet = false;

@@ -43,13 +43,15 @@ int infoCommand(const InfoOptions& options) {
     // driver can fill it (no binary format: every program is compiled, every time).
     const gl::CacheLocation cache = gl::cacheLocationFromEnvironment();
     const std::size_t binaryFormats = gl::programBinaryFormats().size();
-    j["program_cache"] = {{"folder", cache.enabled ? nlohmann::json(cache.folder.string()) : nlohmann::json(nullptr)},
-                          {"off_reason", cache.enabled ? nlohmann::json(nullptr) : nlohmann::json(cache.reason)},
-                          {"binary_formats", binaryFormats}};
+    j["program_cache"] = {
+        {"folder", cache.enabled ? nlohmann::json(cache.folder.string()) : nlohmann::json(nullptr)},
+        {"off_reason", cache.enabled ? nlohmann::json(nullptr) : nlohmann::json(cache.reason)},
+        {"binary_formats", binaryFormats}};
     // The robust self-check on this device: run now, or the remembered pass. info reports a
     // failure rather than failing (it is what a user runs to find out).
     const SelfCheckMode mode = engine::effectiveSelfCheckMode(SelfCheckMode::Error);
-    SelfCheckReport selfCheck = engine::runRobustSelfCheck(mode == SelfCheckMode::Error ? SelfCheckMode::Warn : mode);
+    SelfCheckReport selfCheck =
+        engine::runRobustSelfCheck(mode == SelfCheckMode::Error ? SelfCheckMode::Warn : mode);
     selfCheck.mode = mode; // report the mode in force, not the one info ran it in
     j["robust_self_check"] = selfCheckJson(selfCheck);
     if (options.json) {
@@ -64,11 +66,13 @@ int infoCommand(const InfoOptions& options) {
               << "GL vendor: " << gl.vendor << "\nGL renderer: " << gl.renderer
               << "\nGL version: " << gl.version << "\nGLSL version: " << gl.glslVersion << "\n"
               << "compute limits:\n";
-    for (const auto& [key, value] : j["compute_limits"].items()) std::cout << "  " << key << ": " << value.dump() << "\n";
+    for (const auto& [key, value] : j["compute_limits"].items())
+        std::cout << "  " << key << ": " << value.dump() << "\n";
     std::cout << "program cache: ";
     if (cache.enabled)
-        std::cout << cache.folder.string() << " (the driver offers " << binaryFormats << " program binary format"
-                  << (binaryFormats == 1 ? "" : "s") << (binaryFormats == 0 ? ": nothing is cached" : "") << ")\n";
+        std::cout << cache.folder.string() << " (the driver offers " << binaryFormats
+                  << " program binary format" << (binaryFormats == 1 ? "" : "s")
+                  << (binaryFormats == 0 ? ": nothing is cached" : "") << ")\n";
     else
         std::cout << "off (" << cache.reason << ")\n";
     std::cout << "robust self-check: " << selfCheckLine(selfCheck) << "\n";

@@ -13,20 +13,23 @@ int main(int argc, char** argv) {
     cli.require_subcommand(1);
 
     glcollide::app::RunOptions run;
-    CLI::App* runCmd = cli.add_subcommand("run", "Simulate a scene headless (the built-in default scene when none is given)");
+    CLI::App* runCmd = cli.add_subcommand(
+        "run", "Simulate a scene headless (the built-in default scene when none is given)");
     runCmd->add_option("scene", run.scenePath, "Scene file (JSON, see docs/scene-format.md)");
     runCmd->add_option("--frames", run.frames, "Frames to simulate (default: the scene's /time/frames)");
     runCmd->add_option("--export", run.exportDir, "Write each exported frame's meshes into this folder");
     runCmd->add_option("--every", run.exportEvery, "Export every K-th frame (with --export)")->default_val(1);
     runCmd->add_option("--format", run.exportFormat, "Export format: obj or ply")->default_val("obj");
     runCmd->add_option("--stats", run.statsPath, "Write per-frame statistics (JSON) to this file");
-    runCmd->add_option("--device", run.device, "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
+    runCmd->add_option("--device", run.device,
+                       "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
     runCmd->add_flag("--quiet", run.quiet, "No progress on stderr");
     bool noTiming = false;
     runCmd->add_flag("--no-gpu-timing", noTiming, "Do not time passes (no wait for the GPU each frame)");
 
     glcollide::app::InfoOptions info;
-    CLI::App* infoCmd = cli.add_subcommand("info", "Print the EGL device, GL vendor, renderer, version and compute limits");
+    CLI::App* infoCmd =
+        cli.add_subcommand("info", "Print the EGL device, GL vendor, renderer, version and compute limits");
     infoCmd->add_option("--device", info.device, "EGL device: auto, software, <index> or cuda:<n>");
     infoCmd->add_flag("--json", info.json, "Print JSON");
 
@@ -34,26 +37,38 @@ int main(int argc, char** argv) {
     CLI::App* queryCmd = cli.add_subcommand("query", "Answer geometric queries on the GPU");
     queryCmd->require_subcommand(1);
     CLI::App* tritriCmd = queryCmd->add_subcommand(
-        "tritri", "Triangle-triangle intersection for each row of a CSV (18 numbers: a0 a1 a2 b0 b1 b2, xyz each); "
-                  "prints 1 or 0 per row");
-    tritriCmd->add_option("--in", tritri.inPath, "CSV of triangle pairs; blank lines and # comment lines are skipped")->required();
+        "tritri",
+        "Triangle-triangle intersection for each row of a CSV (18 numbers: a0 a1 a2 b0 b1 b2, xyz each); "
+        "prints 1 or 0 per row");
+    tritriCmd
+        ->add_option("--in", tritri.inPath,
+                     "CSV of triangle pairs; blank lines and # comment lines are skipped")
+        ->required();
     tritriCmd->add_option("--out", tritri.outPath, "Write the answers here (default: stdout)");
-    tritriCmd->add_option("--precision", tritri.precision, "fast (Moeller 1997, float, epsilon) or robust (exact)")
+    tritriCmd
+        ->add_option("--precision", tritri.precision, "fast (Moeller 1997, float, epsilon) or robust (exact)")
         ->check(CLI::IsMember({"fast", "robust"}))
         ->default_val("robust");
-    tritriCmd->add_option("--device", tritri.device, "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
+    tritriCmd->add_option("--device", tritri.device,
+                          "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
 
     glcollide::app::BenchOptions bench;
     CLI::App* benchCmd = cli.add_subcommand(
-        "bench", "Run a benchmark suite: per-pass GPU time and accuracy against ground truth; writes bench.json "
-                 "(Google Benchmark schema), SVG plots and report.md (docs/benchmarks.md)");
-    benchCmd->add_option("--suite", bench.suite, "Suite file (JSON), or the built-in 'default' or 'smoke'")->default_val("default");
-    benchCmd->add_option("--out", bench.outDir, "Output folder; {device} becomes the renderer's name (e.g. llvmpipe)")
+        "bench",
+        "Run a benchmark suite: per-pass GPU time and accuracy against ground truth; writes bench.json "
+        "(Google Benchmark schema), SVG plots and report.md (docs/benchmarks.md)");
+    benchCmd->add_option("--suite", bench.suite, "Suite file (JSON), or the built-in 'default' or 'smoke'")
+        ->default_val("default");
+    benchCmd
+        ->add_option("--out", bench.outDir,
+                     "Output folder; {device} becomes the renderer's name (e.g. llvmpipe)")
         ->default_val("glcollide-bench");
     benchCmd->add_option("--only", bench.only, "Run only these experiments (repeatable)");
-    benchCmd->add_option("--frames", bench.frames, "Measured frames of every experiment (overrides the suite)")
+    benchCmd
+        ->add_option("--frames", bench.frames, "Measured frames of every experiment (overrides the suite)")
         ->check(CLI::Range(1, 100000));
-    benchCmd->add_option("--device", bench.device, "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
+    benchCmd->add_option("--device", bench.device,
+                         "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
     benchCmd->add_flag("--quiet", bench.quiet, "No progress on stderr");
 
     glcollide::app::RenderOptions render;
@@ -61,12 +76,16 @@ int main(int argc, char** argv) {
         "render", "Simulate a scene headless and write PNG snapshots (frame 0, then every K-th): bodies in "
                   "distinct colours, intersecting faces in red, a ground grid");
     renderCmd->add_option("scene", render.scenePath, "Scene file (JSON; an optional /camera sets the view)");
-    renderCmd->add_option("--frames", render.frames, "Frames to simulate (default: the scene's /time/frames)");
+    renderCmd->add_option("--frames", render.frames,
+                          "Frames to simulate (default: the scene's /time/frames)");
     renderCmd->add_option("--every", render.every, "Write every K-th frame")->default_val(10);
     renderCmd->add_option("--size", render.size, "Image size WIDTHxHEIGHT in pixels")->default_val("800x600");
-    renderCmd->add_option("--samples", render.samples, "Multisampling samples per pixel (0: none)")->default_val(4);
-    renderCmd->add_option("--out", render.outDir, "Output folder for frame_NNNNNN.png")->default_val("glcollide-render");
-    renderCmd->add_option("--device", render.device, "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
+    renderCmd->add_option("--samples", render.samples, "Multisampling samples per pixel (0: none)")
+        ->default_val(4);
+    renderCmd->add_option("--out", render.outDir, "Output folder for frame_NNNNNN.png")
+        ->default_val("glcollide-render");
+    renderCmd->add_option("--device", render.device,
+                          "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
     renderCmd->add_flag("--quiet", render.quiet, "No progress on stderr");
 
     try {

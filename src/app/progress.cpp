@@ -19,7 +19,8 @@ void Progress::update(std::uint64_t done) {
         if (now - m_lastDraw < std::chrono::milliseconds(100) && done != m_total) return;
         m_lastDraw = now;
         std::fprintf(stderr, "\r%s %llu/%llu frames  %.1f frames/s  ETA %.0f s   ", m_label.c_str(),
-                     static_cast<unsigned long long>(done), static_cast<unsigned long long>(m_total), rate, eta);
+                     static_cast<unsigned long long>(done), static_cast<unsigned long long>(m_total), rate,
+                     eta);
     } else {
         const int decile = static_cast<int>(10 * done / m_total);
         if (decile == m_lastDecile) return;

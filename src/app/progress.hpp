@@ -8,12 +8,12 @@
 namespace glcollide::app {
 
 class Progress {
-public:
+  public:
     Progress(std::string label, std::uint64_t total, bool enabled);
     void update(std::uint64_t done);
     void finish();
 
-private:
+  private:
     std::string m_label;
     std::uint64_t m_total;
     bool m_enabled;

@@ -45,7 +45,8 @@ int queryTriTriCommand(const QueryTriTriOptions& options) {
     out << text.str();
     out.close();
     if (!out) throw Error(options.outPath + ": write failed");
-    std::cout << pairs.size() << " pairs, " << hits << " intersecting (" << passes::toString(precision) << " precision";
+    std::cout << pairs.size() << " pairs, " << hits << " intersecting (" << passes::toString(precision)
+              << " precision";
     if (precision == passes::TriTriPrecision::Robust)
         std::cout << ", " << result.undecidedPairs << " pairs to the exact pass, " << result.exactFallbacks
                   << " exact fallbacks";

@@ -23,8 +23,8 @@ constexpr int kMaxSide = 16384;
 std::pair<int, int> parseSize(const std::string& text) {
     static const std::regex re(R"(([0-9]{1,6})[xX]([0-9]{1,6}))");
     std::smatch m;
-    const std::string expected = "--size: expected WIDTHxHEIGHT in pixels, each 1 ... " + std::to_string(kMaxSide) +
-                                 " (e.g. 800x600), got '" + text + "'";
+    const std::string expected = "--size: expected WIDTHxHEIGHT in pixels, each 1 ... " +
+                                 std::to_string(kMaxSide) + " (e.g. 800x600), got '" + text + "'";
     if (!std::regex_match(text, m, re)) throw Error(expected);
     const int w = std::stoi(m[1].str()), h = std::stoi(m[2].str());
     if (w < 1 || h < 1 || w > kMaxSide || h > kMaxSide) throw Error(expected);
@@ -56,13 +56,14 @@ int renderCommand(const RenderOptions& options) {
     Engine engine(scene, {false});
     for (const std::string& w : engine.warnings()) std::cerr << "glcollide: warning: " << w << "\n";
     render::SceneRenderer renderer(engine, {width, height, options.samples});
-    const bool collisions = engine.scene().effects.has(Effect::Collisions) ||
-                            engine.scene().effects.has(Effect::SelfCollisions);
+    const bool collisions =
+        engine.scene().effects.has(Effect::Collisions) || engine.scene().effects.has(Effect::SelfCollisions);
     const auto frames = static_cast<std::uint64_t>(scene.time.frames);
     std::cout << "scene: " << engine.scene().name << "\n"
               << "device: " << context.deviceDescription() << " | " << context.glInfo().renderer << "\n"
               << "images: " << width << "x" << height << ", " << (renderer.samples() ? renderer.samples() : 1)
-              << " sample(s) per pixel, frame 0 and every " << options.every << " of " << frames << " frames\n";
+              << " sample(s) per pixel, frame 0 and every " << options.every << " of " << frames
+              << " frames\n";
 
     std::size_t written = 0, maxHighlighted = 0;
     auto snapshot = [&](std::uint64_t frame) {

@@ -48,7 +48,8 @@ nlohmann::json frameRecord(const Engine& engine) {
 
 bool allFinite(const std::vector<glm::dvec3>& positions, std::size_t& firstBad) {
     for (std::size_t i = 0; i < positions.size(); ++i)
-        if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z)) {
+        if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) ||
+            !std::isfinite(positions[i].z)) {
             firstBad = i;
             return false;
         }
@@ -58,12 +59,9 @@ bool allFinite(const std::vector<glm::dvec3>& positions, std::size_t& firstBad) 
 nlohmann::json nonFiniteRecord(const Engine& engine) {
     const NonFiniteReport& r = engine.lastStep().nonFinite;
     if (!r.found) return nullptr;
-    return {{"frame", r.frame},
-            {"substep", r.substep},
-            {"object", r.object},
-            {"object_name", engine.scene().bodies[r.object].name},
-            {"node", r.node},
-            {"global_node", r.globalNode}};
+    return {{"frame", r.frame},   {"substep", r.substep},
+            {"object", r.object}, {"object_name", engine.scene().bodies[r.object].name},
+            {"node", r.node},     {"global_node", r.globalNode}};
 }
 
 std::string hex64(std::uint64_t v) {
@@ -76,19 +74,28 @@ std::string hex64(std::uint64_t v) {
 nlohmann::json setupRecord(const SetupStats& s) {
     nlohmann::json programs = nlohmann::json::array();
     for (const ProgramSetup& p : s.programs)
-        programs.push_back({{"shader", p.shader}, {"defines", p.defines}, {"source_fnv1a64", hex64(p.sourceHash)},
-                            {"ms", p.milliseconds}, {"cache", p.cacheHit ? "hit" : "miss"}});
-    nlohmann::json cache = {{"hits", s.cacheHits}, {"misses", s.cacheMisses},
-                            {"folder", s.cacheFolder.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.cacheFolder)}};
+        programs.push_back({{"shader", p.shader},
+                            {"defines", p.defines},
+                            {"source_fnv1a64", hex64(p.sourceHash)},
+                            {"ms", p.milliseconds},
+                            {"cache", p.cacheHit ? "hit" : "miss"}});
+    nlohmann::json cache = {
+        {"hits", s.cacheHits},
+        {"misses", s.cacheMisses},
+        {"folder", s.cacheFolder.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.cacheFolder)}};
     if (!s.cacheNote.empty()) cache["note"] = s.cacheNote;
-    return {{"compile_link_ms", s.compileLinkMilliseconds}, {"program_cache", cache}, {"programs", programs},
+    return {{"compile_link_ms", s.compileLinkMilliseconds},
+            {"program_cache", cache},
+            {"programs", programs},
             {"robust_self_check", selfCheckJson(s.robustSelfCheck)}};
 }
 
 void printSummary(const HeadlessContext& context, const Engine& engine, std::uint64_t frames) {
     const Scene& scene = engine.scene();
     const SubstepInfo& sub = engine.substepInfo();
-    std::cout << "scene: " << scene.name << (scene.sourcePath.empty() ? " (built-in default)" : " (" + scene.sourcePath.string() + ")") << "\n"
+    std::cout << "scene: " << scene.name
+              << (scene.sourcePath.empty() ? " (built-in default)" : " (" + scene.sourcePath.string() + ")")
+              << "\n"
               << "device: " << context.deviceDescription() << " | " << context.glInfo().renderer << "\n"
               << "bodies: " << scene.bodies.size() << "  nodes: " << engine.nodeCount()
               << "  springs: " << engine.springCount() << "  faces: " << engine.faceCount() << "\n";
@@ -108,7 +115,8 @@ void printSummary(const HeadlessContext& context, const Engine& engine, std::uin
               << (setup.cacheFolder.empty() ? "off" : setup.cacheFolder);
     if (!setup.cacheNote.empty()) std::cout << "; " << setup.cacheNote;
     std::cout << ")\n";
-    if (setup.robustSelfCheck.needed) std::cout << "robust self-check: " << selfCheckLine(setup.robustSelfCheck) << "\n";
+    if (setup.robustSelfCheck.needed)
+        std::cout << "robust self-check: " << selfCheckLine(setup.robustSelfCheck) << "\n";
 }
 
 } // namespace
@@ -151,13 +159,15 @@ int runCommand(const RunOptions& options) {
         if (nonFinite.found && nonFinite.frame == f)
             std::cerr << "glcollide: warning: non-finite position at frame " << nonFinite.frame << " substep "
                       << nonFinite.substep + 1 << " of " << engine.lastStep().substeps << ", object '"
-                      << engine.scene().bodies[nonFinite.object].name << "' (" << nonFinite.object << ") node "
-                      << nonFinite.node << ": the simulation diverged (substeps below the stability limit?)\n";
+                      << engine.scene().bodies[nonFinite.object].name << "' (" << nonFinite.object
+                      << ") node " << nonFinite.node
+                      << ": the simulation diverged (substeps below the stability limit?)\n";
         wallTotal += engine.lastStep().wallMilliseconds;
         maxIntersecting = std::max(maxIntersecting, engine.lastStep().collision.maxIntersectingPairs);
         maxContacts = std::max(maxContacts, engine.lastStep().collision.contacts);
         if (!options.statsPath.empty()) frameList.push_back(frameRecord(engine));
-        if (!options.exportDir.empty() && f % static_cast<std::uint64_t>(options.exportEvery) == 0) exportFrame(f);
+        if (!options.exportDir.empty() && f % static_cast<std::uint64_t>(options.exportEvery) == 0)
+            exportFrame(f);
         progress.update(f);
     }
     progress.finish();
@@ -193,12 +203,13 @@ int runCommand(const RunOptions& options) {
               << (frames ? wallTotal / static_cast<double>(frames) : 0.0) << " ms/frame)\n";
     if (engine.lastStep().collisions)
         std::cout << "collisions: at most " << maxContacts << " contacts and " << maxIntersecting
-                  << " intersecting face pairs in a substep; " << engine.lastStep().collision.intersectingPairs
-                  << " intersecting at the end\n";
+                  << " intersecting face pairs in a substep; "
+                  << engine.lastStep().collision.intersectingPairs << " intersecting at the end\n";
     if (!finite) {
         std::cerr << "glcollide: error: the state became non-finite (first at ";
         if (diverged)
-            std::cerr << "frame " << engine.lastStep().nonFinite.frame << ", node " << engine.lastStep().nonFinite.globalNode;
+            std::cerr << "frame " << engine.lastStep().nonFinite.frame << ", node "
+                      << engine.lastStep().nonFinite.globalNode;
         else
             std::cerr << "node " << bad;
         std::cerr << "); lower /time/dt or use automatic substeps\n";

@@ -36,7 +36,8 @@ using Pairs = std::vector<std::array<std::uint32_t, 2>>;
 Scene buildScene(const SceneEntry& entry, const ConfigEntry& config) {
     json document = json::parse(entry.sceneJson);
     document.merge_patch(json::parse(config.patchJson));
-    Scene scene = parseScene(document.dump(), entry.baseDir, entry.source + " (config \"" + config.name + "\")");
+    Scene scene =
+        parseScene(document.dump(), entry.baseDir, entry.source + " (config \"" + config.name + "\")");
     if (scene.name.empty()) scene.name = entry.name;
     return scene;
 }
@@ -44,7 +45,8 @@ Scene buildScene(const SceneEntry& entry, const ConfigEntry& config) {
 /// Multiplies the scene's substeps per frame (its explicit count, or the automatic one).
 void applySubstepFactor(Scene& scene, int factor) {
     if (factor == 1) return;
-    const int base = scene.time.substeps != 0 ? scene.time.substeps : Engine(scene, {.gpuTiming = false}).substepInfo().substeps;
+    const int base = scene.time.substeps != 0 ? scene.time.substeps
+                                              : Engine(scene, {.gpuTiming = false}).substepInfo().substeps;
     scene.time.substeps = base * factor;
 }
 
@@ -221,7 +223,8 @@ RunResult paperFusedRun(const Experiment& x, Engine& engine, const Scene& scene,
 
 void broadOrNarrow(const Experiment& x, ExperimentResult& out, const Progress& progress, bool broad) {
     out.timeLabel = broad ? "collision detection GPU ms per substep" : "TriTri GPU ms per substep";
-    out.errorLabel = broad ? "intersecting pairs missed by the broad phase" : "disagreements with the exact oracle";
+    out.errorLabel =
+        broad ? "intersecting pairs missed by the broad phase" : "disagreements with the exact oracle";
     out.errorIsCount = true;
     bool paperRuns = false;
     for (const SceneEntry& s : x.scenes)
@@ -253,18 +256,21 @@ void broadOrNarrow(const Experiment& x, ExperimentResult& out, const Progress& p
             }
         }
     if (broad)
-        out.notes.push_back("Ground truth: every valid face pair of the final state tested by the exact rational "
-                            "oracle (sort-and-sweep over exact float boxes first). The error is the number of "
-                            "exactly intersecting pairs the broad phase did not report as candidates.");
+        out.notes.push_back(
+            "Ground truth: every valid face pair of the final state tested by the exact rational "
+            "oracle (sort-and-sweep over exact float boxes first). The error is the number of "
+            "exactly intersecting pairs the broad phase did not report as candidates.");
     else
-        out.notes.push_back("Ground truth: the exact rational oracle on every valid face pair of the final state. "
-                            "Disagreements = false positives + false negatives of the reported intersecting pairs.");
+        out.notes.push_back(
+            "Ground truth: the exact rational oracle on every valid face pair of the final state. "
+            "Disagreements = false positives + false negatives of the reported intersecting pairs.");
     if (paperRuns)
-        out.notes.push_back("\"(paper: fused TriTri)\": the paper's own scheme (seeds/002 Alg. 2-3) on the final "
-                            "state: every valid face pair tested by the fast triangle test in one kernel (masked: "
-                            "behind the leaf-box overlap mask), GPU ms per run of BBUpdate + mask + fused TriTri. "
-                            "The engine's masked and all-pairs broad phases instead append candidates and run "
-                            "TriTri on that list.");
+        out.notes.push_back(
+            "\"(paper: fused TriTri)\": the paper's own scheme (seeds/002 Alg. 2-3) on the final "
+            "state: every valid face pair tested by the fast triangle test in one kernel (masked: "
+            "behind the leaf-box overlap mask), GPU ms per run of BBUpdate + mask + fused TriTri. "
+            "The engine's masked and all-pairs broad phases instead append candidates and run "
+            "TriTri on that list.");
 }
 
 /// A family of triangle pairs with its exact answers.
@@ -279,7 +285,8 @@ Family makeFamily(const std::string& name) {
         for (const cpu::NamedTriPair& p : cpu::hardTriTriCases()) f.pairs.push_back(p.pair);
     } else {
         for (cpu::TriTriSet set : cpu::kAllTriTriSets)
-            if (name == cpu::toString(set)) f.pairs = cpu::randomTriTriPairs(set, 16384, 1000u + static_cast<std::uint32_t>(set));
+            if (name == cpu::toString(set))
+                f.pairs = cpu::randomTriTriPairs(set, 16384, 1000u + static_cast<std::uint32_t>(set));
     }
     for (const cpu::FloatTriPair& p : f.pairs) f.exact.push_back(cpu::exactPairIntersects(p) ? 1 : 0);
     return f;
@@ -339,8 +346,9 @@ void narrowPhase(const Experiment& x, ExperimentResult& out, const Progress& pro
         }
     }
     if (!x.caseFamilies.empty())
-        out.notes.push_back("Pair families (\"pairs: ...\"): one batch through the TriTri query pass with each "
-                            "configuration's precision; time is GPU ms per batch, ground truth the exact oracle.");
+        out.notes.push_back(
+            "Pair families (\"pairs: ...\"): one batch through the TriTri query pass with each "
+            "configuration's precision; time is GPU ms per batch, ground truth the exact oracle.");
 }
 
 /// Node positions and energy after every frame.
@@ -376,18 +384,23 @@ struct Ballistic {
     [[nodiscard]] double energy() const {
         double e = 0.0;
         for (std::size_t i = 0; i < start.size(); ++i)
-            if (!pinned[i]) e += 0.5 * masses[i] * glm::dot(velocity[i], velocity[i]) - masses[i] * glm::dot(gravity, start[i]);
+            if (!pinned[i])
+                e += 0.5 * masses[i] * glm::dot(velocity[i], velocity[i]) -
+                     masses[i] * glm::dot(gravity, start[i]);
         return e;
     }
 };
 
 Ballistic ballisticOf(const Scene& scene, const std::string& source) {
     const auto fail = [&](const std::string& what) -> Ballistic {
-        throw Error(source + ": the ballistic reference needs effects gravity (and optionally springs) only, no "
-                             "spring between a pinned and a free node, and one velocity for all free nodes: " + what);
+        throw Error(source +
+                    ": the ballistic reference needs effects gravity (and optionally springs) only, no "
+                    "spring between a pinned and a free node, and one velocity for all free nodes: " +
+                    what);
     };
     for (Effect e : scene.effects.list())
-        if (e != Effect::Gravity && e != Effect::Springs) return fail("effect " + std::string(effectName(e)) + " is on");
+        if (e != Effect::Gravity && e != Effect::Springs)
+            return fail("effect " + std::string(effectName(e)) + " is on");
     if (!scene.effects.has(Effect::Gravity)) return fail("gravity is off");
     const model::FlatModel m = model::flatten(scene);
     Ballistic b;
@@ -399,13 +412,15 @@ Ballistic ballisticOf(const Scene& scene, const std::string& source) {
     std::optional<glm::dvec3> shared;
     for (std::size_t i = 0; i < m.nodeCount(); ++i) {
         if (b.pinned[i]) continue;
-        if (shared && *shared != m.velocities[i]) return fail("node " + std::to_string(i) + " has another velocity");
+        if (shared && *shared != m.velocities[i])
+            return fail("node " + std::to_string(i) + " has another velocity");
         shared = m.velocities[i];
     }
     if (scene.effects.has(Effect::Springs))
         for (const model::FlatSpring& sp : m.springs)
             if (b.pinned[sp.a] != b.pinned[sp.b])
-                return fail("a spring joins pinned node " + std::to_string(b.pinned[sp.a] ? sp.a : sp.b) + " to a free one");
+                return fail("a spring joins pinned node " + std::to_string(b.pinned[sp.a] ? sp.a : sp.b) +
+                            " to a free one");
     return b;
 }
 
@@ -444,10 +459,13 @@ void integration(const Experiment& x, ExperimentResult& out, const Progress& pro
             ConfigEntry refConfig = x.configs.front();
             Scene base = buildScene(s, refConfig);
             applySubstepFactor(base, refConfig.substepFactor);
-            const int baseSubsteps = base.time.substeps != 0 ? base.time.substeps : Engine(base, {.gpuTiming = false}).substepInfo().substeps;
+            const int baseSubsteps = base.time.substeps != 0
+                                         ? base.time.substeps
+                                         : Engine(base, {.gpuTiming = false}).substepInfo().substeps;
             refConfig.name = "reference";
             refConfig.substepFactor = 1;
-            progress(s.name + " / reference (" + std::to_string(x.referenceFactor) + " x " + std::to_string(baseSubsteps) + " substeps)");
+            progress(s.name + " / reference (" + std::to_string(x.referenceFactor) + " x " +
+                     std::to_string(baseSubsteps) + " substeps)");
             base.time.substeps = baseSubsteps * x.referenceFactor;
             Engine engine(base);
             referenceEnergy = engine.energy().total();
@@ -463,12 +481,15 @@ void integration(const Experiment& x, ExperimentResult& out, const Progress& pro
             out.runs.push_back(std::move(r));
         }
     }
-    out.notes.push_back(x.reference == IntegrationReference::Ballistic
-                            ? "Ground truth: the closed-form free flight x(t) = x0 + v0 t + g t^2/2 of every node (springs at "
-                              "rest), compared after every frame; energy error relative to the constant exact energy."
-                            : "Ground truth: the same scene at " + std::to_string(x.referenceFactor) +
-                                  " x the first configuration's substeps (converged reference), compared after every frame.");
-    out.notes.push_back("Integrator: symplectic Euler is the only one implemented; the axis is the substep count.");
+    out.notes.push_back(
+        x.reference == IntegrationReference::Ballistic
+            ? "Ground truth: the closed-form free flight x(t) = x0 + v0 t + g t^2/2 of every node (springs "
+              "at "
+              "rest), compared after every frame; energy error relative to the constant exact energy."
+            : "Ground truth: the same scene at " + std::to_string(x.referenceFactor) +
+                  " x the first configuration's substeps (converged reference), compared after every frame.");
+    out.notes.push_back(
+        "Integrator: symplectic Euler is the only one implemented; the axis is the substep count.");
 }
 
 void contact(const Experiment& x, ExperimentResult& out, const Progress& progress) {
@@ -480,8 +501,8 @@ void contact(const Experiment& x, ExperimentResult& out, const Progress& progres
             const FaceData d = faceData(buildScene(s, c));
             cpu::Penetration deepest;
             const FrameHook hook = [&](Engine& e, int) {
-                const cpu::Penetration p =
-                    cpu::deepestPenetration(d.model.faceIndices, d.faceObject, d.nodeObject, e.readPositions(), d.closed);
+                const cpu::Penetration p = cpu::deepestPenetration(d.model.faceIndices, d.faceObject,
+                                                                   d.nodeObject, e.readPositions(), d.closed);
                 if (p.depth > deepest.depth) deepest = p;
             };
             RunResult r = runScene(x, s, c, hook);
@@ -490,10 +511,11 @@ void contact(const Experiment& x, ExperimentResult& out, const Progress& progres
             r.error = deepest.depth;
             out.runs.push_back(std::move(r));
         }
-    out.notes.push_back("Penetration: after every frame, the deepest node of one body strictly inside another closed "
-                        "body (generalised winding number), measured as its distance to that body's surface, in "
-                        "double precision on the read-back state. max_intersecting_pairs is the largest count of "
-                        "exactly intersecting face pairs (robust narrow phase) over all substeps.");
+    out.notes.push_back(
+        "Penetration: after every frame, the deepest node of one body strictly inside another closed "
+        "body (generalised winding number), measured as its distance to that body's surface, in "
+        "double precision on the read-back state. max_intersecting_pairs is the largest count of "
+        "exactly intersecting face pairs (robust narrow phase) over all substeps.");
 }
 
 } // namespace
@@ -506,14 +528,25 @@ ExperimentResult runExperiment(const Experiment& experiment, const Progress& pro
                               experiment.caseFamilies.size() * experiment.configs.size();
     const Progress counted = [&](const std::string& what) {
         if (progress)
-            progress(experiment.name + " " + std::to_string(std::min(++done, total)) + "/" + std::to_string(total) + ": " + what);
+            progress(experiment.name + " " + std::to_string(std::min(++done, total)) + "/" +
+                     std::to_string(total) + ": " + what);
     };
     switch (experiment.kind) {
-    case ExperimentKind::Scaling: scaling(experiment, out, counted); break;
-    case ExperimentKind::BroadPhase: broadOrNarrow(experiment, out, counted, true); break;
-    case ExperimentKind::NarrowPhase: narrowPhase(experiment, out, counted); break;
-    case ExperimentKind::Integration: integration(experiment, out, counted); break;
-    case ExperimentKind::Contact: contact(experiment, out, counted); break;
+    case ExperimentKind::Scaling:
+        scaling(experiment, out, counted);
+        break;
+    case ExperimentKind::BroadPhase:
+        broadOrNarrow(experiment, out, counted, true);
+        break;
+    case ExperimentKind::NarrowPhase:
+        narrowPhase(experiment, out, counted);
+        break;
+    case ExperimentKind::Integration:
+        integration(experiment, out, counted);
+        break;
+    case ExperimentKind::Contact:
+        contact(experiment, out, counted);
+        break;
     }
     return out;
 }

@@ -36,8 +36,10 @@ struct PaperFusedTriTri::Impl {
           faceCount(static_cast<std::uint32_t>(model.faceCount())),
           fused(masked ? "paper_masked_tri_tri" : "paper_all_pairs_tri_tri") {
         const float halfThickness = model::halfThicknessFloat(s.thickness);
-        lists.declare(GLC_LIST_CANDIDATES, {"candidates", "pairs", 8, GLC_BIND_FACE_PAIRS, s.initialCapacity});
-        lists.declare(GLC_LIST_INTERSECTIONS, {"intersections", "pairs", 8, GLC_BIND_INTERSECTIONS, s.initialCapacity});
+        lists.declare(GLC_LIST_CANDIDATES,
+                      {"candidates", "pairs", 8, GLC_BIND_FACE_PAIRS, s.initialCapacity});
+        lists.declare(GLC_LIST_INTERSECTIONS,
+                      {"intersections", "pairs", 8, GLC_BIND_INTERSECTIONS, s.initialCapacity});
         fused.set("u_faceCount", faceCount);
         fused.set("u_pairRules", rules);
         fused.set("u_halfThickness", halfThickness);
@@ -45,17 +47,20 @@ struct PaperFusedTriTri::Impl {
         if (masked) {
             const passes::BroadPhaseContext context{model, layout, s, rules, halfThickness};
             leafBoxes.emplace(context);
-            mask = gl::Buffer("boxMask", std::size_t{layout.boxCount} * layout.boxCount * sizeof(std::uint32_t));
+            mask =
+                gl::Buffer("boxMask", std::size_t{layout.boxCount} * layout.boxCount * sizeof(std::uint32_t));
             boxMask = gl::ComputeProgram("box_mask");
             boxMask.set("u_pairRules", rules);
             boxMask.set("u_boxCount", layout.boxCount);
             boxMask.set("u_boxesPerObject", layout.boxesPerObject);
             chain.add(leafBoxes->refitStage());
-            chain.add({PassId::BBCollision, {},
-                       [this] { passes::dispatchUpperTriangle(boxMask, layout.boxCount, GLC_BOX_PAIR_TILE); }});
+            chain.add({PassId::BBCollision, {}, [this] {
+                           passes::dispatchUpperTriangle(boxMask, layout.boxCount, GLC_BOX_PAIR_TILE);
+                       }});
         }
-        chain.add({PassId::TriTri, {GLC_LIST_CANDIDATES, GLC_LIST_INTERSECTIONS},
-                   [this] { passes::dispatchUpperTriangle(fused, faceCount, GLC_FACE_PAIR_TILE); }});
+        chain.add({PassId::TriTri, {GLC_LIST_CANDIDATES, GLC_LIST_INTERSECTIONS}, [this] {
+                       passes::dispatchUpperTriangle(fused, faceCount, GLC_FACE_PAIR_TILE);
+                   }});
     }
 
     void bind() const {
@@ -78,9 +83,10 @@ struct PaperFusedTriTri::Impl {
 
 PaperFusedTriTri::PaperFusedTriTri(const model::FlatModel& model, const CollisionSettings& settings,
                                    bool betweenObjects, bool selfCollisions, bool masked)
-    : m_impl(std::make_unique<Impl>(model, settings,
-                                    (betweenObjects ? GLC_RULE_BETWEEN_OBJECTS : 0u) | (selfCollisions ? GLC_RULE_SELF : 0u),
-                                    masked)) {}
+    : m_impl(std::make_unique<Impl>(
+          model, settings,
+          (betweenObjects ? GLC_RULE_BETWEEN_OBJECTS : 0u) | (selfCollisions ? GLC_RULE_SELF : 0u), masked)) {
+}
 
 PaperFusedTriTri::~PaperFusedTriTri() = default;
 

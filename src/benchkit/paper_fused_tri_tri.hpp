@@ -18,13 +18,13 @@
 namespace glcollide::benchkit {
 
 struct PaperFusedAnswer {
-    std::vector<std::array<std::uint32_t, 2>> candidates;    ///< valid pairs with overlapping face boxes, sorted
+    std::vector<std::array<std::uint32_t, 2>> candidates; ///< valid pairs with overlapping face boxes, sorted
     std::vector<std::array<std::uint32_t, 2>> intersections; ///< valid pairs the fast test reports, sorted
     std::vector<double> milliseconds;                        ///< GPU time of each timed run
 };
 
 class PaperFusedTriTri {
-public:
+  public:
     /// `masked`: the paper's masked scheme (BBUpdate, box mask, masked fused TriTri) over the
     /// octree of settings.octreeDepth; otherwise its all-pairs scheme (fused TriTri alone).
     /// Needs a current GL 4.3 context.
@@ -38,7 +38,7 @@ public:
     /// returns the last run's pairs and the timed runs' GPU milliseconds.
     PaperFusedAnswer run(const std::vector<glm::vec3>& positions, int warmup, int timed);
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> m_impl;
 };

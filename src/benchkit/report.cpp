@@ -24,21 +24,28 @@ std::string num(double v) {
     if (v == std::floor(v) && std::abs(v) < 1e9) return std::to_string(static_cast<long long>(v));
     std::ostringstream s;
     const double a = std::abs(v);
-    if (a != 0 && (a < 1e-3 || a >= 1e7)) s << std::setprecision(3) << std::scientific << v;
-    else if (a >= 1000) s << std::fixed << std::setprecision(0) << v;
-    else s << std::setprecision(a >= 100 ? 4 : 3) << v;
+    if (a != 0 && (a < 1e-3 || a >= 1e7))
+        s << std::setprecision(3) << std::scientific << v;
+    else if (a >= 1000)
+        s << std::fixed << std::setprecision(0) << v;
+    else
+        s << std::setprecision(a >= 100 ? 4 : 3) << v;
     return s.str();
 }
 
 /// JSON numbers must be finite; non-finite values (a diverged run) become null.
-json finiteOrNull(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+json finiteOrNull(double v) {
+    return std::isfinite(v) ? json(v) : json(nullptr);
+}
 
 std::string slug(const std::string& text) {
     std::string s;
     for (char c : text) {
         const auto u = static_cast<unsigned char>(c);
-        if (std::isalnum(u)) s += static_cast<char>(std::tolower(u));
-        else if (!s.empty() && s.back() != '-') s += '-';
+        if (std::isalnum(u))
+            s += static_cast<char>(std::tolower(u));
+        else if (!s.empty() && s.back() != '-')
+            s += '-';
     }
     while (!s.empty() && s.back() == '-') s.pop_back();
     return s.empty() ? "scene" : s;
@@ -52,7 +59,9 @@ std::vector<RunResult> runsOf(const ExperimentResult& r, const std::string& conf
     return runs;
 }
 
-bool accuracy(const ExperimentResult& r) { return r.experiment.kind != ExperimentKind::Scaling; }
+bool accuracy(const ExperimentResult& r) {
+    return r.experiment.kind != ExperimentKind::Scaling;
+}
 
 std::vector<std::string> sceneOrder(const ExperimentResult& r) {
     std::vector<std::string> scenes;
@@ -64,17 +73,22 @@ std::vector<std::string> sceneOrder(const ExperimentResult& r) {
 /// The metrics worth a table column for each kind (all of them are in the JSON).
 std::vector<std::pair<std::string, std::string>> tableMetrics(ExperimentKind kind) {
     switch (kind) {
-    case ExperimentKind::Scaling: return {};
+    case ExperimentKind::Scaling:
+        return {};
     case ExperimentKind::BroadPhase:
-        return {{"candidate_pairs", "candidates"}, {"exact_intersecting_pairs", "exact pairs"},
+        return {{"candidate_pairs", "candidates"},
+                {"exact_intersecting_pairs", "exact pairs"},
                 {"candidates_missing_intersections", "missed"}};
     case ExperimentKind::NarrowPhase:
-        return {{"exact_intersecting_pairs", "exact pairs"}, {"false_positives", "false pos."},
+        return {{"exact_intersecting_pairs", "exact pairs"},
+                {"false_positives", "false pos."},
                 {"false_negatives", "false neg."}};
     case ExperimentKind::Integration:
-        return {{"max_position_error_m", "max error (m)"}, {"max_energy_error_relative", "energy error (rel.)"}};
+        return {{"max_position_error_m", "max error (m)"},
+                {"max_energy_error_relative", "energy error (rel.)"}};
     case ExperimentKind::Contact:
-        return {{"deepest_penetration_m", "deepest penetration (m)"}, {"max_intersecting_pairs", "max intersecting pairs"},
+        return {{"deepest_penetration_m", "deepest penetration (m)"},
+                {"max_intersecting_pairs", "max intersecting pairs"},
                 {"max_contacts", "max contacts"}};
     }
     return {};
@@ -87,13 +101,17 @@ struct Table {
 
 Table tableOf(const ExperimentResult& r) {
     Table t;
-    t.header = {"scene", "config", "faces", "substeps/frame", "GPU ms/frame (median [q1, q3])", "wall ms/frame"};
-    if (accuracy(r)) t.header.push_back(r.timeLabel);
-    else t.header.push_back("GPU ms/substep");
+    t.header = {"scene",        "config", "faces", "substeps/frame", "GPU ms/frame (median [q1, q3])",
+                "wall ms/frame"};
+    if (accuracy(r))
+        t.header.push_back(r.timeLabel);
+    else
+        t.header.push_back("GPU ms/substep");
     const auto metrics = tableMetrics(r.experiment.kind);
     for (const auto& m : metrics) t.header.push_back(m.second);
     for (const RunResult& run : r.runs) {
-        std::vector<std::string> row{run.scene, run.config, run.faces ? num(run.faces) : "-", num(run.substeps)};
+        std::vector<std::string> row{run.scene, run.config, run.faces ? num(run.faces) : "-",
+                                     num(run.substeps)};
         if (!run.failure.empty()) {
             row.push_back("failed: " + run.failure);
             while (row.size() < t.header.size()) row.emplace_back("-");
@@ -146,7 +164,8 @@ double logLogSlope(const std::vector<RunResult>& runs) {
     return (n * sxy - sx * sy) / d;
 }
 
-std::string benchmarkJson(const RunContext& c, const Suite& suite, const std::vector<ExperimentResult>& results) {
+std::string benchmarkJson(const RunContext& c, const Suite& suite,
+                          const std::vector<ExperimentResult>& results) {
     json context = {
         {"date", c.dateUtc},
         {"host_name", ""},
@@ -170,8 +189,9 @@ std::string benchmarkJson(const RunContext& c, const Suite& suite, const std::ve
         {"date_utc", c.dateUtc},
         {"suite", suite.name},
         {"suite_source", suite.source},
-        {"timing", "GPU ms per frame from GL_TIMESTAMP pairs around each pass (summed over the frame's substeps); "
-                   "median over the measured frames, spread as quartiles and range; wall = CPU time of Engine::step()"},
+        {"timing",
+         "GPU ms per frame from GL_TIMESTAMP pairs around each pass (summed over the frame's substeps); "
+         "median over the measured frames, spread as quartiles and range; wall = CPU time of Engine::step()"},
     };
     json benchmarks = json::array();
     int family = 0;
@@ -229,19 +249,22 @@ std::string textTable(const ExperimentResult& r) {
     std::vector<std::size_t> width(t.header.size(), 0);
     for (std::size_t i = 0; i < t.header.size(); ++i) width[i] = t.header[i].size();
     for (const auto& row : t.rows)
-        for (std::size_t i = 0; i < row.size() && i < width.size(); ++i) width[i] = std::max(width[i], row[i].size());
+        for (std::size_t i = 0; i < row.size() && i < width.size(); ++i)
+            width[i] = std::max(width[i], row[i].size());
     std::ostringstream s;
     s << "== " << r.experiment.name << ": " << r.experiment.title << "\n";
     auto line = [&](const std::vector<std::string>& cells) {
         for (std::size_t i = 0; i < cells.size() && i < width.size(); ++i)
-            s << (i ? "  " : "") << (i < 2 ? std::left : std::right) << std::setw(static_cast<int>(width[i])) << cells[i];
+            s << (i ? "  " : "") << (i < 2 ? std::left : std::right) << std::setw(static_cast<int>(width[i]))
+              << cells[i];
         s << std::right << "\n";
     };
     line(t.header);
     for (const auto& row : t.rows) line(row);
     if (r.experiment.kind == ExperimentKind::Scaling)
         for (const ConfigEntry& c : r.experiment.configs) {
-            s << "   " << c.name << ": GPU time per substep grows as faces^" << num(logLogSlope(runsOf(r, c.name))) << "\n";
+            s << "   " << c.name << ": GPU time per substep grows as faces^"
+              << num(logLogSlope(runsOf(r, c.name))) << "\n";
         }
     for (const std::string& note : r.notes) s << "   note: " << note << "\n";
     return s.str();
@@ -258,7 +281,8 @@ std::vector<PlotFile> plots(const ExperimentResult& r) {
         for (const ConfigEntry& c : r.experiment.configs) {
             PlotSeries series;
             const std::vector<RunResult> runs = runsOf(r, c.name);
-            for (const RunResult& run : runs) series.points.push_back({double(run.faces), run.time, run.scene});
+            for (const RunResult& run : runs)
+                series.points.push_back({double(run.faces), run.time, run.scene});
             series.name = c.name + " (slope " + num(logLogSlope(runs)) + ")";
             std::sort(series.points.begin(), series.points.end(),
                       [](const PlotPoint& a, const PlotPoint& b) { return a.x < b.x; });
@@ -280,14 +304,16 @@ std::vector<PlotFile> plots(const ExperimentResult& r) {
         series.connect = false;
         series.labelAll = false; // labels of every point collide; the front is labelled, the table has all
         for (const RunResult& run : r.runs)
-            if (run.scene == scene && run.failure.empty()) series.points.push_back({run.time, run.error, run.config});
+            if (run.scene == scene && run.failure.empty())
+                series.points.push_back({run.time, run.error, run.config});
         spec.series.push_back(std::move(series));
         files.push_back({r.experiment.name + "-" + slug(scene) + ".svg", spec.title, renderSvg(spec)});
     }
     return files;
 }
 
-std::string markdownReport(const RunContext& c, const Suite& suite, const std::vector<ExperimentResult>& results,
+std::string markdownReport(const RunContext& c, const Suite& suite,
+                           const std::vector<ExperimentResult>& results,
                            const std::vector<std::vector<PlotFile>>& plotFiles) {
     std::ostringstream s;
     s << "## " << c.renderer << "\n\n";
@@ -296,16 +322,17 @@ std::string markdownReport(const RunContext& c, const Suite& suite, const std::v
     s << "\n\n";
     for (std::size_t i = 0; i < results.size(); ++i) {
         const ExperimentResult& r = results[i];
-        s << "### " << r.experiment.title << " (`" << r.experiment.name << "`, " << kindName(r.experiment.kind)
-          << ")\n\n";
-        s << r.experiment.warmupFrames << " warm-up and " << r.experiment.frames << " measured frames per run.";
+        s << "### " << r.experiment.title << " (`" << r.experiment.name << "`, "
+          << kindName(r.experiment.kind) << ")\n\n";
+        s << r.experiment.warmupFrames << " warm-up and " << r.experiment.frames
+          << " measured frames per run.";
         if (accuracy(r)) s << " Plotted: " << r.timeLabel << " against " << r.errorLabel << ".";
         s << "\n\n";
         for (const std::string& note : r.notes) s << "- " << note << "\n";
         if (r.experiment.kind == ExperimentKind::Scaling)
             for (const ConfigEntry& cfg : r.experiment.configs) {
-                s << "- " << cfg.name << ": GPU time per substep grows as faces^" << num(logLogSlope(runsOf(r, cfg.name)))
-                  << "\n";
+                s << "- " << cfg.name << ": GPU time per substep grows as faces^"
+                  << num(logLogSlope(runsOf(r, cfg.name))) << "\n";
             }
         s << "\n" << markdownTable(tableOf(r)) << "\n";
         if (i < plotFiles.size())
@@ -317,15 +344,17 @@ std::string markdownReport(const RunContext& c, const Suite& suite, const std::v
 
 std::string headlineTable(const RunContext& c, const std::vector<ExperimentResult>& results) {
     std::ostringstream s;
-    s << "Measured on " << c.renderer << (c.softwareRenderer ? " (software rasteriser on the CPU, not a GPU)" : "")
-      << ", commit " << c.gitCommit << ", " << c.dateUtc.substr(0, 10) << ".\n\n";
+    s << "Measured on " << c.renderer
+      << (c.softwareRenderer ? " (software rasteriser on the CPU, not a GPU)" : "") << ", commit "
+      << c.gitCommit << ", " << c.dateUtc.substr(0, 10) << ".\n\n";
     s << "| experiment | scene | fastest: config (time, error) | least error: config (time, error) |\n";
     s << "|---|---|---|---|\n";
     for (const ExperimentResult& r : results) {
         if (!accuracy(r)) continue;
         // Triangle-pair families are summed into one row per configuration: one line for all of them.
         std::vector<std::string> scenes;
-        std::map<std::string, std::map<std::string, std::pair<double, double>>> points; // scene -> config -> (time, error)
+        std::map<std::string, std::map<std::string, std::pair<double, double>>>
+            points; // scene -> config -> (time, error)
         for (const RunResult& run : r.runs) {
             if (!run.failure.empty()) continue;
             const bool family = run.scene.rfind("pairs: ", 0) == 0;
@@ -347,7 +376,8 @@ std::string headlineTable(const RunContext& c, const std::vector<ExperimentResul
             const auto cell = [&](const auto& it) {
                 return it->first + " (" + num(it->second.first) + ", " + num(it->second.second) + ")";
             };
-            s << "| " << r.experiment.title << " | " << scene << " | " << cell(fastest) << " | " << cell(best) << " |\n";
+            s << "| " << r.experiment.title << " | " << scene << " | " << cell(fastest) << " | " << cell(best)
+              << " |\n";
         }
     }
     for (const ExperimentResult& r : results) {
@@ -358,13 +388,16 @@ std::string headlineTable(const RunContext& c, const std::vector<ExperimentResul
             for (const RunResult& run : runs)
                 if (run.faces > largest) largest = run.faces, ms = run.time;
             s << "| " << r.experiment.title << " | " << cfg.name << " | cost per substep grows as faces^"
-              << num(logLogSlope(runs)) << " | " << num(ms) << " ms per substep at " << num(largest) << " faces |\n";
+              << num(logLogSlope(runs)) << " | " << num(ms) << " ms per substep at " << num(largest)
+              << " faces |\n";
         }
     }
     s << "\nTimes and errors in each experiment's units: ";
     std::string units;
     for (const ExperimentResult& r : results)
-        if (accuracy(r)) units += (units.empty() ? "" : "; ") + r.experiment.name + ": " + r.timeLabel + ", " + r.errorLabel;
+        if (accuracy(r))
+            units +=
+                (units.empty() ? "" : "; ") + r.experiment.name + ": " + r.timeLabel + ", " + r.errorLabel;
     s << units << ".\n";
     return s.str();
 }

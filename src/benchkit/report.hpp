@@ -15,7 +15,8 @@ namespace glcollide::benchkit {
 /// and `benchmarks`, one entry per experiment x scene x configuration x pass (plus "gpu_total"
 /// and "wall"), named "experiment/scene/config/pass", time in ms (median over the measured
 /// frames), the spread and every metric as extra numeric fields. compare.py reads it.
-std::string benchmarkJson(const RunContext& context, const Suite& suite, const std::vector<ExperimentResult>& results);
+std::string benchmarkJson(const RunContext& context, const Suite& suite,
+                          const std::vector<ExperimentResult>& results);
 
 /// The human-readable table of one experiment (stdout).
 std::string textTable(const ExperimentResult& result);
@@ -33,7 +34,8 @@ std::vector<PlotFile> plots(const ExperimentResult& result);
 
 /// A Markdown section for docs/benchmarks.md: the device, then per experiment its notes, its
 /// table and its plots (linked relative to the report's folder).
-std::string markdownReport(const RunContext& context, const Suite& suite, const std::vector<ExperimentResult>& results,
+std::string markdownReport(const RunContext& context, const Suite& suite,
+                           const std::vector<ExperimentResult>& results,
                            const std::vector<std::vector<PlotFile>>& plotFiles);
 
 /// The README's headline table: per accuracy experiment and scene the fastest configuration and

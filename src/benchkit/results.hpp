@@ -30,8 +30,8 @@ struct RunResult {
     std::string scene;
     std::string config;
     std::uint32_t nodes = 0, springs = 0, faces = 0;
-    int substeps = 0;    ///< per frame
-    int frames = 0;      ///< measured frames (the samples of every Summary)
+    int substeps = 0; ///< per frame
+    int frames = 0;   ///< measured frames (the samples of every Summary)
     std::vector<std::string> passNames;
     std::vector<Summary> passMs; ///< GPU ms per frame, one per pass (timestamp queries)
     Summary gpuMs;               ///< sum of the passes, per frame

@@ -18,7 +18,7 @@ struct RunContext {
     std::string cpuModel;
     std::string gitCommit; ///< HEAD of the source tree at run time ("-dirty" if modified)
     std::string buildType;
-    std::string dateUtc;   ///< ISO 8601
+    std::string dateUtc; ///< ISO 8601
 };
 
 RunContext describeRun(const HeadlessContext& context);

@@ -23,7 +23,9 @@ struct Where {
     const std::string& source;
     std::string pointer;
     [[nodiscard]] Where operator/(const std::string& key) const { return {source, pointer + "/" + key}; }
-    [[nodiscard]] Where operator/(std::size_t index) const { return {source, pointer + "/" + std::to_string(index)}; }
+    [[nodiscard]] Where operator/(std::size_t index) const {
+        return {source, pointer + "/" + std::to_string(index)};
+    }
     [[noreturn]] void fail(const std::string& what) const {
         throw Error(source + ": " + (pointer.empty() ? "/" : pointer) + ": " + what);
     }
@@ -54,8 +56,8 @@ int intAt(const json& object, const Where& at, const char* key, int fallback, in
     if (!v.is_number_integer()) (at / key).fail("expected an integer");
     const auto n = v.get<long long>();
     if (n < lo || n > hi)
-        (at / key).fail("expected an integer in " + std::to_string(lo) + " ... " + std::to_string(hi) + ", got " +
-                        std::to_string(n));
+        (at / key).fail("expected an integer in " + std::to_string(lo) + " ... " + std::to_string(hi) +
+                        ", got " + std::to_string(n));
     return static_cast<int>(n);
 }
 
@@ -80,8 +82,9 @@ ExperimentKind parseKind(const json& experiment, const Where& at) {
     for (ExperimentKind k : {ExperimentKind::Scaling, ExperimentKind::BroadPhase, ExperimentKind::NarrowPhase,
                              ExperimentKind::Integration, ExperimentKind::Contact})
         if (kind == kindName(k)) return k;
-    (at / "kind").fail("unknown kind \"" + kind +
-                       "\" (expected scaling, broad_phase, narrow_phase, integration or contact)");
+    (at / "kind")
+        .fail("unknown kind \"" + kind +
+              "\" (expected scaling, broad_phase, narrow_phase, integration or contact)");
 }
 
 /// A scene is inline (an object in the scene format) or a path relative to the suite; either may
@@ -95,7 +98,8 @@ SceneEntry parseSceneEntry(const json& entry, const Where& at, const std::filesy
     json document;
     if (scene.is_string()) {
         const std::filesystem::path path = baseDir / scene.get<std::string>();
-        document = parseJson(readFile(path, "scene file (named at " + (at / "scene").pointer + ")"), path.string());
+        document =
+            parseJson(readFile(path, "scene file (named at " + (at / "scene").pointer + ")"), path.string());
         s.baseDir = path.parent_path();
         s.source = path.string();
     } else if (scene.is_object()) {
@@ -135,12 +139,14 @@ std::vector<T> parseList(const json& object, const Where& at, const char* key, F
     std::set<std::string> names;
     for (std::size_t i = 0; i < list.size(); ++i) {
         out.push_back(parseOne(list[i], at / key / i));
-        if (!names.insert(out.back().name).second) (at / key / i / "name").fail("duplicate name \"" + out.back().name + "\"");
+        if (!names.insert(out.back().name).second)
+            (at / key / i / "name").fail("duplicate name \"" + out.back().name + "\"");
     }
     return out;
 }
 
-Experiment parseExperiment(const json& e, const Where& at, const std::filesystem::path& baseDir, int warmup, int frames) {
+Experiment parseExperiment(const json& e, const Where& at, const std::filesystem::path& baseDir, int warmup,
+                           int frames) {
     allowOnly(e, at,
               {"name", "kind", "title", "scenes", "configs", "warmup_frames", "frames", "reference",
                "reference_factor", "case_families"});
@@ -152,21 +158,26 @@ Experiment parseExperiment(const json& e, const Where& at, const std::filesystem
     x.title = e.contains("title") ? stringAt(e, at, "title") : x.name;
     x.warmupFrames = intAt(e, at, "warmup_frames", warmup, 0, 1000);
     x.frames = intAt(e, at, "frames", frames, 1, 100000);
-    x.scenes = parseList<SceneEntry>(e, at, "scenes",
-                                     [&](const json& s, const Where& w) { return parseSceneEntry(s, w, baseDir); });
+    x.scenes = parseList<SceneEntry>(
+        e, at, "scenes", [&](const json& s, const Where& w) { return parseSceneEntry(s, w, baseDir); });
     x.configs = parseList<ConfigEntry>(e, at, "configs", parseConfig);
     const bool integration = x.kind == ExperimentKind::Integration;
     if (!integration && (e.contains("reference") || e.contains("reference_factor")))
-        (at / (e.contains("reference") ? "reference" : "reference_factor")).fail("only integration experiments have a reference");
+        (at / (e.contains("reference") ? "reference" : "reference_factor"))
+            .fail("only integration experiments have a reference");
     if (integration) {
         const std::string ref = e.contains("reference") ? stringAt(e, at, "reference") : "converged";
-        if (ref == "converged") x.reference = IntegrationReference::Converged;
-        else if (ref == "ballistic") x.reference = IntegrationReference::Ballistic;
-        else (at / "reference").fail("unknown reference \"" + ref + "\" (expected converged or ballistic)");
+        if (ref == "converged")
+            x.reference = IntegrationReference::Converged;
+        else if (ref == "ballistic")
+            x.reference = IntegrationReference::Ballistic;
+        else
+            (at / "reference").fail("unknown reference \"" + ref + "\" (expected converged or ballistic)");
         x.referenceFactor = intAt(e, at, "reference_factor", 16, 2, 1024);
     }
     if (e.contains("case_families")) {
-        if (x.kind != ExperimentKind::NarrowPhase) (at / "case_families").fail("only narrow_phase experiments have case families");
+        if (x.kind != ExperimentKind::NarrowPhase)
+            (at / "case_families").fail("only narrow_phase experiments have case families");
         const json& list = e.at("case_families");
         if (!list.is_array()) (at / "case_families").fail("expected an array of family names");
         const std::vector<std::string> known = knownCaseFamilies();
@@ -187,11 +198,16 @@ Experiment parseExperiment(const json& e, const Where& at, const std::filesystem
 
 const char* kindName(ExperimentKind kind) {
     switch (kind) {
-    case ExperimentKind::Scaling: return "scaling";
-    case ExperimentKind::BroadPhase: return "broad_phase";
-    case ExperimentKind::NarrowPhase: return "narrow_phase";
-    case ExperimentKind::Integration: return "integration";
-    case ExperimentKind::Contact: return "contact";
+    case ExperimentKind::Scaling:
+        return "scaling";
+    case ExperimentKind::BroadPhase:
+        return "broad_phase";
+    case ExperimentKind::NarrowPhase:
+        return "narrow_phase";
+    case ExperimentKind::Integration:
+        return "integration";
+    case ExperimentKind::Contact:
+        return "contact";
     }
     return "unknown";
 }
@@ -202,7 +218,8 @@ std::vector<std::string> knownCaseFamilies() {
     return names;
 }
 
-Suite parseSuite(const std::string& jsonText, const std::filesystem::path& baseDir, const std::string& sourceName) {
+Suite parseSuite(const std::string& jsonText, const std::filesystem::path& baseDir,
+                 const std::string& sourceName) {
     const json root = parseJson(jsonText, sourceName);
     const Where at{sourceName, ""};
     allowOnly(root, at, {"name", "warmup_frames", "frames", "experiments"});

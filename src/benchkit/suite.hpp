@@ -24,9 +24,9 @@ const char* kindName(ExperimentKind kind);
 /// reader's own error messages.
 struct SceneEntry {
     std::string name;
-    std::string sceneJson;          ///< the scene document, merge patch already applied
-    std::filesystem::path baseDir;  ///< resolves the scene's mesh paths
-    std::string source;             ///< "suite.json#/experiments/0/scenes/1" for messages
+    std::string sceneJson;         ///< the scene document, merge patch already applied
+    std::filesystem::path baseDir; ///< resolves the scene's mesh paths
+    std::string source;            ///< "suite.json#/experiments/0/scenes/1" for messages
 };
 
 /// One configuration: a merge patch applied to every scene of the experiment, and a factor on
@@ -39,20 +39,20 @@ struct ConfigEntry {
 
 /// The reference an integration experiment measures trajectories against.
 enum class IntegrationReference {
-    Converged,  ///< the same scene at `referenceFactor` times the first configuration's substeps
-    Ballistic,  ///< the closed form of free flight under gravity (springs at rest)
+    Converged, ///< the same scene at `referenceFactor` times the first configuration's substeps
+    Ballistic, ///< the closed form of free flight under gravity (springs at rest)
 };
 
 struct Experiment {
     ExperimentKind kind = ExperimentKind::Scaling;
-    std::string name;               ///< unique in the suite; names output files
-    std::string title;              ///< one line for tables and plots
+    std::string name;  ///< unique in the suite; names output files
+    std::string title; ///< one line for tables and plots
     std::vector<SceneEntry> scenes;
     std::vector<ConfigEntry> configs;
-    int warmupFrames = 1;           ///< frames stepped before measuring (shader compilation, list growth)
-    int frames = 5;                 ///< measured frames, >= 1
+    int warmupFrames = 1; ///< frames stepped before measuring (shader compilation, list growth)
+    int frames = 5;       ///< measured frames, >= 1
     IntegrationReference reference = IntegrationReference::Converged;
-    int referenceFactor = 16;       ///< integration: reference substeps / first configuration's
+    int referenceFactor = 16;              ///< integration: reference substeps / first configuration's
     std::vector<std::string> caseFamilies; ///< narrow phase: triangle-pair families also measured
 };
 
@@ -64,7 +64,8 @@ struct Suite {
 
 /// Parses a suite (format in docs/benchmarks.md). Scene paths resolve relative to `baseDir`.
 /// Throws glcollide::Error naming `sourceName` and the JSON pointer of what is wrong.
-Suite parseSuite(const std::string& jsonText, const std::filesystem::path& baseDir, const std::string& sourceName);
+Suite parseSuite(const std::string& jsonText, const std::filesystem::path& baseDir,
+                 const std::string& sourceName);
 Suite loadSuite(const std::filesystem::path& path);
 
 /// The suite `glcollide bench` runs without arguments: every accuracy axis and a scaling run up

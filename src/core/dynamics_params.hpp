@@ -24,9 +24,9 @@ struct SpringUpdateParams {
 
 /// NodeUpdate: one symplectic Euler substep of length h, with an optional ground plane.
 struct NodeUpdateParams {
-    double h = 0.0;         ///< s, substep length
-    bool forces = false;    ///< a force buffer exists (otherwise velocities stay constant)
-    bool contacts = false;  ///< add (and clear) the fixed-point contact forces of ContactResponse
+    double h = 0.0;                 ///< s, substep length
+    bool forces = false;            ///< a force buffer exists (otherwise velocities stay constant)
+    bool contacts = false;          ///< add (and clear) the fixed-point contact forces of ContactResponse
     double contactForceScale = 1.0; ///< fixed-point units per N of the contact forces
     bool ground = false;
     double groundHeight = 0.0;

@@ -10,8 +10,8 @@
 namespace glcollide::cpu {
 
 bool boxesOverlap(const FloatBox& a, const FloatBox& b) {
-    return a.lo.x <= b.hi.x && a.lo.y <= b.hi.y && a.lo.z <= b.hi.z && b.lo.x <= a.hi.x &&
-           b.lo.y <= a.hi.y && b.lo.z <= a.hi.z;
+    return a.lo.x <= b.hi.x && a.lo.y <= b.hi.y && a.lo.z <= b.hi.z && b.lo.x <= a.hi.x && b.lo.y <= a.hi.y &&
+           b.lo.z <= a.hi.z;
 }
 
 FloatBox faceBox(const std::vector<std::uint32_t>& faceIndices, const std::vector<glm::vec3>& positions,
@@ -25,8 +25,9 @@ FloatBox faceBox(const std::vector<std::uint32_t>& faceIndices, const std::vecto
             glm::max(glm::max(p0, p1), p2) + glm::vec3(halfThickness)};
 }
 
-bool validFacePair(const std::vector<std::uint32_t>& faceIndices, const std::vector<std::uint32_t>& faceObject,
-                   std::uint32_t f, std::uint32_t g, const PairRules& rules) {
+bool validFacePair(const std::vector<std::uint32_t>& faceIndices,
+                   const std::vector<std::uint32_t>& faceObject, std::uint32_t f, std::uint32_t g,
+                   const PairRules& rules) {
     if (f == g) return false;
     if (faceObject[f] != faceObject[g]) return rules.betweenObjects;
     if (!rules.selfCollisions) return false;
@@ -38,7 +39,8 @@ bool validFacePair(const std::vector<std::uint32_t>& faceIndices, const std::vec
     return true;
 }
 
-std::vector<FloatBox> twinLeafBoxes(const model::OctreeLayout& layout, const std::vector<std::uint32_t>& faceIndices,
+std::vector<FloatBox> twinLeafBoxes(const model::OctreeLayout& layout,
+                                    const std::vector<std::uint32_t>& faceIndices,
                                     const std::vector<glm::vec3>& positions, double thickness) {
     const float half = model::halfThicknessFloat(thickness);
     constexpr float kInf = std::numeric_limits<float>::infinity();
@@ -48,7 +50,8 @@ std::vector<FloatBox> twinLeafBoxes(const model::OctreeLayout& layout, const std
         for (std::uint32_t k = layout.boxFaces.offsets[b]; k < layout.boxFaces.offsets[b + 1]; ++k) {
             const std::uint32_t f = layout.boxFaces.items[k];
             for (int c = 0; c < 3; ++c) {
-                const glm::vec3& p = positions[faceIndices[3 * static_cast<std::size_t>(f) + static_cast<std::size_t>(c)]];
+                const glm::vec3& p =
+                    positions[faceIndices[3 * static_cast<std::size_t>(f) + static_cast<std::size_t>(c)]];
                 box.lo = glm::min(box.lo, p);
                 box.hi = glm::max(box.hi, p);
             }
@@ -80,7 +83,8 @@ std::vector<FacePair> twinIntersections(const std::vector<std::uint32_t>& faceIn
                                         const std::vector<FacePair>& pairs) {
     auto triangle = [&](std::uint32_t f) {
         Triangle t;
-        for (std::size_t c = 0; c < 3; ++c) t[c] = glm::dvec3(positions[faceIndices[3 * static_cast<std::size_t>(f) + c]]);
+        for (std::size_t c = 0; c < 3; ++c)
+            t[c] = glm::dvec3(positions[faceIndices[3 * static_cast<std::size_t>(f) + c]]);
         return t;
     };
     std::vector<FacePair> out;

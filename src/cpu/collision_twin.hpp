@@ -40,12 +40,14 @@ FloatBox faceBox(const std::vector<std::uint32_t>& faceIndices, const std::vecto
 
 /// The valid-pair rule for f != g: different objects with betweenObjects, or one object with
 /// selfCollisions and no shared node.
-bool validFacePair(const std::vector<std::uint32_t>& faceIndices, const std::vector<std::uint32_t>& faceObject,
-                   std::uint32_t f, std::uint32_t g, const PairRules& rules);
+bool validFacePair(const std::vector<std::uint32_t>& faceIndices,
+                   const std::vector<std::uint32_t>& faceObject, std::uint32_t f, std::uint32_t g,
+                   const PairRules& rules);
 
 /// Leaf boxes of BBUpdate: per box, the union of its faces' vertices inflated by half, in float;
 /// lo = +inf, hi = -inf for a box without faces.
-std::vector<FloatBox> twinLeafBoxes(const model::OctreeLayout& layout, const std::vector<std::uint32_t>& faceIndices,
+std::vector<FloatBox> twinLeafBoxes(const model::OctreeLayout& layout,
+                                    const std::vector<std::uint32_t>& faceIndices,
                                     const std::vector<glm::vec3>& positions, double thickness);
 
 /// Candidates: valid pairs whose face boxes overlap, sorted. O(faces^2).

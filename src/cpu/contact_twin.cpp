@@ -17,7 +17,8 @@ bool ownsClosestFeature(std::uint32_t p, const std::array<std::uint32_t, 3>& fac
     const int zeros = (w.x == 0.0) + (w.y == 0.0) + (w.z == 0.0);
     if (zeros == 0) return true;
     for (int k = 0; k < 3; ++k) {
-        if (zeros == 2 && w[k] == 1.0) return (owned & (GLC_OWN_VERTEX0 << k)) != 0 && p < face[static_cast<std::size_t>(k)];
+        if (zeros == 2 && w[k] == 1.0)
+            return (owned & (GLC_OWN_VERTEX0 << k)) != 0 && p < face[static_cast<std::size_t>(k)];
         if (zeros == 1 && w[k] == 0.0) return (owned & (GLC_OWN_EDGE01 << ((k + 1) % 3))) != 0;
     }
     return true;
@@ -34,7 +35,8 @@ struct Solver {
         return std::clamp(p.stiffness * depth - p.damping * normalSpeed, 0.0, p.forceCap);
     }
 
-    void vertexFace(std::uint32_t node, const std::array<std::uint32_t, 3>& f, std::uint32_t faceOwned, bool closed) {
+    void vertexFace(std::uint32_t node, const std::array<std::uint32_t, 3>& f, std::uint32_t faceOwned,
+                    bool closed) {
         const glm::dvec3 &xp = x(node), &xa = x(f[0]), &xb = x(f[1]), &xc = x(f[2]);
         glm::dvec3 n = glm::cross(xb - xa, xc - xa);
         const double area2 = glm::length(n);
@@ -91,7 +93,8 @@ struct Solver {
 
 } // namespace
 
-glm::dvec3 closestOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+glm::dvec3 closestOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                             const glm::dvec3& c) {
     const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
     const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
     if (d1 <= 0.0 && d2 <= 0.0) return {1.0, 0.0, 0.0};

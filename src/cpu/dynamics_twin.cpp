@@ -23,9 +23,8 @@ void nodeForce(const NodeForceParams& params, const std::vector<std::uint32_t>& 
                 const std::uint32_t face = nodeFaces.items[k];
                 const std::uint32_t a = faceIndices[3 * face], b = faceIndices[3 * face + 1],
                                     c = faceIndices[3 * face + 2];
-                const glm::dvec3 twiceAreaNormal =
-                    glm::cross(state.positions[b] - state.positions[a],
-                               state.positions[c] - state.positions[a]);
+                const glm::dvec3 twiceAreaNormal = glm::cross(state.positions[b] - state.positions[a],
+                                                              state.positions[c] - state.positions[a]);
                 const double twiceArea = glm::length(twiceAreaNormal);
                 if (twiceArea <= 0.0) continue; // a degenerate face catches no wind
                 const glm::dvec3 normal = twiceAreaNormal / twiceArea;
@@ -53,9 +52,8 @@ void springUpdate(const SpringUpdateParams& params, const std::vector<model::Fla
             const double length = glm::length(d);
             if (length <= 0.0) continue; // coincident ends: no direction, no force
             const glm::dvec3 dir = d / length;
-            const double magnitude =
-                s.stiffness * (length - s.restLength) +
-                s.damping * glm::dot(state.velocities[j] - state.velocities[i], dir);
+            const double magnitude = s.stiffness * (length - s.restLength) +
+                                     s.damping * glm::dot(state.velocities[j] - state.velocities[i], dir);
             f += magnitude * dir;
         }
         state.forces[i] += f;
@@ -81,9 +79,8 @@ void nodeUpdate(const NodeUpdateParams& params, NodeState& state) {
                 const double tangentialSpeed = std::sqrt(v.x * v.x + v.z * v.z);
                 if (tangentialSpeed > 0.0) {
                     // Coulomb: the normal impulse (1+e)·|vn| bounds the tangential change.
-                    const double scale = std::max(
-                        0.0, 1.0 - params.friction * (1.0 + params.restitution) * normalSpeed /
-                                       tangentialSpeed);
+                    const double scale = std::max(0.0, 1.0 - params.friction * (1.0 + params.restitution) *
+                                                                 normalSpeed / tangentialSpeed);
                     v.x *= scale;
                     v.z *= scale;
                 }

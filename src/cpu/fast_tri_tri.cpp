@@ -9,9 +9,15 @@ namespace {
 using V = glm::vec3;
 
 // Written out (not glm::dot/cross) so the order of every float operation is the shader's.
-V sub(const V& a, const V& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V cross(const V& a, const V& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-float dot(const V& a, const V& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+V sub(const V& a, const V& b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+V cross(const V& a, const V& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+float dot(const V& a, const V& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 
 struct V2 {
     float x, y;
@@ -56,11 +62,15 @@ bool coplanar(const V& n, const V& v0, const V& v1, const V& v2, const V& u0, co
     const V a{std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)};
     int i0 = 0, i1 = 0;
     if (a.x > a.y) {
-        if (a.x > a.z) i0 = 1, i1 = 2;
-        else i0 = 0, i1 = 1;
+        if (a.x > a.z)
+            i0 = 1, i1 = 2;
+        else
+            i0 = 0, i1 = 1;
     } else {
-        if (a.z > a.y) i0 = 0, i1 = 1;
-        else i0 = 0, i1 = 2;
+        if (a.z > a.y)
+            i0 = 0, i1 = 1;
+        else
+            i0 = 0, i1 = 2;
     }
     auto p = [&](const V& v) { return V2{v[i0], v[i1]}; };
     const V2 pv0 = p(v0), pv1 = p(v1), pv2 = p(v2), pu0 = p(u0), pu1 = p(u1), pu2 = p(u2);
@@ -75,13 +85,20 @@ struct Interval {
 };
 
 // NEWCOMPUTE_INTERVALS; false when the triangles are coplanar.
-bool interval(float vv0, float vv1, float vv2, float d0, float d1, float d2, float d0d1, float d0d2, Interval& r) {
-    if (d0d1 > 0.0f) r = {vv2, (vv0 - vv2) * d2, (vv1 - vv2) * d2, d2 - d0, d2 - d1};
-    else if (d0d2 > 0.0f) r = {vv1, (vv0 - vv1) * d1, (vv2 - vv1) * d1, d1 - d0, d1 - d2};
-    else if (d1 * d2 > 0.0f || d0 != 0.0f) r = {vv0, (vv1 - vv0) * d0, (vv2 - vv0) * d0, d0 - d1, d0 - d2};
-    else if (d1 != 0.0f) r = {vv1, (vv0 - vv1) * d1, (vv2 - vv1) * d1, d1 - d0, d1 - d2};
-    else if (d2 != 0.0f) r = {vv2, (vv0 - vv2) * d2, (vv1 - vv2) * d2, d2 - d0, d2 - d1};
-    else return false;
+bool interval(float vv0, float vv1, float vv2, float d0, float d1, float d2, float d0d1, float d0d2,
+              Interval& r) {
+    if (d0d1 > 0.0f)
+        r = {vv2, (vv0 - vv2) * d2, (vv1 - vv2) * d2, d2 - d0, d2 - d1};
+    else if (d0d2 > 0.0f)
+        r = {vv1, (vv0 - vv1) * d1, (vv2 - vv1) * d1, d1 - d0, d1 - d2};
+    else if (d1 * d2 > 0.0f || d0 != 0.0f)
+        r = {vv0, (vv1 - vv0) * d0, (vv2 - vv0) * d0, d0 - d1, d0 - d2};
+    else if (d1 != 0.0f)
+        r = {vv1, (vv0 - vv1) * d1, (vv2 - vv1) * d1, d1 - d0, d1 - d2};
+    else if (d2 != 0.0f)
+        r = {vv2, (vv0 - vv2) * d2, (vv1 - vv2) * d2, d2 - d0, d2 - d1};
+    else
+        return false;
     return true;
 }
 
@@ -115,8 +132,10 @@ bool fastTrianglesIntersect(const FloatTriangle& a, const FloatTriangle& b) {
     if (cc > mx) mx = cc, index = 2;
 
     Interval i1, i2;
-    if (!interval(v0[index], v1[index], v2[index], dv0, dv1, dv2, dv0dv1, dv0dv2, i1)) return coplanar(n1, v0, v1, v2, u0, u1, u2);
-    if (!interval(u0[index], u1[index], u2[index], du0, du1, du2, du0du1, du0du2, i2)) return coplanar(n1, v0, v1, v2, u0, u1, u2);
+    if (!interval(v0[index], v1[index], v2[index], dv0, dv1, dv2, dv0dv1, dv0dv2, i1))
+        return coplanar(n1, v0, v1, v2, u0, u1, u2);
+    if (!interval(u0[index], u1[index], u2[index], du0, du1, du2, du0du1, du0du2, i2))
+        return coplanar(n1, v0, v1, v2, u0, u1, u2);
 
     const float xx = i1.x0 * i1.x1, yy = i2.x0 * i2.x1, xxyy = xx * yy;
     float tmp = i1.a * xxyy;

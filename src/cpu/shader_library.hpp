@@ -47,8 +47,12 @@ void umulExtended(uint x, uint y, uint& msb, uint& lsb) {
     msb = static_cast<uint>(product >> 32);
     lsb = static_cast<uint>(product);
 }
-int findLSB(uint x) { return x == 0u ? -1 : std::countr_zero(x); }
-int findMSB(uint x) { return std::bit_width(x) - 1; } // -1 for 0
+int findLSB(uint x) {
+    return x == 0u ? -1 : std::countr_zero(x);
+}
+int findMSB(uint x) {
+    return std::bit_width(x) - 1;
+} // -1 for 0
 
 // A translation unit uses only part of the library: unused internal functions are expected.
 #pragma GCC diagnostic push

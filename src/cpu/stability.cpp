@@ -16,8 +16,7 @@ StabilityLimit stableSubstep(const model::FlatModel& model, bool springs, const 
         if (w <= 0.0) continue;
         double stiffness = 0.0, springDamping = 0.0;
         if (springs)
-            for (std::uint32_t k = model.nodeSprings.offsets[i];
-                 k < model.nodeSprings.offsets[i + 1]; ++k) {
+            for (std::uint32_t k = model.nodeSprings.offsets[i]; k < model.nodeSprings.offsets[i + 1]; ++k) {
                 stiffness += model.springs[model.nodeSprings.items[k]].stiffness;
                 springDamping += model.springs[model.nodeSprings.items[k]].damping;
             }

@@ -72,8 +72,7 @@ struct Engine::Impl {
     void allocate();
     void substep(int index, bool lastOfFrame);
     void readHealth();
-    template <typename Pass, typename... Args>
-    void run(const Pass& pass, Args&&... args);
+    template <typename Pass, typename... Args> void run(const Pass& pass, Args&&... args);
 };
 
 void Engine::Impl::chooseSubsteps() {
@@ -89,9 +88,9 @@ void Engine::Impl::chooseSubsteps() {
         if (stable > cpu::kMaxSubsteps) {
             std::ostringstream msg;
             msg << scene.sourcePath.string() << ": scene too stiff: explicit integration needs "
-                << "substeps of at most " << limit.maxSubstep << " s (node " << limit.node
-                << ": omega " << limit.omega << " 1/s), more than " << cpu::kMaxSubsteps
-                << " per frame of " << dt << " s; lower the stiffness, raise the masses or "
+                << "substeps of at most " << limit.maxSubstep << " s (node " << limit.node << ": omega "
+                << limit.omega << " 1/s), more than " << cpu::kMaxSubsteps << " per frame of " << dt
+                << " s; lower the stiffness, raise the masses or "
                 << "lower /time/dt";
             throw Error(msg.str());
         }
@@ -122,8 +121,8 @@ void Engine::Impl::allocate() {
         std::vector<gpu::GpuSpring> springs;
         springs.reserve(m.springs.size());
         for (const model::FlatSpring& s : m.springs)
-            springs.push_back({s.a, s.b, static_cast<float>(s.restLength),
-                               static_cast<float>(s.stiffness), static_cast<float>(s.damping), 0u, 0u, 0u});
+            springs.push_back({s.a, s.b, static_cast<float>(s.restLength), static_cast<float>(s.stiffness),
+                               static_cast<float>(s.damping), 0u, 0u, 0u});
         for (std::size_t o = 0; o < m.objects.size(); ++o)
             for (std::uint32_t k = 0; k < m.objects[o].springCount; ++k)
                 springs[m.objects[o].firstSpring + k].object = static_cast<std::uint32_t>(o);
@@ -140,12 +139,13 @@ void Engine::Impl::allocate() {
         buffers.health = gl::Buffer("health", sizeof none, &none);
     }
     if (plan.collisions)
-        buffers.contactForces = gl::makeBuffer("contactForces", std::vector<glm::ivec4>(m.nodeCount(), glm::ivec4(0)));
+        buffers.contactForces =
+            gl::makeBuffer("contactForces", std::vector<glm::ivec4>(m.nodeCount(), glm::ivec4(0)));
 }
 
-template <typename Pass, typename... Args>
-void Engine::Impl::run(const Pass& pass, Args&&... args) {
-    const gl::TimedSection section(options.gpuTiming ? &timer : nullptr, passes::passIndex(Pass::kId), Pass::kName);
+template <typename Pass, typename... Args> void Engine::Impl::run(const Pass& pass, Args&&... args) {
+    const gl::TimedSection section(options.gpuTiming ? &timer : nullptr, passes::passIndex(Pass::kId),
+                                   Pass::kName);
     pass.dispatch(buffers, std::forward<Args>(args)...);
 }
 
@@ -188,8 +188,10 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
         // Robust precision promises the oracle's answers; check that this device delivers them
         // before relying on it (once per device, driver and shader; docs/narrow-phase.md).
         if (d.plan.collision.precision == TriTriPrecision::Robust) {
-            d.setup.robustSelfCheck = engine::runRobustSelfCheck(engine::effectiveSelfCheckMode(options.robustSelfCheck));
-            if (!d.setup.robustSelfCheck.message.empty()) d.warnings.push_back(d.setup.robustSelfCheck.message);
+            d.setup.robustSelfCheck =
+                engine::runRobustSelfCheck(engine::effectiveSelfCheckMode(options.robustSelfCheck));
+            if (!d.setup.robustSelfCheck.message.empty())
+                d.warnings.push_back(d.setup.robustSelfCheck.message);
         }
     }
     d.passNames = d.plan.passes();
@@ -222,7 +224,8 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
     if (nodeForce) run(*nodeForce, plan.nodeForceParams);
     if (springUpdate) run(*springUpdate);
     if (collision) {
-        const passes::CollisionCounts counts = collision->detect(buffers, options.gpuTiming ? &timer : nullptr);
+        const passes::CollisionCounts counts =
+            collision->detect(buffers, options.gpuTiming ? &timer : nullptr);
         CollisionStats& c = stats.collision;
         c.boxPairs = counts.boxPairs;
         c.candidatePairs = counts.candidates;
@@ -257,7 +260,8 @@ void Engine::Impl::readHealth() {
     r.globalNode = health.firstBadNode;
     for (std::size_t o = 0; o < model.objects.size(); ++o) {
         const model::ObjectRange& range = model.objects[o];
-        if (health.firstBadNode >= range.firstNode && health.firstBadNode - range.firstNode < range.nodeCount) {
+        if (health.firstBadNode >= range.firstNode &&
+            health.firstBadNode - range.firstNode < range.nodeCount) {
             r.object = static_cast<std::uint32_t>(o);
             r.node = health.firstBadNode - range.firstNode;
         }
@@ -285,16 +289,23 @@ void Engine::step() {
     if (d.options.gpuTiming) {
         const std::vector<double> ms = d.timer.resolveMilliseconds();
         const std::vector<passes::PassId> ids = d.plan.passIds();
-        for (std::size_t p = 0; p < ids.size(); ++p) d.stats.passes[p].gpuMilliseconds = ms[passes::passIndex(ids[p])];
+        for (std::size_t p = 0; p < ids.size(); ++p)
+            d.stats.passes[p].gpuMilliseconds = ms[passes::passIndex(ids[p])];
     }
     d.stats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-const SetupStats& Engine::setupStats() const { return m_impl->setup; }
+const SetupStats& Engine::setupStats() const {
+    return m_impl->setup;
+}
 
-const StepStats& Engine::lastStep() const { return m_impl->stats; }
-std::vector<std::string> Engine::pipeline() const { return m_impl->passNames; }
+const StepStats& Engine::lastStep() const {
+    return m_impl->stats;
+}
+std::vector<std::string> Engine::pipeline() const {
+    return m_impl->passNames;
+}
 std::vector<std::string> Engine::allocatedBuffers() const {
     std::vector<std::string> labels = m_impl->buffers.allocatedLabels();
     if (m_impl->collision)
@@ -340,12 +351,24 @@ std::vector<std::uint32_t> Engine::bodyFirstFaces() const {
     for (const model::ObjectRange& o : m_impl->model.objects) first.push_back(o.firstFace);
     return first;
 }
-const SubstepInfo& Engine::substepInfo() const { return m_impl->substeps; }
-const std::vector<std::string>& Engine::warnings() const { return m_impl->warnings; }
-const Scene& Engine::scene() const { return m_impl->scene; }
-std::uint32_t Engine::nodeCount() const { return m_impl->buffers.nodeCount; }
-std::uint32_t Engine::faceCount() const { return m_impl->buffers.faceCount; }
-std::uint32_t Engine::springCount() const { return m_impl->buffers.springCount; }
+const SubstepInfo& Engine::substepInfo() const {
+    return m_impl->substeps;
+}
+const std::vector<std::string>& Engine::warnings() const {
+    return m_impl->warnings;
+}
+const Scene& Engine::scene() const {
+    return m_impl->scene;
+}
+std::uint32_t Engine::nodeCount() const {
+    return m_impl->buffers.nodeCount;
+}
+std::uint32_t Engine::faceCount() const {
+    return m_impl->buffers.faceCount;
+}
+std::uint32_t Engine::springCount() const {
+    return m_impl->buffers.springCount;
+}
 
 std::vector<std::uint32_t> Engine::bodyFirstNodes() const {
     std::vector<std::uint32_t> first;
@@ -368,13 +391,17 @@ std::vector<glm::dvec3> Engine::readVelocities() const {
 EnergyReport Engine::energy() const {
     const Impl& d = *m_impl;
     const bool gravity = d.scene.effects.has(Effect::Gravity);
-    const cpu::Energy e = cpu::energy(readPositions(), readVelocities(), d.model.masses,
-                                      d.model.inverseMasses, gravity ? &d.scene.gravity : nullptr,
-                                      d.plan.springUpdate ? &d.model.springs : nullptr);
+    const cpu::Energy e =
+        cpu::energy(readPositions(), readVelocities(), d.model.masses, d.model.inverseMasses,
+                    gravity ? &d.scene.gravity : nullptr, d.plan.springUpdate ? &d.model.springs : nullptr);
     return {e.kinetic, e.gravitational + e.elastic};
 }
 
-std::uint32_t Engine::positionBuffer() const { return m_impl->buffers.positions.name(); }
-std::uint32_t Engine::faceIndexBuffer() const { return m_impl->buffers.faces.name(); }
+std::uint32_t Engine::positionBuffer() const {
+    return m_impl->buffers.positions.name();
+}
+std::uint32_t Engine::faceIndexBuffer() const {
+    return m_impl->buffers.faces.name();
+}
 
 } // namespace glcollide

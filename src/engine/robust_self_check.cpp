@@ -53,8 +53,8 @@ std::uint64_t hashCases(const std::vector<SelfCheckCase>& cases) {
 // so a rewritten shader is checked again), the case set and any test injection.
 std::string rememberKey(const gl::DriverIdentity& driver, const std::vector<ProgramSetup>& programs,
                         const std::vector<SelfCheckCase>& cases, const SelfCheckInjection& injection) {
-    std::string key = "glcollide robust self-check 1\nvendor: " + driver.vendor + "\nrenderer: " + driver.renderer +
-                      "\nversion: " + driver.version + "\n";
+    std::string key = "glcollide robust self-check 1\nvendor: " + driver.vendor +
+                      "\nrenderer: " + driver.renderer + "\nversion: " + driver.version + "\n";
     for (const ProgramSetup& p : programs) {
         key += "program: " + p.shader;
         for (const std::string& d : p.defines) key += " " + d;
@@ -103,8 +103,9 @@ passes::TriTriQueryPass buildQueryPass(std::vector<ProgramSetup>& programs) {
 }
 
 std::string failureMessage(const gl::DriverIdentity& driver, const SelfCheckReport& r) {
-    return "robust narrow-phase self-check failed on device \"" + driver.renderer + "\", driver \"" + driver.vendor +
-           " " + driver.version + "\": " + std::to_string(r.wrong) + " of " + std::to_string(r.cases) +
+    return "robust narrow-phase self-check failed on device \"" + driver.renderer + "\", driver \"" +
+           driver.vendor + " " + driver.version + "\": " + std::to_string(r.wrong) + " of " +
+           std::to_string(r.cases) +
            " built-in cases answered differently from the exact oracle; first: " + r.firstWrong +
            ". Robust precision is not exact on this device; use precision \"fast\", or set "
            "GLCOLLIDE_SELF_CHECK=warn (EngineOptions::robustSelfCheck) to go on anyway "
@@ -117,11 +118,13 @@ const std::vector<SelfCheckCase>& builtinSelfCheckCases() {
     static const std::vector<SelfCheckCase> cases = [] {
         std::vector<SelfCheckCase> out;
         for (cpu::NamedTriPair& c : cpu::hardTriTriCases()) out.push_back({std::move(c.name), c.pair});
-        for (const cpu::TriTriSet set : {cpu::TriTriSet::Ulp, cpu::TriTriSet::Scaled, cpu::TriTriSet::Degenerate}) {
-            const std::vector<cpu::FloatTriPair> pairs = cpu::randomTriTriPairs(set, kSelfCheckSamplePerFamily, kSelfCheckSeed);
+        for (const cpu::TriTriSet set :
+             {cpu::TriTriSet::Ulp, cpu::TriTriSet::Scaled, cpu::TriTriSet::Degenerate}) {
+            const std::vector<cpu::FloatTriPair> pairs =
+                cpu::randomTriTriPairs(set, kSelfCheckSamplePerFamily, kSelfCheckSeed);
             for (std::size_t i = 0; i < pairs.size(); ++i)
-                out.push_back({std::string("random ") + cpu::toString(set) + " #" + std::to_string(i) + " (seed " +
-                                   std::to_string(kSelfCheckSeed) + ")",
+                out.push_back({std::string("random ") + cpu::toString(set) + " #" + std::to_string(i) +
+                                   " (seed " + std::to_string(kSelfCheckSeed) + ")",
                                pairs[i]});
         }
         return out;
@@ -138,9 +141,12 @@ SelfCheckMode parseSelfCheckMode(std::string_view text, std::string_view what) {
 
 const char* toString(SelfCheckMode mode) {
     switch (mode) {
-    case SelfCheckMode::Error: return "error";
-    case SelfCheckMode::Warn: return "warn";
-    case SelfCheckMode::Off: return "off";
+    case SelfCheckMode::Error:
+        return "error";
+    case SelfCheckMode::Warn:
+        return "warn";
+    case SelfCheckMode::Off:
+        return "off";
     }
     return "?";
 }
@@ -158,7 +164,8 @@ std::string formatTriPair(const cpu::FloatTriPair& pair) {
     for (int k = 0; k < 6; ++k) {
         const auto at = static_cast<std::size_t>(3 * k);
         std::snprintf(text, sizeof text, "%s%s (%.9g, %.9g, %.9g)", k == 0 ? "" : " ", kCorner[k],
-                      static_cast<double>(pair[at]), static_cast<double>(pair[at + 1]), static_cast<double>(pair[at + 2]));
+                      static_cast<double>(pair[at]), static_cast<double>(pair[at + 1]),
+                      static_cast<double>(pair[at + 2]));
         out += text;
     }
     return out;
@@ -175,12 +182,15 @@ SelfCheckReport runRobustSelfCheck(SelfCheckMode mode, const SelfCheckInjection&
     if (mode == SelfCheckMode::Off) return report;
     report.needed = true;
     const auto start = std::chrono::steady_clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(); };
+    auto elapsed = [&] {
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    };
 
     const std::vector<SelfCheckCase>& cases = builtinSelfCheckCases();
     for (std::size_t i : injection.invertExpected)
         if (i >= cases.size())
-            throw Error("self-check injection: case " + std::to_string(i) + " of " + std::to_string(cases.size()));
+            throw Error("self-check injection: case " + std::to_string(i) + " of " +
+                        std::to_string(cases.size()));
     std::vector<ProgramSetup> programs;
     const passes::TriTriQueryPass pass = buildQueryPass(programs);
     const gl::DriverIdentity driver = gl::currentDriverIdentity();
@@ -207,8 +217,9 @@ SelfCheckReport runRobustSelfCheck(SelfCheckMode mode, const SelfCheckInjection&
         const bool answer = got.intersect[i] != 0;
         if (answer == expected) continue;
         if (report.wrong++ == 0)
-            report.firstWrong = "case " + std::to_string(i) + " \"" + cases[i].name + "\": " + formatTriPair(cases[i].pair) +
-                                ", expected " + (expected ? "1 (intersecting)" : "0 (apart)") + ", got " +
+            report.firstWrong = "case " + std::to_string(i) + " \"" + cases[i].name +
+                                "\": " + formatTriPair(cases[i].pair) + ", expected " +
+                                (expected ? "1 (intersecting)" : "0 (apart)") + ", got " +
                                 (answer ? "1 (intersecting)" : "0 (apart)");
     }
     report.passed = report.wrong == 0;

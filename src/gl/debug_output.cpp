@@ -33,7 +33,8 @@ DebugOutputScope::~DebugOutputScope() {
     const void* param = currentParam;
     while (callback == &DebugOutputScope::trampoline && param != nullptr && param != this) {
         auto* later = const_cast<DebugOutputScope*>(static_cast<const DebugOutputScope*>(param));
-        if (later->m_previousCallback == &DebugOutputScope::trampoline && later->m_previousUserParam == this) {
+        if (later->m_previousCallback == &DebugOutputScope::trampoline &&
+            later->m_previousUserParam == this) {
             later->m_previousCallback = m_previousCallback;
             later->m_previousUserParam = m_previousUserParam;
             if (m_flags & kEnableOutput) {
@@ -64,7 +65,7 @@ void GLAPIENTRY DebugOutputScope::trampoline(GLenum source, GLenum type, GLuint 
     // length < 0 means NUL-terminated (allowed by the spec for callbacks from some drivers).
     const std::string_view text = message == nullptr ? std::string_view()
                                   : length < 0       ? std::string_view(message)
-                                                     : std::string_view(message, static_cast<std::size_t>(length));
+                                               : std::string_view(message, static_cast<std::size_t>(length));
     if (self->m_handler) {
         // The callback is called from inside the driver: exceptions must not cross it.
         try {

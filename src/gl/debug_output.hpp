@@ -27,13 +27,13 @@ struct DebugMessage {
 /// after a scope and chaining to it cannot be found, so a scope under one must outlive it).
 /// The context must be current at construction and destruction. Not movable: GL holds a pointer to it.
 class DebugOutputScope {
-public:
+  public:
     using Handler = std::function<void(const DebugMessage&)>;
 
     enum Flags : unsigned {
         kNone = 0,
-        kEnableOutput = 1u << 0,      ///< glEnable(GL_DEBUG_OUTPUT) (off by default in non-debug contexts)
-        kSynchronous = 1u << 1,       ///< glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS): callback on the calling thread
+        kEnableOutput = 1u << 0, ///< glEnable(GL_DEBUG_OUTPUT) (off by default in non-debug contexts)
+        kSynchronous = 1u << 1,  ///< glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS): callback on the calling thread
     };
 
     /// `flags` enable states are saved and restored on destruction.
@@ -46,7 +46,7 @@ public:
     GLDEBUGPROC previousCallback() const { return m_previousCallback; }
     const void* previousUserParam() const { return m_previousUserParam; }
 
-private:
+  private:
     static void GLAPIENTRY trampoline(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
                                       const GLchar* message, const void* userParam);
 
@@ -66,13 +66,13 @@ void labelObject(GLenum identifier, GLuint name, std::string_view label);
 /// apitrace) and debug output show which glcollide pass issued a call. Does nothing when the
 /// group stack is full, rather than raising GL_STACK_OVERFLOW in the host's context.
 class DebugGroup {
-public:
+  public:
     explicit DebugGroup(std::string_view name, GLuint id = 0);
     ~DebugGroup();
     DebugGroup(const DebugGroup&) = delete;
     DebugGroup& operator=(const DebugGroup&) = delete;
 
-private:
+  private:
     bool m_pushed = false;
 };
 

@@ -55,10 +55,14 @@ DeviceSelector DeviceSelector::parse(std::string_view text) {
 
 std::string DeviceSelector::toString() const {
     switch (kind) {
-    case Kind::Auto: return "auto";
-    case Kind::Software: return "software";
-    case Kind::Index: return std::to_string(number);
-    case Kind::Cuda: return "cuda:" + std::to_string(number);
+    case Kind::Auto:
+        return "auto";
+    case Kind::Software:
+        return "software";
+    case Kind::Index:
+        return std::to_string(number);
+    case Kind::Cuda:
+        return "cuda:" + std::to_string(number);
     }
     return "auto";
 }
@@ -69,8 +73,10 @@ std::string EglDeviceInfo::description() const {
         if (hasWord(extensions, ext)) parts.emplace_back(ext);
     if (!queryable) parts.emplace_back("not queryable");
     if (software) parts.emplace_back("software");
-    if (!drmRenderNode.empty()) parts.push_back(drmRenderNode);
-    else if (!drmDeviceFile.empty()) parts.push_back(drmDeviceFile);
+    if (!drmRenderNode.empty())
+        parts.push_back(drmRenderNode);
+    else if (!drmDeviceFile.empty())
+        parts.push_back(drmDeviceFile);
     if (cudaDevice >= 0) parts.push_back("cuda:" + std::to_string(cudaDevice));
     std::string text = "EGL device " + std::to_string(index);
     if (!parts.empty()) {
@@ -104,12 +110,11 @@ ClientCaps queryClientCaps() {
     caps.surfacelessMesa = hasWord(caps.extensions, "EGL_MESA_platform_surfaceless");
     // Cross-check with epoxy's own view: it is what decides whether a call aborts.
     caps.platformBase = caps.platformBase && epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base");
-    caps.deviceEnumeration = caps.deviceEnumeration &&
-        (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base") ||
-         epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration"));
-    caps.deviceQuery = caps.deviceQuery &&
-        (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base") ||
-         epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_query"));
+    caps.deviceEnumeration =
+        caps.deviceEnumeration && (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base") ||
+                                   epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration"));
+    caps.deviceQuery = caps.deviceQuery && (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base") ||
+                                            epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_query"));
     return caps;
 }
 
@@ -188,12 +193,16 @@ std::string candidateName(const Candidate& candidate, std::span<const EglDeviceI
 std::vector<Candidate> planCandidates(const DeviceSelector& selector, const PlanInputs& in) {
     using Kind = DeviceSelector::Kind;
     std::vector<Candidate> plan;
-    const auto addDevice = [&](const EglDeviceInfo& d) { plan.push_back({Candidate::Kind::Device, d.index}); };
+    const auto addDevice = [&](const EglDeviceInfo& d) {
+        plan.push_back({Candidate::Kind::Device, d.index});
+    };
     const auto explicitNeedsDevices = [&](const std::string& what) {
         if (!in.canOpenDevices)
-            throw Error("EGL device " + what + " requested, but EGL cannot open devices (needs the client "
+            throw Error("EGL device " + what +
+                        " requested, but EGL cannot open devices (needs the client "
                         "extensions EGL_EXT_platform_base, EGL_EXT_platform_device and "
-                        "EGL_EXT_device_enumeration or EGL_EXT_device_base); " + describeDevices(in.devices));
+                        "EGL_EXT_device_enumeration or EGL_EXT_device_base); " +
+                        describeDevices(in.devices));
     };
 
     switch (selector.kind) {
@@ -207,12 +216,13 @@ std::vector<Candidate> planCandidates(const DeviceSelector& selector, const Plan
                 if (d.queryable && d.software) addDevice(d);
         if (plan.empty())
             throw Error(std::string("no usable EGL device or platform: ") + describeDevices(in.devices) +
-                        (in.requireGpu ? " (a GPU was required)" : "") + ", and Mesa's surfaceless platform "
-                        "(EGL_MESA_platform_surfaceless) is " + (in.canOpenSurfaceless ? "available" : "missing"));
+                        (in.requireGpu ? " (a GPU was required)" : "") +
+                        ", and Mesa's surfaceless platform "
+                        "(EGL_MESA_platform_surfaceless) is " +
+                        (in.canOpenSurfaceless ? "available" : "missing"));
         break;
     case Kind::Software:
-        if (in.requireGpu)
-            throw Error("EGL device \"software\" requested together with requireGpu");
+        if (in.requireGpu) throw Error("EGL device \"software\" requested together with requireGpu");
         if (in.canOpenDevices)
             for (const EglDeviceInfo& d : in.devices)
                 if (d.software) addDevice(d);
@@ -221,7 +231,8 @@ std::vector<Candidate> planCandidates(const DeviceSelector& selector, const Plan
         if (plan.empty() && in.canOpenSurfaceless) plan.push_back({Candidate::Kind::Surfaceless, -1});
         if (plan.empty())
             throw Error("EGL device \"software\" requested, but there is no EGL_MESA_device_software device "
-                        "and no Mesa surfaceless platform; " + describeDevices(in.devices));
+                        "and no Mesa surfaceless platform; " +
+                        describeDevices(in.devices));
         break;
     case Kind::Index: {
         explicitNeedsDevices(selector.toString());
@@ -238,7 +249,8 @@ std::vector<Candidate> planCandidates(const DeviceSelector& selector, const Plan
         const auto it = std::find_if(in.devices.begin(), in.devices.end(),
                                      [&](const EglDeviceInfo& d) { return d.cudaDevice == selector.number; });
         if (it == in.devices.end())
-            throw Error("EGL device " + selector.toString() + " requested, but no device reports that "
+            throw Error("EGL device " + selector.toString() +
+                        " requested, but no device reports that "
                         "EGL_CUDA_DEVICE_NV ordinal (ordinals follow CUDA_VISIBLE_DEVICES); " +
                         describeDevices(in.devices));
         addDevice(*it);

@@ -13,13 +13,13 @@ namespace glcollide::egl {
 /// Client (display-independent) EGL capabilities. Every extension function is gated on these,
 /// because libepoxy aborts the process when a function has no provider (platform.md §1.6).
 struct ClientCaps {
-    bool libraryLoaded = false;   // libEGL could be loaded at all
-    std::string extensions;       // eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS)
-    bool platformBase = false;    // EGL_EXT_platform_base
-    bool platformDevice = false;  // EGL_EXT_platform_device
+    bool libraryLoaded = false;     // libEGL could be loaded at all
+    std::string extensions;         // eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS)
+    bool platformBase = false;      // EGL_EXT_platform_base
+    bool platformDevice = false;    // EGL_EXT_platform_device
     bool deviceEnumeration = false; // EGL_EXT_device_enumeration or EGL_EXT_device_base
-    bool deviceQuery = false;     // EGL_EXT_device_query or EGL_EXT_device_base
-    bool surfacelessMesa = false; // EGL_MESA_platform_surfaceless
+    bool deviceQuery = false;       // EGL_EXT_device_query or EGL_EXT_device_base
+    bool surfacelessMesa = false;   // EGL_MESA_platform_surfaceless
 
     bool canOpenDevices() const { return platformBase && platformDevice && deviceEnumeration; }
     bool canOpenSurfaceless() const { return platformBase && surfacelessMesa; }
@@ -41,7 +41,7 @@ std::vector<Device> enumerateDevices(const ClientCaps& caps);
 struct Candidate {
     enum class Kind { Device, Surfaceless };
     Kind kind = Kind::Surfaceless;
-    int deviceIndex = -1;  // index into the device list for Kind::Device
+    int deviceIndex = -1; // index into the device list for Kind::Device
     friend bool operator==(const Candidate&, const Candidate&) = default;
 };
 

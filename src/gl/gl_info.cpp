@@ -36,7 +36,8 @@ std::string checkCurrentContext() {
         throw Error("no OpenGL context is current on this thread (glGetString(GL_VERSION) returned "
                     "NULL); make a GL 4.3 context current first, or use glcollide::HeadlessContext");
     if (!epoxy_is_desktop_gl())
-        throw Error("the current context is OpenGL ES (\"" + version + "\"), not desktop OpenGL. " + kHowToGet43);
+        throw Error("the current context is OpenGL ES (\"" + version + "\"), not desktop OpenGL. " +
+                    kHowToGet43);
     const int packed = epoxy_gl_version();
     if (packed < 43)
         throw Error("the current context is OpenGL " + std::to_string(packed / 10) + "." +

@@ -13,7 +13,7 @@
 namespace glcollide::gl {
 
 class GpuTimer {
-public:
+  public:
     explicit GpuTimer(std::size_t sectionCount);
 
     /// Starts a frame: forgets the previous frame's queries (their objects are reused).
@@ -24,7 +24,7 @@ public:
     /// Waits for this frame's queries and returns milliseconds per section.
     std::vector<double> resolveMilliseconds();
 
-private:
+  private:
     /// Writes a GL_TIMESTAMP into the next free query (made and labelled on first use).
     std::uint32_t stamp();
 
@@ -42,13 +42,13 @@ private:
 /// The bracket around one pass's dispatches: a debug group named after the pass (RenderDoc,
 /// apitrace) and, when `timer` is not null, its timer section.
 class TimedSection {
-public:
+  public:
     TimedSection(GpuTimer* timer, std::size_t section, std::string_view name);
     ~TimedSection();
     TimedSection(const TimedSection&) = delete;
     TimedSection& operator=(const TimedSection&) = delete;
 
-private:
+  private:
     DebugGroup m_group;
     GpuTimer* m_timer;
     std::size_t m_section;

@@ -10,9 +10,15 @@
 
 namespace glcollide::gl {
 
-void deleteBuffer(GLname name) { glDeleteBuffers(1, &name); }
-void deleteProgram(GLname name) { glDeleteProgram(name); }
-void deleteQuery(GLname name) { glDeleteQueries(1, &name); }
+void deleteBuffer(GLname name) {
+    glDeleteBuffers(1, &name);
+}
+void deleteProgram(GLname name) {
+    glDeleteProgram(name);
+}
+void deleteQuery(GLname name) {
+    glDeleteQueries(1, &name);
+}
 
 namespace {
 
@@ -25,15 +31,16 @@ void checkStorageBlockSize(const std::string& label, std::size_t bytes) {
     GLint64 limit = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &limit);
     if (limit > 0 && bytes > static_cast<std::uint64_t>(limit))
-        throw Error("buffer '" + label + "' needs " + std::to_string(bytes) + " bytes, more than this device's " +
-                    "GL_MAX_SHADER_STORAGE_BLOCK_SIZE of " + std::to_string(limit) +
-                    " bytes (`glcollide info` shows it): use fewer or smaller bodies, or a device with a larger limit");
+        throw Error("buffer '" + label + "' needs " + std::to_string(bytes) +
+                    " bytes, more than this device's " + "GL_MAX_SHADER_STORAGE_BLOCK_SIZE of " +
+                    std::to_string(limit) +
+                    " bytes (`glcollide info` shows it): use fewer or smaller bodies, or a device with a "
+                    "larger limit");
 }
 
 } // namespace
 
-Buffer::Buffer(std::string_view label, std::size_t bytes, const void* data)
-    : m_bytes(bytes), m_label(label) {
+Buffer::Buffer(std::string_view label, std::size_t bytes, const void* data) : m_bytes(bytes), m_label(label) {
     checkStorageBlockSize(m_label, bytes);
     GLuint name = 0;
     glGenBuffers(1, &name);
@@ -49,16 +56,16 @@ Buffer::Buffer(std::string_view label, std::size_t bytes, const void* data)
         glBufferSubData(GL_COPY_WRITE_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data);
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
     if (glGetError() == GL_OUT_OF_MEMORY)
-        throw Error("GL out of memory allocating buffer '" + m_label + "' of " +
-                    std::to_string(bytes) + " bytes");
+        throw Error("GL out of memory allocating buffer '" + m_label + "' of " + std::to_string(bytes) +
+                    " bytes");
     labelObject(GL_BUFFER, name, "glcollide/" + m_label);
 }
 
 void Buffer::upload(std::size_t offset, std::size_t bytes, const void* data) {
     if (bytes == 0) return;
     glBindBuffer(GL_COPY_WRITE_BUFFER, name());
-    glBufferSubData(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(offset),
-                    static_cast<GLsizeiptr>(bytes), data);
+    glBufferSubData(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
+                    data);
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 }
 
@@ -66,8 +73,8 @@ void Buffer::download(std::size_t offset, std::size_t bytes, void* out) const {
     if (bytes == 0) return;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glBindBuffer(GL_COPY_READ_BUFFER, name());
-    glGetBufferSubData(GL_COPY_READ_BUFFER, static_cast<GLintptr>(offset),
-                       static_cast<GLsizeiptr>(bytes), out);
+    glGetBufferSubData(GL_COPY_READ_BUFFER, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
+                       out);
     glBindBuffer(GL_COPY_READ_BUFFER, 0);
 }
 

@@ -15,9 +15,8 @@ namespace glcollide::gl {
 using GLname = std::uint32_t;
 
 /// Common move-only ownership of one GL name.
-template <void (*Delete)(GLname)>
-class Handle {
-public:
+template <void (*Delete)(GLname)> class Handle {
+  public:
     Handle() = default;
     explicit Handle(GLname name) : m_name(name) {}
     ~Handle() { reset(); }
@@ -38,7 +37,7 @@ public:
         m_name = 0;
     }
 
-private:
+  private:
     GLname m_name = 0;
 };
 
@@ -48,7 +47,7 @@ void deleteQuery(GLname name);
 
 /// A GL buffer object of fixed byte size, labelled for debuggers (KHR_debug).
 class Buffer {
-public:
+  public:
     Buffer() = default;
     /// Allocates `bytes` (0 allowed: a 16-byte placeholder is made, so binding stays valid) and
     /// uploads `data` if not null. `label` appears in RenderDoc/apitrace as "glcollide/<label>".
@@ -65,15 +64,14 @@ public:
     /// glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, this).
     void bindStorage(std::uint32_t binding) const;
 
-private:
+  private:
     Handle<deleteBuffer> m_handle;
     std::size_t m_bytes = 0;
     std::string m_label;
 };
 
 /// A buffer holding a copy of `data` (a placeholder when empty).
-template <typename T>
-Buffer makeBuffer(std::string_view label, const std::vector<T>& data) {
+template <typename T> Buffer makeBuffer(std::string_view label, const std::vector<T>& data) {
     return Buffer(label, data.size() * sizeof(T), data.empty() ? nullptr : data.data());
 }
 

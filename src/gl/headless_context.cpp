@@ -17,36 +17,56 @@ namespace {
 
 std::string eglErrorName(EGLint code) {
     switch (code) {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CURRENT_SURFACE: return "EGL_BAD_CURRENT_SURFACE";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    case EGL_BAD_NATIVE_PIXMAP: return "EGL_BAD_NATIVE_PIXMAP";
-    case EGL_BAD_NATIVE_WINDOW: return "EGL_BAD_NATIVE_WINDOW";
-    case EGL_CONTEXT_LOST: return "EGL_CONTEXT_LOST";
-    case EGL_BAD_DEVICE_EXT: return "EGL_BAD_DEVICE_EXT";
-    default: return "EGL error 0x" + [&] {
-        char buf[16];
-        std::snprintf(buf, sizeof buf, "%04X", static_cast<unsigned>(code));
-        return std::string(buf);
-    }();
+    case EGL_SUCCESS:
+        return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+        return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+        return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+        return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+        return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONTEXT:
+        return "EGL_BAD_CONTEXT";
+    case EGL_BAD_CONFIG:
+        return "EGL_BAD_CONFIG";
+    case EGL_BAD_CURRENT_SURFACE:
+        return "EGL_BAD_CURRENT_SURFACE";
+    case EGL_BAD_DISPLAY:
+        return "EGL_BAD_DISPLAY";
+    case EGL_BAD_SURFACE:
+        return "EGL_BAD_SURFACE";
+    case EGL_BAD_MATCH:
+        return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+        return "EGL_BAD_PARAMETER";
+    case EGL_BAD_NATIVE_PIXMAP:
+        return "EGL_BAD_NATIVE_PIXMAP";
+    case EGL_BAD_NATIVE_WINDOW:
+        return "EGL_BAD_NATIVE_WINDOW";
+    case EGL_CONTEXT_LOST:
+        return "EGL_CONTEXT_LOST";
+    case EGL_BAD_DEVICE_EXT:
+        return "EGL_BAD_DEVICE_EXT";
+    default:
+        return "EGL error 0x" + [&] {
+            char buf[16];
+            std::snprintf(buf, sizeof buf, "%04X", static_cast<unsigned>(code));
+            return std::string(buf);
+        }();
     }
 }
 
-std::string lastEglError() { return eglErrorName(eglGetError()); }
+std::string lastEglError() {
+    return eglErrorName(eglGetError());
+}
 
 // eglCreateContext's EGL_BAD_MATCH usually means the driver's GL is older than the 4.3 we ask for.
 std::string contextCreationError() {
     const EGLint code = eglGetError();
-    return eglErrorName(code) + (code == EGL_BAD_MATCH ? " (the driver offers no OpenGL 4.3 core context)" : "");
+    return eglErrorName(code) +
+           (code == EGL_BAD_MATCH ? " (the driver offers no OpenGL 4.3 core context)" : "");
 }
 
 // EGL displays are process-wide singletons per (platform, native display) and eglTerminate is not
@@ -147,7 +167,8 @@ struct HeadlessContext::Impl {
     // error description on failure (and leaves nothing behind).
     std::optional<std::string> createContext(const HeadlessContextOptions& options) {
         if (!eglBindAPI(EGL_OPENGL_API))
-            return "eglBindAPI(EGL_OPENGL_API) failed (" + lastEglError() + "): no desktop OpenGL on this display";
+            return "eglBindAPI(EGL_OPENGL_API) failed (" + lastEglError() +
+                   "): no desktop OpenGL on this display";
 
         EGLint eglMajor = 0, eglMinor = 0;
         eglInitialize(display, &eglMajor, &eglMinor); // already initialised: just reads the version
@@ -156,7 +177,8 @@ struct HeadlessContext::Impl {
         std::vector<EGLint> attribs;
         if (egl15 || createContextKhr) {
             // Binary drivers give exactly the version asked for (Magnum), so ask for 4.3 core.
-            attribs = {EGL_CONTEXT_MAJOR_VERSION_KHR, 4, EGL_CONTEXT_MINOR_VERSION_KHR, 3,
+            attribs = {EGL_CONTEXT_MAJOR_VERSION_KHR,       4,
+                       EGL_CONTEXT_MINOR_VERSION_KHR,       3,
                        EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT_KHR};
             if (options.debug) {
                 if (egl15)
@@ -180,7 +202,9 @@ struct HeadlessContext::Impl {
         } else {
             context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs.data());
             if (context == EGL_NO_CONTEXT) {
-                failures = "eglCreateContext(EGL_NO_CONFIG_KHR, GL 4.3 core) failed: " + contextCreationError() + "; ";
+                failures =
+                    "eglCreateContext(EGL_NO_CONFIG_KHR, GL 4.3 core) failed: " + contextCreationError() +
+                    "; ";
             } else if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
                 // Advertising surfaceless does not guarantee it works (google/filament#8145):
                 // EGL_BAD_MATCH here means "use a pbuffer".
@@ -194,15 +218,17 @@ struct HeadlessContext::Impl {
         }
 
         // Fallback: a config with a 1x1 pbuffer. All rendering still goes to our own FBOs.
-        const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
-                                        EGL_NONE};
+        const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE,
+                                        EGL_PBUFFER_BIT, EGL_NONE};
         EGLConfig config = nullptr;
         EGLint configCount = 0;
         if (!eglChooseConfig(display, configAttribs, &config, 1, &configCount) || configCount < 1)
-            return failures + "no EGL config with EGL_OPENGL_BIT and EGL_PBUFFER_BIT (" + lastEglError() + ")";
+            return failures + "no EGL config with EGL_OPENGL_BIT and EGL_PBUFFER_BIT (" + lastEglError() +
+                   ")";
         context = eglCreateContext(display, config, EGL_NO_CONTEXT, attribs.data());
         if (context == EGL_NO_CONTEXT)
-            return failures + "eglCreateContext(pbuffer config, GL 4.3 core) failed: " + contextCreationError();
+            return failures +
+                   "eglCreateContext(pbuffer config, GL 4.3 core) failed: " + contextCreationError();
         const EGLint pbufferAttribs[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
         surface = eglCreatePbufferSurface(display, config, pbufferAttribs);
         if (surface == EGL_NO_SURFACE) {
@@ -232,7 +258,8 @@ struct HeadlessContext::Impl {
             return error;
         }
         if (options.requireGpu && glInfo.isSoftware) {
-            std::string error = "renderer \"" + glInfo.renderer + "\" is a software rasteriser, but a GPU was required";
+            std::string error =
+                "renderer \"" + glInfo.renderer + "\" is a software rasteriser, but a GPU was required";
             destroyContextAndSurface();
             return error;
         }
@@ -260,13 +287,15 @@ HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) : m_impl
 
     const egl::ClientCaps caps = egl::queryClientCaps();
     if (!caps.libraryLoaded)
-        throw Error(std::string("cannot create a headless OpenGL context: libEGL.so.1 could not be loaded. ") +
-                    egl::kInstallHint);
+        throw Error(
+            std::string("cannot create a headless OpenGL context: libEGL.so.1 could not be loaded. ") +
+            egl::kInstallHint);
     if (!caps.platformBase)
-        throw Error(std::string("cannot create a headless OpenGL context: EGL has no vendor implementation or "
-                                "lacks EGL_EXT_platform_base (client extensions: \"") +
-                    caps.extensions + "\"; check __EGL_VENDOR_LIBRARY_FILENAMES / __EGL_VENDOR_LIBRARY_DIRS). " +
-                    egl::kInstallHint);
+        throw Error(
+            std::string("cannot create a headless OpenGL context: EGL has no vendor implementation or "
+                        "lacks EGL_EXT_platform_base (client extensions: \"") +
+            caps.extensions + "\"; check __EGL_VENDOR_LIBRARY_FILENAMES / __EGL_VENDOR_LIBRARY_DIRS). " +
+            egl::kInstallHint);
 
     // If every candidate fails, the caller's current context (a host's, or another
     // HeadlessContext) must still be current afterwards: failed attempts release it.
@@ -293,8 +322,9 @@ HeadlessContext::HeadlessContext(const HeadlessContextOptions& options) : m_impl
         const std::string name = egl::candidateName(candidate, infos);
         EGLDisplay display = EGL_NO_DISPLAY;
         if (candidate.kind == egl::Candidate::Kind::Device)
-            display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT,
-                                               devices[static_cast<std::size_t>(candidate.deviceIndex)].handle, nullptr);
+            display = eglGetPlatformDisplayEXT(
+                EGL_PLATFORM_DEVICE_EXT, devices[static_cast<std::size_t>(candidate.deviceIndex)].handle,
+                nullptr);
         else
             display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         if (display == EGL_NO_DISPLAY) {
@@ -344,11 +374,21 @@ void HeadlessContext::makeCurrent() {
         throw Error("eglMakeCurrent failed for " + m_impl->description + ": " + lastEglError());
 }
 
-const GlInfo& HeadlessContext::glInfo() const { return m_impl->glInfo; }
-const std::string& HeadlessContext::eglVendor() const { return m_impl->eglVendor; }
-const std::string& HeadlessContext::eglVersion() const { return m_impl->eglVersion; }
-const std::string& HeadlessContext::deviceDescription() const { return m_impl->description; }
-bool HeadlessContext::surfaceless() const { return m_impl->surface == EGL_NO_SURFACE; }
+const GlInfo& HeadlessContext::glInfo() const {
+    return m_impl->glInfo;
+}
+const std::string& HeadlessContext::eglVendor() const {
+    return m_impl->eglVendor;
+}
+const std::string& HeadlessContext::eglVersion() const {
+    return m_impl->eglVersion;
+}
+const std::string& HeadlessContext::deviceDescription() const {
+    return m_impl->description;
+}
+bool HeadlessContext::surfaceless() const {
+    return m_impl->surface == EGL_NO_SURFACE;
+}
 
 std::vector<EglDeviceInfo> HeadlessContext::listDevices() {
     std::vector<EglDeviceInfo> infos;

@@ -34,7 +34,7 @@ inline constexpr std::uint32_t kStorageBindingCount = 26;
 /// (HostContextGl.GuardCost prints it).
 /// Needs the context current at both ends; not copyable or movable.
 class HostStateGuard {
-public:
+  public:
     enum class Scope { Compute, Transfer, Teardown };
 
     /// What the context offers beyond GL 4.3; probed once (at engine construction).
@@ -49,7 +49,7 @@ public:
     HostStateGuard(const HostStateGuard&) = delete;
     HostStateGuard& operator=(const HostStateGuard&) = delete;
 
-private:
+  private:
     struct Indexed {
         std::uint32_t buffer = 0;
         std::int64_t start = 0;

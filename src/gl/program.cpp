@@ -64,7 +64,8 @@ std::string shaderSource(std::string_view name, const std::vector<std::string>& 
             throw Error("invalid shader define '" + d + "' for " + std::string(name));
         // GLC_ switches are the shader's declared features: only those variants were validated at
         // build time (tools/shader_embed.cpp). A different kernel belongs in its own file.
-        if (macro.rfind("GLC_", 0) == 0 && !std::regex_search(shader.features, std::regex("(^| )" + macro + "( |$)")))
+        if (macro.rfind("GLC_", 0) == 0 &&
+            !std::regex_search(shader.features, std::regex("(^| )" + macro + "( |$)")))
             throw Error("shader '" + std::string(name) + "' has no feature " + macro + " (declared: '" +
                         shader.features + "')");
         defineBlock += "#define " + d + "\n";
@@ -84,8 +85,9 @@ std::string mapShaderLog(const std::string& log, std::string_view shaderName) {
         std::smatch m;
         if (std::regex_search(line, m, mesaRe) || std::regex_search(line, m, nvidiaRe)) {
             const std::size_t file = std::stoul(m[1].str());
-            const std::string fileName = file < shader.fileCount ? std::string("shaders/") + shader.files[file]
-                                                                 : "<source " + m[1].str() + ">";
+            const std::string fileName = file < shader.fileCount
+                                             ? std::string("shaders/") + shader.files[file]
+                                             : "<source " + m[1].str() + ">";
             line = fileName + ":" + m[2].str() + line.substr(static_cast<std::size_t>(m.length(0)));
         }
         out << line << "\n";
@@ -123,17 +125,19 @@ void ComputeProgram::build(const std::string& source, const std::vector<std::str
     }
     labelObject(GL_PROGRAM, m_handle.name(), "glcollide/" + m_shaderName);
     if (SetupStats* sink = activeSetupStats()) {
-        if (sink->cacheFolder.empty() && cache.location().enabled) sink->cacheFolder = cache.location().folder.string();
+        if (sink->cacheFolder.empty() && cache.location().enabled)
+            sink->cacheFolder = cache.location().folder.string();
         if (sink->cacheNote.empty()) sink->cacheNote = cache.note();
     }
-    recordProgramSetup({m_shaderName, defines, fnv1a64(source),
-                        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
-                        hit});
+    recordProgramSetup(
+        {m_shaderName, defines, fnv1a64(source),
+         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), hit});
 }
 
-Handle<deleteProgram> ComputeProgram::compileAndLink(const std::string& source,
-                                      const std::function<std::string(const std::string&)>& mapLog,
-                                      bool retrievable) const {
+Handle<deleteProgram>
+ComputeProgram::compileAndLink(const std::string& source,
+                               const std::function<std::string(const std::string&)>& mapLog,
+                               bool retrievable) const {
     const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
     const char* text = source.c_str();
     glShaderSource(shader, 1, &text, nullptr);
@@ -153,11 +157,15 @@ Handle<deleteProgram> ComputeProgram::compileAndLink(const std::string& source,
     glDetachShader(program.name(), shader);
     glDeleteShader(shader);
     glGetProgramiv(program.name(), GL_LINK_STATUS, &ok);
-    if (!ok) throw Error("linking shader '" + m_shaderName + "' failed:\n" + mapLog(infoLog(program.name(), true)));
+    if (!ok)
+        throw Error("linking shader '" + m_shaderName + "' failed:\n" +
+                    mapLog(infoLog(program.name(), true)));
     return program;
 }
 
-void ComputeProgram::use() const { glUseProgram(name()); }
+void ComputeProgram::use() const {
+    glUseProgram(name());
+}
 
 void ComputeProgram::set(const char* uniform, float value) const {
     glProgramUniform1f(name(), glGetUniformLocation(name(), uniform), value);

@@ -29,7 +29,7 @@ std::string mapShaderLog(const std::string& log, std::string_view shaderName);
 
 /// A linked compute program. Compile and link errors throw Error with the mapped log.
 class ComputeProgram {
-public:
+  public:
     ComputeProgram() = default;
     ComputeProgram(std::string_view shaderName, const std::vector<std::string>& defines = {});
     /// A program from complete GLSL text that is not an embedded shader (tests, probes); its
@@ -48,14 +48,14 @@ public:
     /// than 65535 groups spill into y, and the shader folds y back into its index).
     void dispatch1D(std::uint32_t invocations, std::uint32_t groupSize) const;
 
-private:
+  private:
     /// Loads the program from the program binary cache (gl/program_cache.hpp) or compiles and
     /// links it (then stores it there), and records the cost in the active SetupStats sink.
     void build(const std::string& source, const std::vector<std::string>& defines,
                const std::function<std::string(const std::string&)>& mapLog);
-    [[nodiscard]] Handle<deleteProgram> compileAndLink(const std::string& source,
-                                                       const std::function<std::string(const std::string&)>& mapLog,
-                                                       bool retrievable) const;
+    [[nodiscard]] Handle<deleteProgram>
+    compileAndLink(const std::string& source, const std::function<std::string(const std::string&)>& mapLog,
+                   bool retrievable) const;
 
     Handle<deleteProgram> m_handle;
     std::string m_shaderName;

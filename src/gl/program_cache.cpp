@@ -22,7 +22,9 @@ constexpr std::size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + 8;
 // Program binaries are kilobytes to a few megabytes; a larger file is not ours (read nothing).
 constexpr std::uintmax_t kMaxBinaryBytes = 256u << 20;
 
-bool isSet(const char* value) { return value != nullptr && value[0] != '\0'; }
+bool isSet(const char* value) {
+    return value != nullptr && value[0] != '\0';
+}
 
 void putU32(std::string& out, std::uint32_t v) {
     for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xffu));
@@ -68,7 +70,8 @@ std::optional<std::string> readFile(const std::filesystem::path& path, std::uint
 
 } // namespace
 
-CacheLocation resolveCacheLocation(const char* glcollideCacheDir, const char* xdgCacheHome, const char* home) {
+CacheLocation resolveCacheLocation(const char* glcollideCacheDir, const char* xdgCacheHome,
+                                   const char* home) {
     CacheLocation loc;
     if (isSet(glcollideCacheDir)) {
         if (std::string_view(glcollideCacheDir) == "off") {
@@ -107,8 +110,8 @@ DriverIdentity currentDriverIdentity() {
 }
 
 std::string programCacheKey(const DriverIdentity& driver, std::string_view source) {
-    std::string key = "glcollide program cache 1\nvendor: " + driver.vendor + "\nrenderer: " + driver.renderer +
-                      "\nversion: " + driver.version + "\nsource:\n";
+    std::string key = "glcollide program cache 1\nvendor: " + driver.vendor +
+                      "\nrenderer: " + driver.renderer + "\nversion: " + driver.version + "\nsource:\n";
     key += source;
     return key;
 }
@@ -176,7 +179,8 @@ void ProgramCache::noteOnce(std::string text) {
 std::filesystem::path ProgramCache::entryPath(std::string_view label, std::string_view key) const {
     std::string stem;
     for (const char c : label) {
-        const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+        const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                           c == '_' || c == '-';
         stem.push_back(plain ? c : '_');
     }
     if (stem.size() > 64) stem.resize(64);
@@ -191,9 +195,11 @@ bool ProgramCache::load(std::uint32_t program, std::string_view label, const std
     const std::optional<CacheEntry> entry = decodeCacheEntry(*bytes, key);
     if (!entry) return false; // corrupt, truncated or another key's file: rewritten after compiling
     // glProgramBinary with a format the context does not list is GL_INVALID_ENUM: check first.
-    if (std::find(m_formats.begin(), m_formats.end(), static_cast<std::int32_t>(entry->binaryFormat)) == m_formats.end())
+    if (std::find(m_formats.begin(), m_formats.end(), static_cast<std::int32_t>(entry->binaryFormat)) ==
+        m_formats.end())
         return false;
-    glProgramBinary(program, entry->binaryFormat, entry->binary.data(), static_cast<GLsizei>(entry->binary.size()));
+    glProgramBinary(program, entry->binaryFormat, entry->binary.data(),
+                    static_cast<GLsizei>(entry->binary.size()));
     GLint linked = GL_FALSE;
     glGetProgramiv(program, GL_LINK_STATUS, &linked);
     return linked == GL_TRUE; // false: the driver rejected it (e.g. built by another driver build)

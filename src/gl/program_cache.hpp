@@ -64,7 +64,7 @@ bool writeFileAtomically(const std::filesystem::path& target, std::string_view b
 std::vector<std::int32_t> programBinaryFormats();
 
 class ProgramCache {
-public:
+  public:
     explicit ProgramCache(CacheLocation location);
 
     /// The folder is set, could be created, and the driver offers a binary format.
@@ -85,7 +85,7 @@ public:
     /// processes never see a half-written file.
     void store(std::uint32_t program, std::string_view label, const std::string& key);
 
-private:
+  private:
     void noteOnce(std::string text);
 
     CacheLocation m_location;

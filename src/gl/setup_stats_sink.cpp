@@ -7,10 +7,16 @@ namespace {
 thread_local SetupStats* t_active = nullptr;
 } // namespace
 
-SetupStatsScope::SetupStatsScope(SetupStats* sink) : m_previous(t_active) { t_active = sink; }
-SetupStatsScope::~SetupStatsScope() { t_active = m_previous; }
+SetupStatsScope::SetupStatsScope(SetupStats* sink) : m_previous(t_active) {
+    t_active = sink;
+}
+SetupStatsScope::~SetupStatsScope() {
+    t_active = m_previous;
+}
 
-SetupStats* activeSetupStats() { return t_active; }
+SetupStats* activeSetupStats() {
+    return t_active;
+}
 
 void recordProgramSetup(ProgramSetup program) {
     SetupStats* sink = t_active;

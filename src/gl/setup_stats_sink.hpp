@@ -9,7 +9,7 @@
 namespace glcollide::gl {
 
 class SetupStatsScope {
-public:
+  public:
     /// Makes `sink` the active one on this thread until destruction (then the previous one,
     /// so scopes nest).
     explicit SetupStatsScope(SetupStats* sink);
@@ -17,7 +17,7 @@ public:
     SetupStatsScope(const SetupStatsScope&) = delete;
     SetupStatsScope& operator=(const SetupStatsScope&) = delete;
 
-private:
+  private:
     SetupStats* m_previous;
 };
 

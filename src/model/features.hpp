@@ -15,19 +15,24 @@
 namespace glcollide::model {
 
 /// Owned bit of corner k (0..2) of a face: GLC_OWN_VERTEX0 << k.
-constexpr std::uint32_t ownVertexBit(int k) { return GLC_OWN_VERTEX0 << k; }
+constexpr std::uint32_t ownVertexBit(int k) {
+    return GLC_OWN_VERTEX0 << k;
+}
 /// Owned bit of edge k (0..2) of a face, the edge from corner k to corner (k + 1) % 3:
 /// GLC_OWN_EDGE01 << k.
-constexpr std::uint32_t ownEdgeBit(int k) { return GLC_OWN_EDGE01 << k; }
+constexpr std::uint32_t ownEdgeBit(int k) {
+    return GLC_OWN_EDGE01 << k;
+}
 static_assert(ownVertexBit(1) == GLC_OWN_VERTEX1 && ownVertexBit(2) == GLC_OWN_VERTEX2 &&
                   ownEdgeBit(1) == GLC_OWN_EDGE12 && ownEdgeBit(2) == GLC_OWN_EDGE20,
               "the shaders shift GLC_OWN_VERTEX0 and GLC_OWN_EDGE01 by the corner or edge number");
 
 /// Edge k (0..2) of face f: its corners k and (k + 1) % 3, in the face's winding order.
-inline std::array<std::uint32_t, 2> faceEdge(const std::vector<std::uint32_t>& faceIndices, std::uint32_t face,
-                                             int k) {
+inline std::array<std::uint32_t, 2> faceEdge(const std::vector<std::uint32_t>& faceIndices,
+                                             std::uint32_t face, int k) {
     const std::size_t first = 3 * static_cast<std::size_t>(face);
-    return {faceIndices[first + static_cast<std::size_t>(k)], faceIndices[first + static_cast<std::size_t>((k + 1) % 3)]};
+    return {faceIndices[first + static_cast<std::size_t>(k)],
+            faceIndices[first + static_cast<std::size_t>((k + 1) % 3)]};
 }
 
 /// One key per undirected edge: (min << 32) | max of its two nodes.

@@ -4,8 +4,7 @@
 
 namespace glcollide::model {
 
-Csr buildAdjacency(std::size_t nodeCount, const std::vector<std::uint32_t>& itemNodes,
-                   std::size_t perItem) {
+Csr buildAdjacency(std::size_t nodeCount, const std::vector<std::uint32_t>& itemNodes, std::size_t perItem) {
     Csr csr;
     csr.offsets.assign(nodeCount + 1, 0);
     for (std::uint32_t n : itemNodes) ++csr.offsets[n + 1];

@@ -30,10 +30,10 @@ struct ObjectRange {
 };
 
 struct FlatModel {
-    std::vector<glm::dvec3> positions;  ///< m
-    std::vector<glm::dvec3> velocities; ///< m/s (0 for pinned nodes)
-    std::vector<double> masses;         ///< kg
-    std::vector<double> inverseMasses;  ///< 1/kg; 0 for pinned nodes
+    std::vector<glm::dvec3> positions;      ///< m
+    std::vector<glm::dvec3> velocities;     ///< m/s (0 for pinned nodes)
+    std::vector<double> masses;             ///< kg
+    std::vector<double> inverseMasses;      ///< 1/kg; 0 for pinned nodes
     std::vector<std::uint32_t> faceIndices; ///< 3 per face, global
     std::vector<FlatSpring> springs;
     std::vector<ObjectRange> objects;
@@ -48,8 +48,7 @@ struct FlatModel {
 FlatModel flatten(const Scene& scene);
 
 /// Builds the node→item adjacency of items that each list `perItem` node indices.
-Csr buildAdjacency(std::size_t nodeCount, const std::vector<std::uint32_t>& itemNodes,
-                   std::size_t perItem);
+Csr buildAdjacency(std::size_t nodeCount, const std::vector<std::uint32_t>& itemNodes, std::size_t perItem);
 
 /// Node→spring adjacency of a spring list (each spring appears in both of its nodes' rows).
 Csr buildSpringAdjacency(std::size_t nodeCount, const std::vector<FlatSpring>& springs);

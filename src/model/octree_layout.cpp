@@ -53,9 +53,10 @@ OctreeLayout buildOctree(const FlatModel& model, int depth) {
                 hi = glm::max(hi, p);
             }
         for (std::uint32_t f = r.firstFace; f < r.firstFace + r.faceCount; ++f) {
-            const glm::dvec3 centroid = (model.positions[model.faceIndices[3 * f]] +
-                                         model.positions[model.faceIndices[3 * f + 1]] +
-                                         model.positions[model.faceIndices[3 * f + 2]]) / 3.0;
+            const glm::dvec3 centroid =
+                (model.positions[model.faceIndices[3 * f]] + model.positions[model.faceIndices[3 * f + 1]] +
+                 model.positions[model.faceIndices[3 * f + 2]]) /
+                3.0;
             o.faceObject[f] = static_cast<std::uint32_t>(obj);
             o.faceBox[f] = firstBox + octreeCell(centroid, lo, hi, o.cellsPerAxis);
         }

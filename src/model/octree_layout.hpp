@@ -15,10 +15,10 @@
 namespace glcollide::model {
 
 struct OctreeLayout {
-    int depth = 0;                     ///< 1..3
-    std::uint32_t cellsPerAxis = 0;    ///< 2^depth
-    std::uint32_t boxesPerObject = 0;  ///< 8^depth
-    std::uint32_t boxCount = 0;        ///< objects * boxesPerObject
+    int depth = 0;                         ///< 1..3
+    std::uint32_t cellsPerAxis = 0;        ///< 2^depth
+    std::uint32_t boxesPerObject = 0;      ///< 8^depth
+    std::uint32_t boxCount = 0;            ///< objects * boxesPerObject
     std::vector<std::uint32_t> faceObject; ///< object of each face
     std::vector<std::uint32_t> faceBox;    ///< global leaf box of each face (firstBox + cell)
     std::vector<std::uint32_t> faceOwned;  ///< owned-feature bits (GLC_OWN_*) of each face: ownedFeatures

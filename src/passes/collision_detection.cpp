@@ -55,14 +55,13 @@ void CollisionTables::bind() const {
 
 CollisionDetection::CollisionDetection(const CollisionConfig& config, const model::FlatModel& model)
     : m_faceCount(static_cast<std::uint32_t>(model.faceCount())),
-      m_layout(model::buildOctree(model, checked(config.settings).octreeDepth)),
-      m_tables(model, m_layout),
+      m_layout(model::buildOctree(model, checked(config.settings).octreeDepth)), m_tables(model, m_layout),
       m_lists(std::make_unique<AppendLists>(listByteLimit(config))),
       m_narrowPhase(config.settings.precision) {
     const CollisionSettings& s = config.settings;
     const auto initial = [&](std::uint32_t capacity) { return capacity ? capacity : s.initialCapacity; };
-    m_lists->declare(GLC_LIST_CANDIDATES,
-                     {"candidates", "pairs", kPairBytes, GLC_BIND_FACE_PAIRS, initial(config.candidateCapacity)});
+    m_lists->declare(GLC_LIST_CANDIDATES, {"candidates", "pairs", kPairBytes, GLC_BIND_FACE_PAIRS,
+                                           initial(config.candidateCapacity)});
     m_lists->declare(GLC_LIST_INTERSECTIONS, {"intersections", "pairs", kPairBytes, GLC_BIND_INTERSECTIONS,
                                               initial(config.intersectionCapacity)});
     BroadPhaseContext context{model, m_layout, s};

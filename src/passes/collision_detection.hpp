@@ -60,7 +60,7 @@ struct CollisionTables {
 };
 
 class CollisionDetection {
-public:
+  public:
     /// Builds the octree layout from the rest pose `model.positions` (it assigns GpuFaceInfo.box),
     /// uploads the tables, makes the broad phase of config.settings.broadPhase and the narrow
     /// phase, and allocates every list with its first capacity. Needs a current GL 4.3 context;
@@ -102,7 +102,7 @@ public:
     [[nodiscard]] std::vector<std::string> allocatedLabels() const;
     [[nodiscard]] std::size_t allocatedBytes() const;
 
-private:
+  private:
     [[nodiscard]] std::vector<const gl::Buffer*> allBuffers() const;
 
     std::uint32_t m_faceCount = 0;

@@ -10,7 +10,8 @@ namespace glcollide::passes {
 
 ContactResponsePass::ContactResponsePass() : m_program("contact_response") {}
 
-void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& in, const ContactParams& params) const {
+void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& in,
+                                   const ContactParams& params) const {
     bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
     bindRequired(b.faces, GLC_BIND_FACES, kName, "faces");

@@ -20,13 +20,14 @@ struct ContactInputs {
 };
 
 class ContactResponsePass {
-public:
+  public:
     static constexpr PassId kId = PassId::ContactResponse;
     static constexpr const char* kName = passName(kId);
     ContactResponsePass();
-    void dispatch(const DeviceBuffers& buffers, const ContactInputs& inputs, const ContactParams& params) const;
+    void dispatch(const DeviceBuffers& buffers, const ContactInputs& inputs,
+                  const ContactParams& params) const;
 
-private:
+  private:
     gl::ComputeProgram m_program;
 };
 

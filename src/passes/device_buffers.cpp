@@ -4,8 +4,7 @@
 
 namespace glcollide::passes {
 namespace {
-template <typename F>
-void forEach(const DeviceBuffers& b, F&& f) {
+template <typename F> void forEach(const DeviceBuffers& b, F&& f) {
     for (const gl::Buffer* buffer :
          {&b.positions, &b.velocities, &b.faces, &b.forces, &b.springs, &b.nodeSpringOffsets,
           &b.nodeSpringList, &b.nodeFaceOffsets, &b.nodeFaceList, &b.contactForces, &b.health})

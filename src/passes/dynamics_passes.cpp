@@ -69,7 +69,8 @@ void SpringUpdatePass::dispatch(const DeviceBuffers& b) const {
 NodeUpdatePass::NodeUpdatePass(const NodeUpdateParams& config)
     : m_config(config), m_program("node_update", nodeUpdateDefines(config)) {}
 
-void NodeUpdatePass::dispatch(const DeviceBuffers& b, const NodeUpdateParams& params, std::uint32_t substep) const {
+void NodeUpdatePass::dispatch(const DeviceBuffers& b, const NodeUpdateParams& params,
+                              std::uint32_t substep) const {
     bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
     if (m_config.forces) bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");

@@ -12,37 +12,38 @@
 namespace glcollide::passes {
 
 class NodeForcePass {
-public:
+  public:
     static constexpr PassId kId = PassId::NodeForce;
     static constexpr const char* kName = passName(kId);
     explicit NodeForcePass(const NodeForceParams& config);
     void dispatch(const DeviceBuffers& buffers, const NodeForceParams& params) const;
 
-private:
+  private:
     NodeForceParams m_config;
     gl::ComputeProgram m_program;
 };
 
 class SpringUpdatePass {
-public:
+  public:
     static constexpr PassId kId = PassId::SpringUpdate;
     static constexpr const char* kName = passName(kId);
     explicit SpringUpdatePass(const SpringUpdateParams& config);
     void dispatch(const DeviceBuffers& buffers) const;
 
-private:
+  private:
     gl::ComputeProgram m_program;
 };
 
 class NodeUpdatePass {
-public:
+  public:
     static constexpr PassId kId = PassId::NodeUpdate;
     static constexpr const char* kName = passName(kId);
     explicit NodeUpdatePass(const NodeUpdateParams& config);
     /// `substep`: index within the frame, recorded with a non-finite node when checkFinite is on.
-    void dispatch(const DeviceBuffers& buffers, const NodeUpdateParams& params, std::uint32_t substep = 0) const;
+    void dispatch(const DeviceBuffers& buffers, const NodeUpdateParams& params,
+                  std::uint32_t substep = 0) const;
 
-private:
+  private:
     NodeUpdateParams m_config;
     gl::ComputeProgram m_program;
 };

@@ -10,14 +10,26 @@
 namespace glcollide::passes {
 
 /// In pipeline order (a substep dispatches them in this order when its scene calls for them).
-enum class PassId : std::uint8_t { NodeForce, SpringUpdate, BBUpdate, BBCollision, TriTri, ContactResponse, NodeUpdate };
+enum class PassId : std::uint8_t {
+    NodeForce,
+    SpringUpdate,
+    BBUpdate,
+    BBCollision,
+    TriTri,
+    ContactResponse,
+    NodeUpdate
+};
 
 inline constexpr std::size_t kPassCount = 7;
 
 inline constexpr std::array<const char*, kPassCount> kPassNames = {
     "NodeForce", "SpringUpdate", "BBUpdate", "BBCollision", "TriTri", "ContactResponse", "NodeUpdate"};
 
-constexpr const char* passName(PassId id) { return kPassNames[static_cast<std::size_t>(id)]; }
-constexpr std::size_t passIndex(PassId id) { return static_cast<std::size_t>(id); }
+constexpr const char* passName(PassId id) {
+    return kPassNames[static_cast<std::size_t>(id)];
+}
+constexpr std::size_t passIndex(PassId id) {
+    return static_cast<std::size_t>(id);
+}
 
 } // namespace glcollide::passes

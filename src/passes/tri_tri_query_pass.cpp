@@ -11,7 +11,9 @@
 
 namespace glcollide::passes {
 
-const char* toString(TriTriPrecision precision) { return precision == TriTriPrecision::Robust ? "robust" : "fast"; }
+const char* toString(TriTriPrecision precision) {
+    return precision == TriTriPrecision::Robust ? "robust" : "fast";
+}
 
 TriTriQueryPass::TriTriQueryPass(TriTriPrecision precision) : m_precision(precision) {
     if (precision == TriTriPrecision::Robust) {
@@ -37,7 +39,8 @@ TriTriQueryBatch TriTriQueryPass::upload(const std::vector<TriTriPair>& pairs) c
     b.results = gl::Buffer("query_results", pairs.size() * sizeof(std::uint32_t));
     b.stats = gl::Buffer("query_stats", 2 * sizeof(std::uint32_t));
     if (m_precision == TriTriPrecision::Robust)
-        b.undecided = gl::Buffer("query_undecided", pairs.size() * sizeof(std::uint32_t)); // at most every pair
+        b.undecided =
+            gl::Buffer("query_undecided", pairs.size() * sizeof(std::uint32_t)); // at most every pair
     return b;
 }
 

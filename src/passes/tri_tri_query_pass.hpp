@@ -41,7 +41,7 @@ struct TriTriQueryBatch {
 };
 
 class TriTriQueryPass {
-public:
+  public:
     static constexpr const char* kName = "TriTriQuery";
     explicit TriTriQueryPass(TriTriPrecision precision);
 
@@ -57,7 +57,7 @@ public:
     void dispatch(TriTriQueryBatch& batch) const;
     [[nodiscard]] TriTriQueryResult read(const TriTriQueryBatch& batch) const;
 
-private:
+  private:
     TriTriPrecision m_precision;
     gl::ComputeProgram m_program;
     gl::ComputeProgram m_exact; ///< robust only: the exact pass over the undecided pairs

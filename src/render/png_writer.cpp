@@ -22,13 +22,16 @@ void appendBytes(void* context, void* data, int size) {
 
 void writePng(const std::filesystem::path& path, const Image& image) {
     if (image.width <= 0 || image.height <= 0 ||
-        image.rgba.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4)
+        image.rgba.size() !=
+            static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4)
         throw Error(path.string() + ": cannot write an empty or malformed image");
-    std::vector<unsigned char> rgb(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3);
+    std::vector<unsigned char> rgb(static_cast<std::size_t>(image.width) *
+                                   static_cast<std::size_t>(image.height) * 3);
     for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i)
         for (std::size_t c = 0; c < 3; ++c) rgb[3 * i + c] = image.rgba[4 * i + c];
     std::vector<unsigned char> png;
-    if (stbi_write_png_to_func(appendBytes, &png, image.width, image.height, 3, rgb.data(), image.width * 3) == 0)
+    if (stbi_write_png_to_func(appendBytes, &png, image.width, image.height, 3, rgb.data(),
+                               image.width * 3) == 0)
         throw Error(path.string() + ": PNG encoding failed");
     std::ofstream out(path, std::ios::binary);
     if (!out) throw Error(path.string() + ": cannot open for writing");

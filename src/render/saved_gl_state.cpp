@@ -5,9 +5,18 @@ namespace {
 
 // Capabilities the renderer sets one way or the other while drawing.
 constexpr std::array<GLenum, 13> kCapabilities = {
-    GL_DEPTH_TEST,           GL_CULL_FACE,       GL_BLEND,           GL_SCISSOR_TEST,
-    GL_STENCIL_TEST,         GL_POLYGON_OFFSET_FILL, GL_MULTISAMPLE, GL_FRAMEBUFFER_SRGB,
-    GL_RASTERIZER_DISCARD,   GL_SAMPLE_ALPHA_TO_COVERAGE, GL_PRIMITIVE_RESTART, GL_DEPTH_CLAMP,
+    GL_DEPTH_TEST,
+    GL_CULL_FACE,
+    GL_BLEND,
+    GL_SCISSOR_TEST,
+    GL_STENCIL_TEST,
+    GL_POLYGON_OFFSET_FILL,
+    GL_MULTISAMPLE,
+    GL_FRAMEBUFFER_SRGB,
+    GL_RASTERIZER_DISCARD,
+    GL_SAMPLE_ALPHA_TO_COVERAGE,
+    GL_PRIMITIVE_RESTART,
+    GL_DEPTH_CLAMP,
     GL_DITHER,
 };
 
@@ -38,7 +47,8 @@ SavedGlState::SavedGlState(GLuint storageBinding, GLuint textureUnit)
     glGetIntegerv(GL_PACK_ROW_LENGTH, &m_packRowLength);
     glGetIntegerv(GL_PACK_SKIP_ROWS, &m_packSkipRows);
     glGetIntegerv(GL_PACK_SKIP_PIXELS, &m_packSkipPixels);
-    for (std::size_t i = 0; i < kCapabilities.size(); ++i) m_caps[i] = {kCapabilities[i], glIsEnabled(kCapabilities[i])};
+    for (std::size_t i = 0; i < kCapabilities.size(); ++i)
+        m_caps[i] = {kCapabilities[i], glIsEnabled(kCapabilities[i])};
     glGetIntegerv(GL_DEPTH_FUNC, &m_depthFunc);
     glGetBooleanv(GL_DEPTH_WRITEMASK, &m_depthMask);
     glGetBooleanv(GL_COLOR_WRITEMASK, m_colorMask.data());
@@ -63,7 +73,8 @@ SavedGlState::~SavedGlState() {
     const auto buffer = static_cast<GLuint>(m_indexedStorageBuffer);
     if (buffer != 0 && m_indexedStorageSize > 0)
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, m_storageBinding, buffer,
-                          static_cast<GLintptr>(m_indexedStorageStart), static_cast<GLsizeiptr>(m_indexedStorageSize));
+                          static_cast<GLintptr>(m_indexedStorageStart),
+                          static_cast<GLsizeiptr>(m_indexedStorageSize));
     else
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, m_storageBinding, buffer);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(m_storageBuffer));
@@ -80,8 +91,10 @@ SavedGlState::~SavedGlState() {
     glPixelStorei(GL_PACK_SKIP_ROWS, m_packSkipRows);
     glPixelStorei(GL_PACK_SKIP_PIXELS, m_packSkipPixels);
     for (const Capability& c : m_caps) {
-        if (c.enabled) glEnable(c.cap);
-        else glDisable(c.cap);
+        if (c.enabled)
+            glEnable(c.cap);
+        else
+            glDisable(c.cap);
     }
     glDepthFunc(static_cast<GLenum>(m_depthFunc));
     glDepthMask(m_depthMask);

@@ -1,7 +1,8 @@
 #pragma once
 // Everything the renderer changes in a context, captured on construction and put back on
-// destruction, so rendering inside a host's context leaves it as it was (docs/design/decisions/0016-host-gl-state-contract.md: a host that
-// embeds glcollide sees no surprise changes to its GL state).
+// destruction, so rendering inside a host's context leaves it as it was
+// (docs/design/decisions/0016-host-gl-state-contract.md: a host that embeds glcollide sees no surprise
+// changes to its GL state).
 
 #include <epoxy/gl.h>
 
@@ -10,7 +11,7 @@
 namespace glcollide::render {
 
 class SavedGlState {
-public:
+  public:
     /// Saves the state listed in the .cpp, including the indexed shader-storage binding
     /// `storageBinding` and the 2D texture and sampler bound on texture unit `textureUnit`
     /// (0-based).
@@ -19,7 +20,7 @@ public:
     SavedGlState(const SavedGlState&) = delete;
     SavedGlState& operator=(const SavedGlState&) = delete;
 
-private:
+  private:
     struct Capability {
         GLenum cap;
         GLboolean enabled;
@@ -30,7 +31,8 @@ private:
     GLint m_drawFramebuffer = 0, m_readFramebuffer = 0, m_renderbuffer = 0;
     std::array<GLint, 4> m_viewport{};
     GLint m_program = 0, m_vertexArray = 0;
-    GLint m_arrayBuffer = 0, m_copyReadBuffer = 0, m_copyWriteBuffer = 0, m_storageBuffer = 0, m_pixelPackBuffer = 0;
+    GLint m_arrayBuffer = 0, m_copyReadBuffer = 0, m_copyWriteBuffer = 0, m_storageBuffer = 0,
+          m_pixelPackBuffer = 0;
     GLint m_indexedStorageBuffer = 0;
     GLint64 m_indexedStorageStart = 0, m_indexedStorageSize = 0;
     GLint m_activeTexture = 0, m_texture2D = 0, m_sampler = 0;

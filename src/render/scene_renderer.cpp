@@ -27,10 +27,18 @@ namespace {
 
 using gl::GLname;
 
-void deleteVertexArray(GLname name) { glDeleteVertexArrays(1, &name); }
-void deleteFramebuffer(GLname name) { glDeleteFramebuffers(1, &name); }
-void deleteRenderbuffer(GLname name) { glDeleteRenderbuffers(1, &name); }
-void deleteTexture(GLname name) { glDeleteTextures(1, &name); }
+void deleteVertexArray(GLname name) {
+    glDeleteVertexArrays(1, &name);
+}
+void deleteFramebuffer(GLname name) {
+    glDeleteFramebuffers(1, &name);
+}
+void deleteRenderbuffer(GLname name) {
+    glDeleteRenderbuffers(1, &name);
+}
+void deleteTexture(GLname name) {
+    glDeleteTextures(1, &name);
+}
 
 using VertexArray = gl::Handle<deleteVertexArray>;
 using Framebuffer = gl::Handle<deleteFramebuffer>;
@@ -106,7 +114,8 @@ void finishView(View& v, const Scene& scene, double aspect) {
     if (!(glm::length(v.up) > 0.0) ||
         glm::length(glm::cross(glm::normalize(forward), glm::normalize(v.up))) < 1e-6)
         throw Error(scene.name + ": camera up is zero or parallel to the view direction");
-    if (!(v.fovDeg > 0.0 && v.fovDeg < 180.0)) throw Error(scene.name + ": camera fov_deg must be in (0, 180)");
+    if (!(v.fovDeg > 0.0 && v.fovDeg < 180.0))
+        throw Error(scene.name + ": camera fov_deg must be in (0, 180)");
     // Depth range: everything within the framed box and the grid square, seen from the eye.
     const Box box = framedBox(scene);
     const Grid grid = sceneGrid(scene);
@@ -118,11 +127,15 @@ void finishView(View& v, const Scene& scene, double aspect) {
 
 std::string infoLog(GLuint object, bool isProgram) {
     GLint length = 0;
-    if (isProgram) glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length);
-    else glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
+    if (isProgram)
+        glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length);
+    else
+        glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-    if (isProgram) glGetProgramInfoLog(object, length, nullptr, log.data());
-    else glGetShaderInfoLog(object, length, nullptr, log.data());
+    if (isProgram)
+        glGetProgramInfoLog(object, length, nullptr, log.data());
+    else
+        glGetShaderInfoLog(object, length, nullptr, log.data());
     while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
     return log;
 }
@@ -130,11 +143,12 @@ std::string infoLog(GLuint object, bool isProgram) {
 Program buildProgram(const char* vertexFile, const char* fragmentFile) {
     Program program(glCreateProgram());
     std::array<GLuint, 2> shaders{};
-    const std::array<std::pair<GLenum, const char*>, 2> stages = {{{GL_VERTEX_SHADER, vertexFile},
-                                                                   {GL_FRAGMENT_SHADER, fragmentFile}}};
+    const std::array<std::pair<GLenum, const char*>, 2> stages = {
+        {{GL_VERTEX_SHADER, vertexFile}, {GL_FRAGMENT_SHADER, fragmentFile}}};
     for (std::size_t i = 0; i < stages.size(); ++i) {
         const char* source = embeddedShaderSource(stages[i].second);
-        if (source == nullptr) throw Error(std::string("no embedded shader shaders/render/") + stages[i].second);
+        if (source == nullptr)
+            throw Error(std::string("no embedded shader shaders/render/") + stages[i].second);
         const GLuint shader = glCreateShader(stages[i].first);
         glShaderSource(shader, 1, &source, nullptr);
         glCompileShader(shader);
@@ -163,7 +177,9 @@ Program buildProgram(const char* vertexFile, const char* fragmentFile) {
     return program;
 }
 
-GLint location(const Program& p, const char* name) { return glGetUniformLocation(p.name(), name); }
+GLint location(const Program& p, const char* name) {
+    return glGetUniformLocation(p.name(), name);
+}
 
 void setMat4(const Program& p, const char* name, const glm::dmat4& m) {
     const glm::mat4 f(m);
@@ -200,19 +216,18 @@ Framebuffer makeFramebuffer(const char* label) {
 void checkComplete(const char* what) {
     const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw Error(std::string("render: the ") + what + " framebuffer is incomplete (status 0x" +
-                    [&] {
-                        char buf[16];
-                        std::snprintf(buf, sizeof buf, "%04X", status);
-                        return std::string(buf);
-                    }() +
-                    ")");
+        throw Error(std::string("render: the ") + what + " framebuffer is incomplete (status 0x" + [&] {
+            char buf[16];
+            std::snprintf(buf, sizeof buf, "%04X", status);
+            return std::string(buf);
+        }() + ")");
 }
 
 } // namespace
 
 std::array<std::uint8_t, 4> Image::pixel(int x, int y) const {
-    const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4;
+    const std::size_t i =
+        (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4;
     return {rgba[i], rgba[i + 1], rgba[i + 2], rgba[i + 3]};
 }
 
@@ -222,13 +237,16 @@ glm::dvec3 View::project(const glm::dvec3& world, int width, int height) const {
     return {(ndc.x * 0.5 + 0.5) * width, (0.5 - ndc.y * 0.5) * height, ndc.z};
 }
 
-bool View::inFront(const glm::dvec3& world) const { return (viewProjection() * glm::dvec4(world, 1.0)).w > 0.0; }
+bool View::inFront(const glm::dvec3& world) const {
+    return (viewProjection() * glm::dvec4(world, 1.0)).w > 0.0;
+}
 
 Grid sceneGrid(const Scene& scene) {
     const Box nodes = nodeBox(scene);
     const Box framed = framedBox(scene);
     Grid g;
-    const double y = scene.effects.has(Effect::Ground) ? scene.ground.height : nodes.lo.y - 0.02 * nodes.radius();
+    const double y =
+        scene.effects.has(Effect::Ground) ? scene.ground.height : nodes.lo.y - 0.02 * nodes.radius();
     g.centre = {framed.centre().x, y, framed.centre().z};
     g.halfSize = 3.0 * framed.radius();
     g.spacing = niceStep(g.halfSize / 20.0);
@@ -263,7 +281,8 @@ View sceneView(const Scene& scene, double aspect) {
                            (corner & 4) ? box.hi.z : box.lo.z};
         const glm::dvec3 q = p - v.target;
         const double z = glm::dot(q, toEye); // towards the eye
-        distance = std::max({distance, z + std::abs(glm::dot(q, right)) / tanX, z + std::abs(glm::dot(q, up)) / tanY});
+        distance = std::max(
+            {distance, z + std::abs(glm::dot(q, right)) / tanX, z + std::abs(glm::dot(q, up)) / tanY});
     }
     distance = std::max(distance, 1e-3);
     v.eye = v.target + toEye * distance;
@@ -291,7 +310,8 @@ struct SceneRenderer::Impl {
     glm::dmat4 lightViewProjection{1.0};
 };
 
-SceneRenderer::SceneRenderer(const Engine& engine, const RenderOptions& options) : m_impl(std::make_unique<Impl>()) {
+SceneRenderer::SceneRenderer(const Engine& engine, const RenderOptions& options)
+    : m_impl(std::make_unique<Impl>()) {
     Impl& m = *m_impl;
     m.options = options;
     GLint maxSize = 0, maxSamples = 0;
@@ -325,7 +345,8 @@ SceneRenderer::SceneRenderer(const Engine& engine, const RenderOptions& options)
     m.surface = buildProgram("surface.vert", "surface.frag");
     m.depth = buildProgram("surface.vert", "depth.frag");
     m.gridProgram = buildProgram("grid.vert", "grid.frag");
-    m.styleBuffer = gl::Buffer("render/faceStyle", m.faceStyle.size() * sizeof(std::uint32_t), m.faceStyle.data());
+    m.styleBuffer =
+        gl::Buffer("render/faceStyle", m.faceStyle.size() * sizeof(std::uint32_t), m.faceStyle.data());
 
     GLuint vao = 0;
     glGenVertexArrays(1, &vao);
@@ -348,7 +369,8 @@ SceneRenderer::SceneRenderer(const Engine& engine, const RenderOptions& options)
     if (m.samples > 0) {
         m.resolvedColour = makeRenderbuffer(GL_RGBA8, 0, options.width, options.height);
         m.resolve = makeFramebuffer("resolve");
-        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m.resolvedColour.name());
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                  m.resolvedColour.name());
         checkComplete("resolve");
     }
 
@@ -385,15 +407,16 @@ SceneRenderer::SceneRenderer(const Engine& engine, const RenderOptions& options)
     const glm::dvec3 lightUp = std::abs(keyDir.y) > 0.99 ? glm::dvec3(0.0, 0.0, 1.0) : worldUp;
     m.lightViewProjection = glm::ortho(-reach, reach, -reach, reach, 0.0, 4.0 * reach) *
                             glm::lookAt(centre + keyDir * (2.0 * reach), centre, lightUp);
-    const glm::dmat4 bias = glm::translate(glm::dmat4(1.0), glm::dvec3(0.5)) * glm::scale(glm::dmat4(1.0), glm::dvec3(0.5));
+    const glm::dmat4 bias =
+        glm::translate(glm::dmat4(1.0), glm::dvec3(0.5)) * glm::scale(glm::dmat4(1.0), glm::dvec3(0.5));
     const glm::dmat4 shadowMatrix = bias * m.lightViewProjection;
     const double texel = 1.0 / kShadowMapSize;
 
     std::array<float, 3 * kPalette.size()> palette{};
     for (std::size_t i = 0; i < kPalette.size(); ++i)
         for (int c = 0; c < 3; ++c) palette[3 * i + static_cast<std::size_t>(c)] = kPalette[i][c];
-    glProgramUniform3fv(m.surface.name(), location(m.surface, "u_palette[0]"), static_cast<GLsizei>(kPalette.size()),
-                        palette.data());
+    glProgramUniform3fv(m.surface.name(), location(m.surface, "u_palette[0]"),
+                        static_cast<GLsizei>(kPalette.size()), palette.data());
     setVec3(m.surface, "u_highlight", glm::dvec3(kHighlight));
     setVec3(m.surface, "u_eye", m.view.eye);
     setVec3(m.surface, "u_keyDir", keyDir);
@@ -411,7 +434,8 @@ SceneRenderer::SceneRenderer(const Engine& engine, const RenderOptions& options)
     setVec3(m.gridProgram, "u_background", glm::dvec3(kBackground));
     setMat4(m.gridProgram, "u_shadowMatrix", shadowMatrix);
     setFloat(m.gridProgram, "u_shadowTexel", texel);
-    glProgramUniform1i(m.gridProgram.name(), location(m.gridProgram, "u_shadowMap"), static_cast<GLint>(kShadowUnit));
+    glProgramUniform1i(m.gridProgram.name(), location(m.gridProgram, "u_shadowMap"),
+                       static_cast<GLint>(kShadowUnit));
 }
 
 SceneRenderer::~SceneRenderer() = default;
@@ -428,7 +452,8 @@ Image SceneRenderer::renderFrame(const Engine& engine) {
     return renderFrame(engine, pairs);
 }
 
-Image SceneRenderer::renderFrame(const Engine& engine, std::span<const std::array<std::uint32_t, 2>> highlightedPairs) {
+Image SceneRenderer::renderFrame(const Engine& engine,
+                                 std::span<const std::array<std::uint32_t, 2>> highlightedPairs) {
     Impl& m = *m_impl;
     if (engine.nodeCount() != m.nodeCount || engine.faceCount() != m.faceCount)
         throw Error("SceneRenderer::renderFrame: not the engine the renderer was made for");
@@ -436,8 +461,8 @@ Image SceneRenderer::renderFrame(const Engine& engine, std::span<const std::arra
     for (const auto& pair : highlightedPairs)
         for (std::uint32_t f : pair)
             if (f < m.faceCount) m.faceStyle[f] |= kHighlightBit;
-    m.highlighted = static_cast<std::size_t>(
-        std::count_if(m.faceStyle.begin(), m.faceStyle.end(), [](std::uint32_t s) { return (s & kHighlightBit) != 0; }));
+    m.highlighted = static_cast<std::size_t>(std::count_if(
+        m.faceStyle.begin(), m.faceStyle.end(), [](std::uint32_t s) { return (s & kHighlightBit) != 0; }));
 
     const SavedGlState saved(kStyleBinding, kShadowUnit);
     gl::DebugGroup group("glcollide::render::SceneRenderer::renderFrame");
@@ -445,8 +470,9 @@ Image SceneRenderer::renderFrame(const Engine& engine, std::span<const std::arra
     // step() already issues this barrier; a caller who changed positions otherwise may not have.
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT);
 
-    for (GLenum cap : {GL_BLEND, GL_CULL_FACE, GL_SCISSOR_TEST, GL_STENCIL_TEST, GL_RASTERIZER_DISCARD,
-                       GL_SAMPLE_ALPHA_TO_COVERAGE, GL_PRIMITIVE_RESTART, GL_FRAMEBUFFER_SRGB, GL_DEPTH_CLAMP, GL_DITHER})
+    for (GLenum cap :
+         {GL_BLEND, GL_CULL_FACE, GL_SCISSOR_TEST, GL_STENCIL_TEST, GL_RASTERIZER_DISCARD,
+          GL_SAMPLE_ALPHA_TO_COVERAGE, GL_PRIMITIVE_RESTART, GL_FRAMEBUFFER_SRGB, GL_DEPTH_CLAMP, GL_DITHER})
         glDisable(cap);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -512,19 +538,38 @@ Image SceneRenderer::renderFrame(const Engine& engine, std::span<const std::arra
     glReadPixels(0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, bottomUp.data());
     image.rgba.resize(bottomUp.size());
     for (std::size_t y = 0; y < static_cast<std::size_t>(image.height); ++y)
-        std::copy_n(bottomUp.data() + (static_cast<std::size_t>(image.height) - 1 - y) * row, row, image.rgba.data() + y * row);
+        std::copy_n(bottomUp.data() + (static_cast<std::size_t>(image.height) - 1 - y) * row, row,
+                    image.rgba.data() + y * row);
     return image;
 }
 
-const View& SceneRenderer::view() const { return m_impl->view; }
-const Grid& SceneRenderer::grid() const { return m_impl->grid; }
-int SceneRenderer::width() const { return m_impl->options.width; }
-int SceneRenderer::height() const { return m_impl->options.height; }
-int SceneRenderer::samples() const { return m_impl->samples; }
-std::size_t SceneRenderer::highlightedFaces() const { return m_impl->highlighted; }
+const View& SceneRenderer::view() const {
+    return m_impl->view;
+}
+const Grid& SceneRenderer::grid() const {
+    return m_impl->grid;
+}
+int SceneRenderer::width() const {
+    return m_impl->options.width;
+}
+int SceneRenderer::height() const {
+    return m_impl->options.height;
+}
+int SceneRenderer::samples() const {
+    return m_impl->samples;
+}
+std::size_t SceneRenderer::highlightedFaces() const {
+    return m_impl->highlighted;
+}
 
-glm::vec3 SceneRenderer::bodyColour(std::size_t index) { return kPalette[index % kPalette.size()]; }
-glm::vec3 SceneRenderer::highlightColour() { return kHighlight; }
-glm::vec3 SceneRenderer::backgroundColour() { return kBackground; }
+glm::vec3 SceneRenderer::bodyColour(std::size_t index) {
+    return kPalette[index % kPalette.size()];
+}
+glm::vec3 SceneRenderer::highlightColour() {
+    return kHighlight;
+}
+glm::vec3 SceneRenderer::backgroundColour() {
+    return kBackground;
+}
 
 } // namespace glcollide::render

@@ -40,7 +40,7 @@ struct View {
     glm::dvec3 eye{0.0};
     glm::dvec3 target{0.0};
     glm::dvec3 up{0.0, 1.0, 0.0};
-    double fovDeg = 45.0;   ///< vertical field of view
+    double fovDeg = 45.0;    ///< vertical field of view
     double nearPlane = 0.01; ///< m
     double farPlane = 100.0; ///< m
     glm::dmat4 viewMatrix{1.0};
@@ -74,7 +74,7 @@ Grid sceneGrid(const Scene& scene);
 /// Draws an engine's current state into its own framebuffer and reads the pixels back.
 /// Needs the engine's GL context current for all calls, the destructor included.
 class SceneRenderer {
-public:
+  public:
     /// Builds the programs, vertex array, framebuffers and the per-face object table of `engine`
     /// (which must outlive no call: every call takes it again). Throws Error for bad sizes, shader
     /// errors or an incomplete framebuffer.
@@ -105,7 +105,7 @@ public:
     /// Colour where nothing is drawn.
     static glm::vec3 backgroundColour();
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> m_impl;
 };

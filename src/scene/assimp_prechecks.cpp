@@ -27,7 +27,8 @@ std::string readAll(const std::filesystem::path& path) {
 
 std::uint32_t littleEndian32(const std::string& bytes, std::size_t at) {
     std::uint32_t v = 0;
-    for (std::size_t i = 0; i < 4; ++i) v |= std::uint32_t{static_cast<unsigned char>(bytes[at + i])} << (8 * i);
+    for (std::size_t i = 0; i < 4; ++i)
+        v |= std::uint32_t{static_cast<unsigned char>(bytes[at + i])} << (8 * i);
     return v;
 }
 
@@ -50,12 +51,15 @@ void checkGlbContainer(const std::filesystem::path& path) {
     };
     constexpr std::uint32_t kMagic = 0x46546C67; // "glTF"
     constexpr std::uint32_t kJson = 0x4E4F534A, kBin = 0x004E4942;
-    if (bytes.size() < 12) fail(0, "a GLB file starts with a 12-byte header; the file has " + std::to_string(bytes.size()) + " bytes");
+    if (bytes.size() < 12)
+        fail(0, "a GLB file starts with a 12-byte header; the file has " + std::to_string(bytes.size()) +
+                    " bytes");
     if (littleEndian32(bytes, 0) != kMagic) fail(0, "not a GLB file (the magic is not 'glTF')");
-    if (littleEndian32(bytes, 4) != 2) fail(4, "GLB version " + std::to_string(littleEndian32(bytes, 4)) + " (expected 2: glTF 2.0)");
+    if (littleEndian32(bytes, 4) != 2)
+        fail(4, "GLB version " + std::to_string(littleEndian32(bytes, 4)) + " (expected 2: glTF 2.0)");
     if (littleEndian32(bytes, 8) != bytes.size())
-        fail(8, "the header's length " + std::to_string(littleEndian32(bytes, 8)) + " differs from the file size " +
-                    std::to_string(bytes.size()));
+        fail(8, "the header's length " + std::to_string(littleEndian32(bytes, 8)) +
+                    " differs from the file size " + std::to_string(bytes.size()));
     std::size_t at = 12;
     for (int chunk = 0; at < bytes.size(); ++chunk) {
         if (bytes.size() - at < 8) fail(at, "truncated chunk header");
@@ -63,8 +67,10 @@ void checkGlbContainer(const std::filesystem::path& path) {
         if (chunk == 0 && type != kJson) fail(at + 4, "the first chunk must be JSON");
         if (chunk > 0 && type == kJson) fail(at + 4, "a second JSON chunk");
         if (length > bytes.size() - at - 8)
-            fail(at, std::string(type == kJson ? "JSON" : type == kBin ? "BIN" : "a") + " chunk of " +
-                         std::to_string(length) + " bytes runs past the end of the file (" +
+            fail(at, std::string(type == kJson  ? "JSON"
+                                 : type == kBin ? "BIN"
+                                                : "a") +
+                         " chunk of " + std::to_string(length) + " bytes runs past the end of the file (" +
                          std::to_string(bytes.size() - at - 8) + " bytes left)");
         if (chunk == 0) checkJson(bytes.substr(at + 8, length), file + ": JSON chunk");
         at += 8 + std::size_t{length};
@@ -72,6 +78,8 @@ void checkGlbContainer(const std::filesystem::path& path) {
     if (at == 12) fail(12, "no JSON chunk");
 }
 
-void checkGltfJson(const std::filesystem::path& path) { checkJson(readAll(path), path.string()); }
+void checkGltfJson(const std::filesystem::path& path) {
+    checkJson(readAll(path), path.string());
+}
 
 } // namespace glcollide::detail

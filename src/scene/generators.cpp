@@ -11,7 +11,9 @@
 namespace glcollide::detail {
 namespace {
 
-std::uint32_t u32(int v) { return static_cast<std::uint32_t>(v); }
+std::uint32_t u32(int v) {
+    return static_cast<std::uint32_t>(v);
+}
 
 Spring springBetween(std::uint32_t a, std::uint32_t b, SpringKind kind) {
     Spring s;
@@ -46,8 +48,10 @@ Body generateCloth(double width, double height, int nx, int ny, bool withShear, 
         }
     for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i) {
-            if (i + 1 < nx) body.springs.push_back(springBetween(idx(i, j), idx(i + 1, j), SpringKind::Structural));
-            if (j + 1 < ny) body.springs.push_back(springBetween(idx(i, j), idx(i, j + 1), SpringKind::Structural));
+            if (i + 1 < nx)
+                body.springs.push_back(springBetween(idx(i, j), idx(i + 1, j), SpringKind::Structural));
+            if (j + 1 < ny)
+                body.springs.push_back(springBetween(idx(i, j), idx(i, j + 1), SpringKind::Structural));
         }
     if (withShear)
         for (int j = 0; j + 1 < ny; ++j)
@@ -58,8 +62,10 @@ Body generateCloth(double width, double height, int nx, int ny, bool withShear, 
     if (withBend)
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
-                if (i + 2 < nx) body.springs.push_back(springBetween(idx(i, j), idx(i + 2, j), SpringKind::Bend));
-                if (j + 2 < ny) body.springs.push_back(springBetween(idx(i, j), idx(i, j + 2), SpringKind::Bend));
+                if (i + 2 < nx)
+                    body.springs.push_back(springBetween(idx(i, j), idx(i + 2, j), SpringKind::Bend));
+                if (j + 2 < ny)
+                    body.springs.push_back(springBetween(idx(i, j), idx(i, j + 2), SpringKind::Bend));
             }
     fillNodeDefaults(body);
     return body;
@@ -72,12 +78,10 @@ Body generateTetBox(const glm::dvec3& size, const std::array<int, 3>& cells) {
     const glm::dvec3 step = size / glm::dvec3(cells[0], cells[1], cells[2]);
     for (int k = 0; k < pz; ++k)
         for (int j = 0; j < py; ++j)
-            for (int i = 0; i < px; ++i)
-                body.positions.push_back(-0.5 * size + glm::dvec3(i, j, k) * step);
+            for (int i = 0; i < px; ++i) body.positions.push_back(-0.5 * size + glm::dvec3(i, j, k) * step);
     // Freudenthal split: one tet per axis order, each walking from the cell's min corner to its
     // max corner. Every cell face gets the diagonal through its own min corner, so neighbours agree.
-    static constexpr int kOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
-                                          {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    static constexpr int kOrders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
     for (int k = 0; k < cells[2]; ++k)
         for (int j = 0; j < cells[1]; ++j)
             for (int i = 0; i < cells[0]; ++i)
@@ -90,8 +94,7 @@ Body generateTetBox(const glm::dvec3& size, const std::array<int, 3>& cells) {
                         tet[s + 1] = idx(c[0], c[1], c[2]);
                     }
                     const auto& p = body.positions;
-                    if (tetDet(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) < 0.0)
-                        std::swap(tet[2], tet[3]);
+                    if (tetDet(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) < 0.0) std::swap(tet[2], tet[3]);
                     body.tets.push_back(tet);
                 }
     body.faces = boundaryFaces(body.tets, "tet_box");
@@ -102,9 +105,8 @@ Body generateTetBox(const glm::dvec3& size, const std::array<int, 3>& cells) {
 
 Body generateSphere(double radius, int subdivisions) {
     const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    std::vector<glm::dvec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
-                                 {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
-                                 {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<glm::dvec3> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
     for (auto& p : v) p = glm::normalize(p);
     std::vector<Face> faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},

@@ -39,7 +39,8 @@ struct Reader {
     void expectEnd(const std::string& name) {
         auto t = in.require("$End" + name);
         if (t.size() != 1 || t[0] != "$End" + name)
-            in.fail("expected $End" + name + ", got '" + (t.empty() ? std::string() : std::string(t[0])) + "'");
+            in.fail("expected $End" + name + ", got '" + (t.empty() ? std::string() : std::string(t[0])) +
+                    "'");
     }
 
     void readFormat() {
@@ -106,8 +107,9 @@ struct Reader {
             for (long long i = 0; i < n; ++i) {
                 auto t = in.require("an element line");
                 if (type != kTet4) continue; // other element types carry nothing we simulate
-                if (t.size() != 5) in.fail("expected 'tag n1 n2 n3 n4' for a tetrahedron, got " +
-                                           std::to_string(t.size()) + " value(s)");
+                if (t.size() != 5)
+                    in.fail("expected 'tag n1 n2 n3 n4' for a tetrahedron, got " + std::to_string(t.size()) +
+                            " value(s)");
                 addTet(t, 1);
             }
         }
@@ -152,7 +154,8 @@ struct Reader {
 
     void addTet(const std::vector<std::string_view>& t, std::size_t first) {
         RawTet raw{};
-        for (int k = 0; k < 4; ++k) raw.tags[k] = in.toInt(t[first + static_cast<std::size_t>(k)], "node tag");
+        for (int k = 0; k < 4; ++k)
+            raw.tags[k] = in.toInt(t[first + static_cast<std::size_t>(k)], "node tag");
         raw.line = in.line();
         tets.push_back(raw);
     }
@@ -217,6 +220,8 @@ struct Reader {
 
 } // namespace
 
-TetMesh readGmsh(const std::filesystem::path& path) { return Reader(path).read(); }
+TetMesh readGmsh(const std::filesystem::path& path) {
+    return Reader(path).read();
+}
 
 } // namespace glcollide::detail

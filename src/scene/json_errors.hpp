@@ -25,9 +25,11 @@ inline std::string invalidJsonMessage(const nlohmann::json::exception& e, const 
             const std::size_t at = token.empty() ? std::string::npos : text.find(token);
             if (at != std::string::npos)
                 where = "line " +
-                        std::to_string(1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n')) +
+                        std::to_string(1 + std::count(text.begin(),
+                                                      text.begin() + static_cast<std::ptrdiff_t>(at), '\n')) +
                         ": ";
-            message = "number " + token + " is outside the range of a double (non-finite values are not allowed)";
+            message =
+                "number " + token + " is outside the range of a double (non-finite values are not allowed)";
         }
     }
     return sourceName + ": invalid JSON: " + where + message;

@@ -25,7 +25,7 @@ inline std::string_view withoutLeadingPlus(std::string_view token) {
 }
 
 class LineReader {
-public:
+  public:
     /// Reads the whole file; throws Error if it cannot be opened.
     explicit LineReader(const std::filesystem::path& path) : m_file(path.string()) {
         std::ifstream in(path, std::ios::binary);
@@ -116,7 +116,7 @@ public:
     [[nodiscard]] std::size_t line() const { return m_line; }
     [[nodiscard]] const std::string& file() const { return m_file; }
 
-private:
+  private:
     static bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
     std::string m_file;

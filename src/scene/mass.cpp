@@ -9,24 +9,21 @@
 
 namespace glcollide::detail {
 
-std::vector<double> lumpedMeasure(const std::vector<glm::dvec3>& positions,
-                                  const std::vector<Face>& faces, const std::vector<Tet>& tets,
-                                  const std::string& what) {
+std::vector<double> lumpedMeasure(const std::vector<glm::dvec3>& positions, const std::vector<Face>& faces,
+                                  const std::vector<Tet>& tets, const std::string& what) {
     std::vector<double> lump(positions.size(), 0.0);
     double total = 0.0;
     if (tets.empty()) {
         for (const Face& f : faces) {
-            const double area =
-                0.5 * glm::length(glm::cross(positions[f[1]] - positions[f[0]],
-                                             positions[f[2]] - positions[f[0]]));
+            const double area = 0.5 * glm::length(glm::cross(positions[f[1]] - positions[f[0]],
+                                                             positions[f[2]] - positions[f[0]]));
             for (std::uint32_t v : f) lump[v] += area / 3.0;
             total += area;
         }
     } else {
         for (const Tet& t : tets) {
             const double volume =
-                std::abs(tetDet(positions[t[0]], positions[t[1]], positions[t[2]], positions[t[3]])) /
-                6.0;
+                std::abs(tetDet(positions[t[0]], positions[t[1]], positions[t[2]], positions[t[3]])) / 6.0;
             for (std::uint32_t v : t) lump[v] += volume / 4.0;
             total += volume;
         }

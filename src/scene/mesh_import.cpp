@@ -68,21 +68,22 @@ SurfaceMesh importSurfaceMesh(const std::filesystem::path& path) {
     importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
                                 aiComponent_NORMALS | aiComponent_TEXCOORDS |
                                     aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
-                                    aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
-                                    aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS |
-                                    aiComponent_MATERIALS);
+                                    aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS | aiComponent_TEXTURES |
+                                    aiComponent_LIGHTS | aiComponent_CAMERAS | aiComponent_MATERIALS);
     // Read first, post-process after validating: without aiProcess_ValidateDataStructure a face
     // index beyond the vertex count (a fuzzed PLY, when assimp still read PLY) crashed its post-processing.
     const aiScene* read = importer.ReadFile(file, 0);
     if (read == nullptr) throw Error(file + ": cannot import mesh: " + importer.GetErrorString());
-    if (read->mRootNode == nullptr || read->mNumMeshes == 0) throw Error(file + ": the file contains no mesh");
+    if (read->mRootNode == nullptr || read->mNumMeshes == 0)
+        throw Error(file + ": the file contains no mesh");
     bool anyPolygon = false;
     for (unsigned m = 0; m < read->mNumMeshes && !anyPolygon; ++m)
         for (unsigned f = 0; f < read->mMeshes[m]->mNumFaces && !anyPolygon; ++f)
             anyPolygon = read->mMeshes[m]->mFaces[f].mNumIndices >= 3;
     if (!anyPolygon) throw Error(file + ": the mesh has no triangles");
-    const aiScene* scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_RemoveComponent |
-                                                        aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+    const aiScene* scene =
+        importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_RemoveComponent |
+                                     aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
     if (scene == nullptr) throw Error(file + ": cannot import mesh: " + importer.GetErrorString());
 
     std::vector<glm::dvec3> raw;
@@ -91,12 +92,13 @@ SurfaceMesh importSurfaceMesh(const std::filesystem::path& path) {
     return weldSurface(std::move(raw), rawFaces, file);
 }
 
-SurfaceMesh weldSurface(std::vector<glm::dvec3> raw, const std::vector<Face>& rawFaces, const std::string& file,
-                        const std::vector<std::size_t>& faceLines) {
+SurfaceMesh weldSurface(std::vector<glm::dvec3> raw, const std::vector<Face>& rawFaces,
+                        const std::string& file, const std::vector<std::size_t>& faceLines) {
     // Where a triangle came from, for messages: "file:line: face" or "file: triangle k".
     const auto where = [&](std::size_t f) {
-        return f < faceLines.size() && faceLines[f] != 0 ? file + ":" + std::to_string(faceLines[f]) + ": face"
-                                                         : file + ": triangle " + std::to_string(f);
+        return f < faceLines.size() && faceLines[f] != 0
+                   ? file + ":" + std::to_string(faceLines[f]) + ": face"
+                   : file + ": triangle " + std::to_string(f);
     };
     for (std::size_t v = 0; v < raw.size(); ++v)
         if (!std::isfinite(raw[v].x) || !std::isfinite(raw[v].y) || !std::isfinite(raw[v].z))

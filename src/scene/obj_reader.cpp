@@ -21,8 +21,8 @@ namespace glcollide::detail {
 namespace {
 
 bool isFreeForm(std::string_view keyword) {
-    for (const char* k : {"cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole", "scrv",
-                          "sp", "end", "con"})
+    for (const char* k : {"cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole",
+                          "scrv", "sp", "end", "con"})
         if (keyword == k) return true;
     return false;
 }
@@ -61,17 +61,19 @@ SurfaceMesh readObj(const std::filesystem::path& path) {
                 const std::string_view digits = withoutLeadingPlus(token);
                 const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), p[k]);
                 if (ec == std::errc::result_out_of_range)
-                    in.fail("vertex " + std::to_string(positions.size() + 1) + " coordinate '" + std::string(token) +
-                            "' is outside double range");
+                    in.fail("vertex " + std::to_string(positions.size() + 1) + " coordinate '" +
+                            std::string(token) + "' is outside double range");
                 if (ec != std::errc() || end != digits.data() + digits.size())
                     in.fail("expected a number as vertex coordinate, got '" + std::string(token) + "'");
                 if (!std::isfinite(p[k]))
-                    in.fail("vertex " + std::to_string(positions.size() + 1) + " has a non-finite coordinate");
+                    in.fail("vertex " + std::to_string(positions.size() + 1) +
+                            " has a non-finite coordinate");
             }
             positions.push_back(p);
             anyGeometry = true;
         } else if (keyword == "f" || keyword == "fo") {
-            if (t.size() < 4) in.fail("a face needs at least 3 vertices, got " + std::to_string(t.size() - 1));
+            if (t.size() < 4)
+                in.fail("a face needs at least 3 vertices, got " + std::to_string(t.size() - 1));
             std::vector<std::uint32_t> polygon;
             for (std::size_t k = 1; k < t.size(); ++k) {
                 const std::string_view corner = t[k];
@@ -79,7 +81,8 @@ SurfaceMesh readObj(const std::filesystem::path& path) {
                 long long index = 0;
                 const auto [end, ec] = std::from_chars(first.data(), first.data() + first.size(), index);
                 if (ec != std::errc() || end != first.data() + first.size() || index == 0)
-                    in.fail("expected a vertex index (1-based, or negative from the end) in '" + std::string(corner) + "'");
+                    in.fail("expected a vertex index (1-based, or negative from the end) in '" +
+                            std::string(corner) + "'");
                 const long long count = static_cast<long long>(positions.size());
                 const long long resolved = index > 0 ? index - 1 : count + index;
                 if (resolved < 0 || resolved >= count)
@@ -93,7 +96,8 @@ SurfaceMesh readObj(const std::filesystem::path& path) {
             }
             anyGeometry = true;
         } else if (isFreeForm(keyword)) {
-            in.fail("free-form geometry ('" + std::string(keyword) + "') is not supported; export triangles or polygons");
+            in.fail("free-form geometry ('" + std::string(keyword) +
+                    "') is not supported; export triangles or polygons");
         }
         // vt vn vp p l o g s mg usemtl mtllib and unknown statements carry no surface.
     }

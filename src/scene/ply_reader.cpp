@@ -104,7 +104,7 @@ Header parseHeader(const std::string& text, const std::string& file) {
             if (args.size() != 2 || args[1] != "1.0" ||
                 (args[0] != "ascii" && args[0] != "binary_little_endian" && args[0] != "binary_big_endian"))
                 fail(lineNo, "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
-            h.format = args[0] == "ascii" ? Format::Ascii
+            h.format = args[0] == "ascii"                  ? Format::Ascii
                        : args[0] == "binary_little_endian" ? Format::BinaryLittleEndian
                                                            : Format::BinaryBigEndian;
             haveFormat = true;
@@ -120,7 +120,8 @@ Header parseHeader(const std::string& text, const std::string& file) {
             const auto& types = scalarTypes();
             Property p;
             if (!args.empty() && args[0] == "list") {
-                if (args.size() != 4 || !types.count(args[1]) || !types.count(args[2]) || !types.at(args[1]).integral)
+                if (args.size() != 4 || !types.count(args[1]) || !types.count(args[2]) ||
+                    !types.at(args[1]).integral)
                     fail(lineNo, "expected 'property list <integer type> <type> <name>'");
                 p = {args[3], types.at(args[2]), true, types.at(args[1])};
             } else {
@@ -150,8 +151,9 @@ Header parseHeader(const std::string& text, const std::string& file) {
     for (const Element& e : h.elements) {
         const std::uint64_t each = binary ? e.minBytes() : 2 * e.properties.size();
         if (each != 0 && e.count > (budget - needed) / each)
-            fail(e.line, "element '" + e.name + "' declares " + std::to_string(e.count) + " entries, more than the " +
-                             std::to_string(remaining) + " bytes after the header can hold");
+            fail(e.line, "element '" + e.name + "' declares " + std::to_string(e.count) +
+                             " entries, more than the " + std::to_string(remaining) +
+                             " bytes after the header can hold");
         needed += e.count * each;
     }
     return h;
@@ -176,7 +178,7 @@ std::string printable(std::string_view token) {
 
 /// The body as a stream of values: whitespace-separated tokens (ASCII) or fixed-size fields.
 class BodyReader {
-public:
+  public:
     BodyReader(const std::string& text, const Header& h, const std::string& file)
         : m_text(text), m_format(h.format), m_pos(h.bodyOffset), m_line(h.bodyLine), m_file(file) {}
 
@@ -196,7 +198,7 @@ public:
         throw Error(m_file + ": byte " + std::to_string(m_pos) + ": " + what);
     }
 
-private:
+  private:
     double readAscii(const ScalarType& type, const std::string& what) {
         while (m_pos < m_text.size() && std::isspace(static_cast<unsigned char>(m_text[m_pos]))) {
             if (m_text[m_pos] == '\n') ++m_line;
@@ -262,7 +264,8 @@ private:
         const double bits = 8.0 * type.bytes;
         const double lo = type.isSigned ? -std::exp2(bits - 1) : 0.0;
         const double hi = type.isSigned ? std::exp2(bits - 1) - 1 : std::exp2(bits) - 1;
-        if (v < lo || v > hi) fail(what + " " + std::to_string(static_cast<long long>(v)) + " is outside its PLY type's range");
+        if (v < lo || v > hi)
+            fail(what + " " + std::to_string(static_cast<long long>(v)) + " is outside its PLY type's range");
     }
 
     const std::string& m_text;
@@ -292,22 +295,27 @@ SurfaceMesh readPly(const std::filesystem::path& path) {
         int indices = -1;
         for (std::size_t k = 0; k < e.properties.size(); ++k) {
             const Property& p = e.properties[k];
-            if (isVertex && !p.list && (p.name == "x" || p.name == "y" || p.name == "z")) xyz[p.name[0] - 'x'] = static_cast<int>(k);
+            if (isVertex && !p.list && (p.name == "x" || p.name == "y" || p.name == "z"))
+                xyz[p.name[0] - 'x'] = static_cast<int>(k);
             if (isFace && p.list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
                 if (!p.type.integral)
-                    throw Error(file + ":" + std::to_string(e.line) + ": face indices must have an integer type");
+                    throw Error(file + ":" + std::to_string(e.line) +
+                                ": face indices must have an integer type");
                 indices = static_cast<int>(k);
             }
         }
         if (isVertex) {
             if (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)
-                throw Error(file + ":" + std::to_string(e.line) + ": element 'vertex' needs properties x, y and z");
+                throw Error(file + ":" + std::to_string(e.line) +
+                            ": element 'vertex' needs properties x, y and z");
             haveVertices = true;
         }
         if (isFace && indices < 0)
-            throw Error(file + ":" + std::to_string(e.line) + ": element 'face' has no list property vertex_indices");
+            throw Error(file + ":" + std::to_string(e.line) +
+                        ": element 'face' has no list property vertex_indices");
         if (isFace && !haveVertices)
-            throw Error(file + ":" + std::to_string(e.line) + ": element 'face' comes before element 'vertex'");
+            throw Error(file + ":" + std::to_string(e.line) +
+                        ": element 'face' comes before element 'vertex'");
         for (std::uint64_t i = 0; i < e.count; ++i) {
             const std::string where = e.name + " " + std::to_string(i);
             glm::dvec3 position(0.0);
@@ -324,14 +332,15 @@ SurfaceMesh readPly(const std::filesystem::path& path) {
                 if (n < 0.0) body.fail("negative length of list '" + p.name + "' of " + where);
                 // Each entry takes at least one byte (binary) or one character (ASCII).
                 if (n > static_cast<double>(body.remaining()))
-                    body.fail("list '" + p.name + "' of " + where + " has " + std::to_string(static_cast<long long>(n)) +
+                    body.fail("list '" + p.name + "' of " + where + " has " +
+                              std::to_string(static_cast<long long>(n)) +
                               " entries, more than the rest of the file can hold");
                 for (double j = 0; j < n; ++j) {
                     const double v = body.read(p.type, "entry of list '" + p.name + "' of " + where);
                     if (static_cast<int>(k) != indices) continue;
                     if (v < 0.0 || v >= static_cast<double>(positions.size()))
-                        body.fail(where + " uses vertex " + std::to_string(static_cast<long long>(v)) + " of " +
-                                  std::to_string(positions.size()));
+                        body.fail(where + " uses vertex " + std::to_string(static_cast<long long>(v)) +
+                                  " of " + std::to_string(positions.size()));
                     polygon.push_back(static_cast<std::uint32_t>(v));
                 }
             }

@@ -52,8 +52,8 @@ SurfaceMesh readPly(const std::filesystem::path& path);
 /// source line from `faceLines`, when given) for a non-finite position, a zero-area face (three
 /// collinear vertices), a duplicated face (the same three vertices, either winding) or when no
 /// triangle is left. Shared by the readers of surface meshes.
-SurfaceMesh weldSurface(std::vector<glm::dvec3> positions, const std::vector<Face>& faces, const std::string& file,
-                        const std::vector<std::size_t>& faceLines = {});
+SurfaceMesh weldSurface(std::vector<glm::dvec3> positions, const std::vector<Face>& faces,
+                        const std::string& file, const std::vector<std::size_t>& faceLines = {});
 
 /// Checks a GLB container (header, version 2, length, chunk lengths within the file) before
 /// assimp reads it; throws Error naming the file and byte offset. Called for `.glb` files.
@@ -120,8 +120,7 @@ Body generateSphere(double radius, int subdivisions);
 
 /// Lumped measure per node: area/3 of each triangle (when `tets` is empty) or volume/4 of each
 /// tet, in m² or m³. Throws if a node receives nothing or the total is zero, naming `what`.
-std::vector<double> lumpedMeasure(const std::vector<glm::dvec3>& positions,
-                                  const std::vector<Face>& faces, const std::vector<Tet>& tets,
-                                  const std::string& what);
+std::vector<double> lumpedMeasure(const std::vector<glm::dvec3>& positions, const std::vector<Face>& faces,
+                                  const std::vector<Tet>& tets, const std::string& what);
 
 } // namespace glcollide::detail

@@ -48,10 +48,11 @@ std::string joinKeys(std::initializer_list<const char*> keys) {
 void checkObject(const Ctx& c, const json& j, const Ptr& p, std::initializer_list<const char*> allowed) {
     if (!j.is_object()) c.fail(p, "expected an object, got " + shown(j));
     for (const auto& item : j.items()) {
-        const bool known = std::any_of(allowed.begin(), allowed.end(),
-                                       [&](const char* k) { return item.key() == k; });
+        const bool known =
+            std::any_of(allowed.begin(), allowed.end(), [&](const char* k) { return item.key() == k; });
         if (!known)
-            c.fail(p / item.key(), "unknown key '" + item.key() + "'; allowed keys here: " + joinKeys(allowed));
+            c.fail(p / item.key(),
+                   "unknown key '" + item.key() + "'; allowed keys here: " + joinKeys(allowed));
     }
 }
 
@@ -166,9 +167,15 @@ struct SpringParams {
 
 SpringParams parseSprings(const Ctx& c, const json& j, const Ptr& p, Shape shape) {
     switch (shape) {
-    case Shape::Cloth: checkObject(c, j, p, {"stiffness", "damping", "shear_stiffness", "bend_stiffness"}); break;
-    case Shape::Surface: checkObject(c, j, p, {"stiffness", "damping", "bend_stiffness"}); break;
-    case Shape::Volume: checkObject(c, j, p, {"stiffness", "damping"}); break;
+    case Shape::Cloth:
+        checkObject(c, j, p, {"stiffness", "damping", "shear_stiffness", "bend_stiffness"});
+        break;
+    case Shape::Surface:
+        checkObject(c, j, p, {"stiffness", "damping", "bend_stiffness"});
+        break;
+    case Shape::Volume:
+        checkObject(c, j, p, {"stiffness", "damping"});
+        break;
     }
     SpringParams s;
     s.stiffness = positive(c, require(c, j, p, "stiffness"), p / "stiffness");
@@ -194,7 +201,8 @@ Shape meshShape(const Ctx& c, const std::string& file, const Ptr& p) {
     if (ext == ".obj" || ext == ".ply" || ext == ".gltf" || ext == ".glb") return Shape::Surface;
     if (ext == ".msh" || ext == ".node") return Shape::Volume;
     c.fail(p, "unsupported mesh file '" + file +
-                  "'; supported: .obj .ply .gltf .glb (surface), .msh (Gmsh tets), .node (TetGen tets, .ele beside it)");
+                  "'; supported: .obj .ply .gltf .glb (surface), .msh (Gmsh tets), .node (TetGen tets, .ele "
+                  "beside it)");
 }
 
 Shape generatorShape(const Ctx& c, const json& g, const Ptr& p) {
@@ -212,8 +220,10 @@ Body generate(const Ctx& c, const json& g, const Ptr& p, const SpringParams& spr
         const Ptr ps = p / "size", pr = p / "resolution";
         const json& size = require(c, g, p, "size");
         const json& res = require(c, g, p, "resolution");
-        if (!size.is_array() || size.size() != 2) c.fail(ps, "expected [width, height] in m, got " + shown(size));
-        if (!res.is_array() || res.size() != 2) c.fail(pr, "expected [nx, ny] node counts, got " + shown(res));
+        if (!size.is_array() || size.size() != 2)
+            c.fail(ps, "expected [width, height] in m, got " + shown(size));
+        if (!res.is_array() || res.size() != 2)
+            c.fail(pr, "expected [nx, ny] node counts, got " + shown(res));
         const double w = positive(c, size[0], ps / 0), h = positive(c, size[1], ps / 1);
         const int nx = integer(c, res[0], pr / 0, 2, 4096), ny = integer(c, res[1], pr / 1, 2, 4096);
         return detail::generateCloth(w, h, nx, ny, springs.shear > 0.0, springs.bend > 0.0);
@@ -224,7 +234,8 @@ Body generate(const Ctx& c, const json& g, const Ptr& p, const SpringParams& spr
         const json& size = require(c, g, p, "size");
         const json& res = require(c, g, p, "resolution");
         if (!size.is_array() || size.size() != 3) c.fail(ps, "expected [x, y, z] in m, got " + shown(size));
-        if (!res.is_array() || res.size() != 3) c.fail(pr, "expected [cx, cy, cz] cell counts, got " + shown(res));
+        if (!res.is_array() || res.size() != 3)
+            c.fail(pr, "expected [cx, cy, cz] cell counts, got " + shown(res));
         glm::dvec3 s;
         std::array<int, 3> cells{};
         for (std::size_t i = 0; i < 3; ++i) {
@@ -251,7 +262,8 @@ Body loadMesh(const Ctx& c, const std::string& file, const Ptr& p, Shape shape) 
             body.positions = std::move(m.positions);
             body.faces = std::move(m.faces);
         } else {
-            detail::TetMesh m = lowerExtension(path) == ".msh" ? detail::readGmsh(path) : detail::readTetGen(path);
+            detail::TetMesh m =
+                lowerExtension(path) == ".msh" ? detail::readGmsh(path) : detail::readTetGen(path);
             body.positions = std::move(m.positions);
             body.tets = std::move(m.tets);
             body.faces = detail::boundaryFaces(body.tets, path.string());
@@ -266,9 +278,12 @@ Body loadMesh(const Ctx& c, const std::string& file, const Ptr& p, Shape shape) 
 glm::dvec3 rotateAxis(const glm::dvec3& v, int axis, double radians) {
     const double cs = std::cos(radians), sn = std::sin(radians);
     switch (axis) {
-    case 0: return {v.x, cs * v.y - sn * v.z, sn * v.y + cs * v.z};
-    case 1: return {cs * v.x + sn * v.z, v.y, -sn * v.x + cs * v.z};
-    default: return {cs * v.x - sn * v.y, sn * v.x + cs * v.y, v.z};
+    case 0:
+        return {v.x, cs * v.y - sn * v.z, sn * v.y + cs * v.z};
+    case 1:
+        return {cs * v.x + sn * v.z, v.y, -sn * v.x + cs * v.z};
+    default:
+        return {cs * v.x - sn * v.y, sn * v.x + cs * v.y, v.z};
     }
 }
 
@@ -298,10 +313,12 @@ void applyPinned(const Ctx& c, const json& j, const Ptr& p, Body& body) {
     const std::size_t n = body.positions.size();
     if (j.is_array()) {
         for (std::size_t i = 0; i < j.size(); ++i)
-            body.pinned[static_cast<std::size_t>(integer(c, j[i], p / i, 0, static_cast<long long>(n) - 1))] = 1;
+            body.pinned[static_cast<std::size_t>(integer(c, j[i], p / i, 0, static_cast<long long>(n) - 1))] =
+                1;
         return;
     }
-    if (!j.is_object()) c.fail(p, "expected an array of node indices or {\"inside\": {...}}, got " + shown(j));
+    if (!j.is_object())
+        c.fail(p, "expected an array of node indices or {\"inside\": {...}}, got " + shown(j));
     checkObject(c, j, p, {"inside"});
     const Ptr pi = p / "inside";
     const json& box = require(c, j, p, "inside");
@@ -357,14 +374,17 @@ Body parseObject(const Ctx& c, const json& j, const Ptr& p, const EffectSet& eff
             }
         }
         for (Spring& s : body.springs) {
-            s.stiffness = s.kind == SpringKind::Shear ? sp.shear : s.kind == SpringKind::Bend ? sp.bend : sp.stiffness;
+            s.stiffness = s.kind == SpringKind::Shear  ? sp.shear
+                          : s.kind == SpringKind::Bend ? sp.bend
+                                                       : sp.stiffness;
             s.damping = sp.damping;
         }
         detail::setRestLengths(body);
         for (std::size_t s = 0; s < body.springs.size(); ++s)
             if (!(body.springs[s].restLength > 0.0))
-                c.fail(p, "spring " + std::to_string(s) + " joins nodes " + std::to_string(body.springs[s].a) +
-                              " and " + std::to_string(body.springs[s].b) +
+                c.fail(p, "spring " + std::to_string(s) + " joins nodes " +
+                              std::to_string(body.springs[s].a) + " and " +
+                              std::to_string(body.springs[s].b) +
                               ", which are at the same position (zero rest length)");
     }
 
@@ -372,10 +392,13 @@ Body parseObject(const Ctx& c, const json& j, const Ptr& p, const EffectSet& eff
     const json* mass = find(j, "mass");
     const json* density = find(j, "density");
     if ((mass == nullptr) == (density == nullptr))
-        c.fail(p, "give exactly one of 'mass' (total kg) and 'density' (kg/m^3 for volumes, kg/m^2 for surfaces)");
+        c.fail(
+            p,
+            "give exactly one of 'mass' (total kg) and 'density' (kg/m^3 for volumes, kg/m^2 for surfaces)");
     std::vector<double> lump;
     try {
-        const std::string what = mesh != nullptr ? mesh->get<std::string>() : "generator '" + (*gen)["type"].get<std::string>() + "'";
+        const std::string what = mesh != nullptr ? mesh->get<std::string>()
+                                                 : "generator '" + (*gen)["type"].get<std::string>() + "'";
         lump = detail::lumpedMeasure(body.positions, body.faces, body.tets, what);
     } catch (const Error& e) {
         c.fail(mesh != nullptr ? p / "mesh" : p / "generator", e.what());
@@ -411,34 +434,46 @@ Body parseObject(const Ctx& c, const json& j, const Ptr& p, const EffectSet& eff
 }
 
 CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
-    checkObject(c, j, p, {"broad_phase", "octree_depth", "precision", "thickness", "stiffness", "damping",
-                          "initial_capacity"});
+    checkObject(c, j, p,
+                {"broad_phase", "octree_depth", "precision", "thickness", "stiffness", "damping",
+                 "initial_capacity"});
     CollisionSettings s;
     if (const json* v = find(j, "broad_phase")) {
         const std::string name = string(c, *v, p / "broad_phase");
-        if (name == "octree") s.broadPhase = BroadPhase::Octree;
-        else if (name == "masked") s.broadPhase = BroadPhase::Masked;
-        else if (name == "all_pairs") s.broadPhase = BroadPhase::AllPairs;
-        else c.fail(p / "broad_phase", "unknown broad phase " + shown(*v) + "; expected \"octree\", \"masked\" or \"all_pairs\"");
+        if (name == "octree")
+            s.broadPhase = BroadPhase::Octree;
+        else if (name == "masked")
+            s.broadPhase = BroadPhase::Masked;
+        else if (name == "all_pairs")
+            s.broadPhase = BroadPhase::AllPairs;
+        else
+            c.fail(p / "broad_phase",
+                   "unknown broad phase " + shown(*v) + "; expected \"octree\", \"masked\" or \"all_pairs\"");
     }
     if (const json* v = find(j, "octree_depth")) {
         if (!v->is_number_integer() || v->get<long long>() < 1 || v->get<long long>() > 3)
-            c.fail(p / "octree_depth", "expected an integer 1, 2 or 3 (8, 64 or 512 boxes per object), got " + shown(*v));
+            c.fail(p / "octree_depth",
+                   "expected an integer 1, 2 or 3 (8, 64 or 512 boxes per object), got " + shown(*v));
         s.octreeDepth = static_cast<int>(v->get<long long>());
     }
     if (const json* v = find(j, "precision")) {
         const std::string name = string(c, *v, p / "precision");
-        if (name == "fast") s.precision = TriTriPrecision::Fast;
-        else if (name == "robust") s.precision = TriTriPrecision::Robust;
-        else c.fail(p / "precision", "unknown precision " + shown(*v) + "; expected \"fast\" or \"robust\"");
+        if (name == "fast")
+            s.precision = TriTriPrecision::Fast;
+        else if (name == "robust")
+            s.precision = TriTriPrecision::Robust;
+        else
+            c.fail(p / "precision", "unknown precision " + shown(*v) + "; expected \"fast\" or \"robust\"");
     }
     if (const json* v = find(j, "thickness")) {
         s.thickness = number(c, *v, p / "thickness", "a positive number of metres");
-        if (!(s.thickness > 0.0)) c.fail(p / "thickness", "expected a positive number of metres, got " + shown(*v));
+        if (!(s.thickness > 0.0))
+            c.fail(p / "thickness", "expected a positive number of metres, got " + shown(*v));
     }
     if (const json* v = find(j, "stiffness")) {
         s.stiffness = number(c, *v, p / "stiffness", "a positive number of N/m");
-        if (!(s.stiffness > 0.0)) c.fail(p / "stiffness", "expected a positive number of N/m, got " + shown(*v));
+        if (!(s.stiffness > 0.0))
+            c.fail(p / "stiffness", "expected a positive number of N/m, got " + shown(*v));
     }
     if (const json* v = find(j, "damping")) s.damping = nonNegative(c, *v, p / "damping");
     if (const json* v = find(j, "initial_capacity")) {
@@ -461,8 +496,10 @@ CameraSettings parseCamera(const Ctx& c, const json& j, const Ptr& p) {
             c.fail(p / "fov_deg", "expected a number of degrees in (0, 180), got " + shown(*v));
     }
     const glm::dvec3 forward = cam.target - cam.eye;
-    if (!(glm::length(forward) > 0.0)) c.fail(p / "target", "must differ from eye (the camera looks from eye to target)");
-    if (!(glm::length(cam.up) > 0.0)) c.fail(p / "up", "expected a non-zero vector, got " + shown(*find(j, "up")));
+    if (!(glm::length(forward) > 0.0))
+        c.fail(p / "target", "must differ from eye (the camera looks from eye to target)");
+    if (!(glm::length(cam.up) > 0.0))
+        c.fail(p / "up", "expected a non-zero vector, got " + shown(*find(j, "up")));
     if (glm::length(glm::cross(glm::normalize(forward), glm::normalize(cam.up))) < 1e-6)
         c.fail(p / "up", "must not be parallel to the view direction (target - eye)");
     return cam;
@@ -471,12 +508,12 @@ CameraSettings parseCamera(const Ctx& c, const json& j, const Ptr& p) {
 Scene parseRoot(const Ctx& c, const json& root) {
     const Ptr p;
     checkObject(c, root, p,
-                {"format_version", "name", "effects", "time", "gravity", "damping", "wind", "ground", "collision",
-                 "camera", "objects"});
+                {"format_version", "name", "effects", "time", "gravity", "damping", "wind", "ground",
+                 "collision", "camera", "objects"});
     const json& version = require(c, root, p, "format_version");
     if (!version.is_number_integer() || version.get<long long>() != Scene::kFormatVersion)
-        c.fail(p / "format_version", "unsupported format version " + shown(version) + "; supported versions: " +
-                                         std::to_string(Scene::kFormatVersion));
+        c.fail(p / "format_version", "unsupported format version " + shown(version) +
+                                         "; supported versions: " + std::to_string(Scene::kFormatVersion));
     Scene scene;
     scene.effects = parseEffects(c, require(c, root, p, "effects"), p / "effects");
     if (const json* v = find(root, "name")) scene.name = string(c, *v, p / "name");
@@ -519,7 +556,8 @@ Scene parseRoot(const Ctx& c, const json& root) {
     if (const json* v = find(root, "camera")) scene.camera = parseCamera(c, *v, p / "camera");
 
     const json& objects = require(c, root, p, "objects");
-    if (!objects.is_array() || objects.empty()) c.fail(p / "objects", "expected a non-empty array of objects");
+    if (!objects.is_array() || objects.empty())
+        c.fail(p / "objects", "expected a non-empty array of objects");
     for (std::size_t i = 0; i < objects.size(); ++i)
         scene.bodies.push_back(parseObject(c, objects[i], p / "objects" / i, scene.effects, i));
     return scene;
@@ -550,7 +588,8 @@ constexpr const char* kDefaultScene = R"json({
 
 } // namespace
 
-Scene parseScene(const std::string& jsonText, const std::filesystem::path& baseDir, const std::string& sourceName) {
+Scene parseScene(const std::string& jsonText, const std::filesystem::path& baseDir,
+                 const std::string& sourceName) {
     const Ctx c{sourceName, baseDir};
     json root;
     // nlohmann keeps the last of two equal keys without a word; a duplicated key is as likely a
@@ -558,9 +597,9 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& baseD
     // open object/array) so the error names the JSON pointer of the second key.
     struct Open {
         bool array = false;
-        std::size_t index = 0;          // arrays: index of the next element
-        std::string key;                // objects: the key being read
-        std::vector<std::string> keys;  // objects: keys seen so far
+        std::size_t index = 0;         // arrays: index of the next element
+        std::string key;               // objects: the key being read
+        std::vector<std::string> keys; // objects: keys seen so far
     };
     std::vector<Open> open;
     const auto elementDone = [&] {
@@ -568,14 +607,20 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& baseD
     };
     const json::parser_callback_t noDuplicates = [&](int, json::parse_event_t event, json& parsed) {
         switch (event) {
-        case json::parse_event_t::object_start: open.push_back(Open{}); break;
-        case json::parse_event_t::array_start: open.push_back(Open{true, 0, {}, {}}); break;
+        case json::parse_event_t::object_start:
+            open.push_back(Open{});
+            break;
+        case json::parse_event_t::array_start:
+            open.push_back(Open{true, 0, {}, {}});
+            break;
         case json::parse_event_t::object_end:
         case json::parse_event_t::array_end:
             if (!open.empty()) open.pop_back();
             elementDone();
             break;
-        case json::parse_event_t::value: elementDone(); break;
+        case json::parse_event_t::value:
+            elementDone();
+            break;
         case json::parse_event_t::key: {
             if (open.empty()) break;
             const std::string key = parsed.get<std::string>();
@@ -618,6 +663,8 @@ Scene loadScene(const std::filesystem::path& path) {
     return scene;
 }
 
-Scene defaultScene() { return parseScene(kDefaultScene, {}, "default scene"); }
+Scene defaultScene() {
+    return parseScene(kDefaultScene, {}, "default scene");
+}
 
 } // namespace glcollide

@@ -8,7 +8,9 @@
 namespace glcollide {
 namespace {
 
-bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::dvec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 std::string prefix(const Scene& scene) {
     return scene.sourcePath.empty() ? std::string("scene '" + scene.name + "'") : scene.sourcePath.string();
@@ -22,12 +24,14 @@ void validateScene(const Scene& scene) {
 
     if (!(scene.time.dt > 0.0) || !std::isfinite(scene.time.dt))
         fail("time.dt must be a positive finite number of seconds, got " + std::to_string(scene.time.dt));
-    if (scene.time.substeps < 0) fail("time.substeps must be >= 0 (0 = auto), got " + std::to_string(scene.time.substeps));
+    if (scene.time.substeps < 0)
+        fail("time.substeps must be >= 0 (0 = auto), got " + std::to_string(scene.time.substeps));
     if (scene.time.frames <= 0) fail("time.frames must be > 0, got " + std::to_string(scene.time.frames));
     if (!finite(scene.gravity)) fail("gravity is not finite");
     if (!(scene.damping >= 0.0) || !std::isfinite(scene.damping)) fail("damping must be finite and >= 0");
     if (!finite(scene.wind.velocity)) fail("wind.velocity is not finite");
-    if (!(scene.wind.drag >= 0.0) || !std::isfinite(scene.wind.drag)) fail("wind.drag must be finite and >= 0");
+    if (!(scene.wind.drag >= 0.0) || !std::isfinite(scene.wind.drag))
+        fail("wind.drag must be finite and >= 0");
     if (!std::isfinite(scene.ground.height)) fail("ground.height is not finite");
     if (!(scene.ground.restitution >= 0.0 && scene.ground.restitution <= 1.0))
         fail("ground.restitution must be in [0, 1], got " + std::to_string(scene.ground.restitution));
@@ -40,7 +44,8 @@ void validateScene(const Scene& scene) {
         fail("collision.thickness must be finite and > 0, got " + std::to_string(col.thickness));
     if (!(col.stiffness > 0.0) || !std::isfinite(col.stiffness))
         fail("collision.stiffness must be finite and > 0, got " + std::to_string(col.stiffness));
-    if (!(col.damping >= 0.0) || !std::isfinite(col.damping)) fail("collision.damping must be finite and >= 0");
+    if (!(col.damping >= 0.0) || !std::isfinite(col.damping))
+        fail("collision.damping must be finite and >= 0");
     if (col.initialCapacity < 1) fail("collision.initial_capacity must be >= 1");
 
     for (std::size_t bi = 0; bi < scene.bodies.size(); ++bi) {
@@ -63,24 +68,29 @@ void validateScene(const Scene& scene) {
         }
         for (std::size_t f = 0; f < b.faces.size(); ++f)
             for (std::uint32_t i : b.faces[f]) {
-                if (i >= n) bfail("face " + std::to_string(f) + ": index " + std::to_string(i) + " out of range");
+                if (i >= n)
+                    bfail("face " + std::to_string(f) + ": index " + std::to_string(i) + " out of range");
             }
         for (std::size_t f = 0; f < b.faces.size(); ++f) {
             const auto& t = b.faces[f];
-            if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) bfail("face " + std::to_string(f) + ": repeated index");
+            if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+                bfail("face " + std::to_string(f) + ": repeated index");
         }
         for (std::size_t t = 0; t < b.tets.size(); ++t)
             for (std::uint32_t i : b.tets[t])
-                if (i >= n) bfail("tet " + std::to_string(t) + ": index " + std::to_string(i) + " out of range");
+                if (i >= n)
+                    bfail("tet " + std::to_string(t) + ": index " + std::to_string(i) + " out of range");
         for (std::size_t s = 0; s < b.springs.size(); ++s) {
             const Spring& sp = b.springs[s];
             const std::string spring = "spring " + std::to_string(s) + ": ";
             if (sp.a >= n || sp.b >= n)
-                bfail(spring + "end index out of range (" + std::to_string(sp.a) + ", " + std::to_string(sp.b) + ")");
+                bfail(spring + "end index out of range (" + std::to_string(sp.a) + ", " +
+                      std::to_string(sp.b) + ")");
             if (sp.a == sp.b) bfail(spring + "both ends are node " + std::to_string(sp.a));
             if (!(sp.restLength > 0.0) || !std::isfinite(sp.restLength))
-                bfail(spring + "rest length must be positive and finite, got " + std::to_string(sp.restLength) +
-                      " (coincident nodes " + std::to_string(sp.a) + " and " + std::to_string(sp.b) + "?)");
+                bfail(spring + "rest length must be positive and finite, got " +
+                      std::to_string(sp.restLength) + " (coincident nodes " + std::to_string(sp.a) + " and " +
+                      std::to_string(sp.b) + "?)");
             if (!(sp.stiffness > 0.0) || !std::isfinite(sp.stiffness))
                 bfail(spring + "stiffness must be positive and finite, got " + std::to_string(sp.stiffness));
             if (!(sp.damping >= 0.0) || !std::isfinite(sp.damping))

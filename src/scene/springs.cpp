@@ -13,7 +13,9 @@ namespace {
 
 using Edge = std::pair<std::uint32_t, std::uint32_t>;
 
-Edge makeEdge(std::uint32_t a, std::uint32_t b) { return a < b ? Edge{a, b} : Edge{b, a}; }
+Edge makeEdge(std::uint32_t a, std::uint32_t b) {
+    return a < b ? Edge{a, b} : Edge{b, a};
+}
 
 std::vector<Spring> springsFromEdges(std::vector<Edge> edges, SpringKind kind) {
     std::sort(edges.begin(), edges.end());
@@ -72,8 +74,7 @@ std::vector<Spring> surfaceBendSprings(const std::vector<Face>& faces) {
 }
 
 void setRestLengths(Body& body) {
-    for (Spring& s : body.springs)
-        s.restLength = glm::length(body.positions[s.b] - body.positions[s.a]);
+    for (Spring& s : body.springs) s.restLength = glm::length(body.positions[s.b] - body.positions[s.a]);
 }
 
 } // namespace glcollide::detail

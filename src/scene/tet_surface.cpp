@@ -37,8 +37,9 @@ void orientTets(TetMesh& mesh, const std::string& file) {
         std::sort(key.begin(), key.end());
         if (const auto [it, inserted] = seen.emplace(key, t); !inserted)
             throw Error(where(t) + ": tetrahedron uses the same four nodes as " +
-                        (it->second < mesh.tetLines.size() ? "the one of line " + std::to_string(mesh.tetLines[it->second])
-                                                           : "tet " + std::to_string(it->second)) +
+                        (it->second < mesh.tetLines.size()
+                             ? "the one of line " + std::to_string(mesh.tetLines[it->second])
+                             : "tet " + std::to_string(it->second)) +
                         " (a duplicated tetrahedron)");
         const glm::dvec3& a = mesh.positions[tet[0]];
         const glm::dvec3& b = mesh.positions[tet[1]];
@@ -75,9 +76,8 @@ std::vector<Face> boundaryFaces(const std::vector<Tet>& tets, const std::string&
             std::sort(key.begin(), key.end());
             entries.push_back({key, face, t * 4 + static_cast<std::size_t>(f)});
         }
-    std::sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) {
-        return std::tie(x.key, x.seq) < std::tie(y.key, y.seq);
-    });
+    std::sort(entries.begin(), entries.end(),
+              [](const Entry& x, const Entry& y) { return std::tie(x.key, x.seq) < std::tie(y.key, y.seq); });
     std::vector<Entry> single;
     for (std::size_t i = 0; i < entries.size();) {
         std::size_t j = i + 1;
@@ -85,13 +85,11 @@ std::vector<Face> boundaryFaces(const std::vector<Tet>& tets, const std::string&
         if (j - i == 1) single.push_back(entries[i]);
         if (j - i > 2)
             throw Error(what + ": triangle (" + std::to_string(entries[i].key[0]) + ", " +
-                        std::to_string(entries[i].key[1]) + ", " +
-                        std::to_string(entries[i].key[2]) + ") is shared by " +
-                        std::to_string(j - i) + " tetrahedra (non-manifold mesh)");
+                        std::to_string(entries[i].key[1]) + ", " + std::to_string(entries[i].key[2]) +
+                        ") is shared by " + std::to_string(j - i) + " tetrahedra (non-manifold mesh)");
         i = j;
     }
-    std::sort(single.begin(), single.end(),
-              [](const Entry& x, const Entry& y) { return x.seq < y.seq; });
+    std::sort(single.begin(), single.end(), [](const Entry& x, const Entry& y) { return x.seq < y.seq; });
     std::vector<Face> out;
     out.reserve(single.size());
     for (const Entry& e : single) out.push_back(e.oriented);

@@ -17,12 +17,14 @@ TetMesh readTetGen(const std::filesystem::path& nodePath) {
         const long long markers = h.size() > 3 ? in.toInt(h[3], "boundary marker flag") : 0;
         if (n <= 0) in.fail("the .node file announces no points");
         if (dim != 3) in.fail("dimension " + std::to_string(dim) + " is not supported (only 3)");
-        if (attrs < 0 || markers < 0 || markers > 1) in.fail("invalid attribute count or boundary marker flag");
+        if (attrs < 0 || markers < 0 || markers > 1)
+            in.fail("invalid attribute count or boundary marker flag");
         const auto perLine = static_cast<std::size_t>(4 + attrs + markers);
         for (long long i = 0; i < n; ++i) {
             auto t = in.nextData('#');
-            if (t.empty()) in.failAtEnd("unexpected end of file: " + std::to_string(n) + " points announced, " +
-                                        std::to_string(i) + " found");
+            if (t.empty())
+                in.failAtEnd("unexpected end of file: " + std::to_string(n) + " points announced, " +
+                             std::to_string(i) + " found");
             if (t.size() != perLine)
                 in.fail("expected 'index x y z' plus " + std::to_string(attrs) + " attribute(s) and " +
                         std::to_string(markers) + " marker(s) = " + std::to_string(perLine) +
@@ -30,7 +32,8 @@ TetMesh readTetGen(const std::filesystem::path& nodePath) {
             const long long id = in.toInt(t[0], "point index");
             // The first index fixes the numbering: TetGen writes 0- or 1-based (-z) files.
             if (i == 0) {
-                if (id != 0 && id != 1) in.fail("the first point index must be 0 or 1, got " + std::to_string(id));
+                if (id != 0 && id != 1)
+                    in.fail("the first point index must be 0 or 1, got " + std::to_string(id));
                 base = id;
             }
             if (id != base + i)
@@ -56,8 +59,9 @@ TetMesh readTetGen(const std::filesystem::path& nodePath) {
     const long long count = static_cast<long long>(mesh.positions.size());
     for (long long i = 0; i < n; ++i) {
         auto t = in.nextData('#');
-        if (t.empty()) in.failAtEnd("unexpected end of file: " + std::to_string(n) + " tetrahedra announced, " +
-                                    std::to_string(i) + " found");
+        if (t.empty())
+            in.failAtEnd("unexpected end of file: " + std::to_string(n) + " tetrahedra announced, " +
+                         std::to_string(i) + " found");
         if (t.size() != perLine)
             in.fail("expected 'index n1 n2 n3 n4' plus " + std::to_string(attrs) + " attribute(s), got " +
                     std::to_string(t.size()) + " values");

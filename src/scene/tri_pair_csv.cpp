@@ -20,7 +20,9 @@ std::string_view trim(std::string_view s) {
 
 const double kFloatOverflow = std::ldexp(1.0, 128) - std::ldexp(1.0, 103);
 
-std::string where(const std::string& file, std::size_t line) { return file + ":" + std::to_string(line) + ": "; }
+std::string where(const std::string& file, std::size_t line) {
+    return file + ":" + std::to_string(line) + ": ";
+}
 
 } // namespace
 
@@ -38,12 +40,14 @@ TriPairCsv parseTriPairCsv(std::string_view text, const std::string& fileName) {
         std::vector<std::string_view> fields;
         for (std::size_t start = 0;;) {
             const std::size_t comma = line.find(',', start);
-            fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+            fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos
+                                                                                     : comma - start)));
             if (comma == std::string_view::npos) break;
             start = comma + 1;
         }
         if (fields.size() != 18)
-            throw Error(where(fileName, lineNo) + "expected 18 numbers separated by commas (a0 a1 a2 b0 b1 b2, x y z each), got " +
+            throw Error(where(fileName, lineNo) +
+                        "expected 18 numbers separated by commas (a0 a1 a2 b0 b1 b2, x y z each), got " +
                         std::to_string(fields.size()) + " field" + (fields.size() == 1 ? "" : "s"));
         TriPairRow row{};
         for (std::size_t k = 0; k < 18; ++k) {
@@ -59,13 +63,15 @@ TriPairCsv parseTriPairCsv(std::string_view text, const std::string& fileName) {
                 // (it returns HUGE_VAL on overflow and the rounded tiny value on underflow).
                 v = std::strtod(std::string(f).c_str(), nullptr);
                 if (std::isinf(v))
-                    throw Error(where(fileName, lineNo) + label + " is outside float range (|v| <= 3.4028235e38)");
+                    throw Error(where(fileName, lineNo) + label +
+                                " is outside float range (|v| <= 3.4028235e38)");
             }
             if (!std::isfinite(v)) throw Error(where(fileName, lineNo) + label + " is not finite");
             // Values that round to the largest float are accepted; from the midpoint between it and
             // 2^128 on, the conversion would overflow.
             if (std::fabs(v) >= kFloatOverflow)
-                throw Error(where(fileName, lineNo) + label + " is outside float range (|v| <= 3.4028235e38)");
+                throw Error(where(fileName, lineNo) + label +
+                            " is outside float range (|v| <= 3.4028235e38)");
             row[k] = static_cast<float>(v);
         }
         out.pairs.push_back(row);

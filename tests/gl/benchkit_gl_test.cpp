@@ -34,13 +34,15 @@ const char* kBoxes = R"({"name": "boxes", "scene": {
      "transform": {"translate": [0.85, 0.05, 0], "rotate_deg": [20, 20, 0]}, "mass": 1, "springs": {"stiffness": 100}}]}})";
 
 TEST(BenchkitGl, EveryBroadPhaseFindsEveryExactlyIntersectingPair) {
-    const ExperimentResult r = runExperiment(only(std::string(R"({"name": "b", "kind": "broad_phase", "frames": 1, "warmup_frames": 0,
-      "scenes": [)") + kBoxes + R"(], "configs": [
+    const ExperimentResult r = runExperiment(
+        only(std::string(R"({"name": "b", "kind": "broad_phase", "frames": 1, "warmup_frames": 0,
+      "scenes": [)") +
+             kBoxes + R"(], "configs": [
         {"name": "all", "patch": {"collision": {"broad_phase": "all_pairs"}}},
         {"name": "masked", "patch": {"collision": {"broad_phase": "masked"}}},
         {"name": "d1", "patch": {"collision": {"octree_depth": 1}}},
         {"name": "d3", "patch": {"collision": {"octree_depth": 3}}}]})"),
-                                             nullptr);
+        nullptr);
     // The four configurations, and the paper's fused TriTri after "all" and "masked".
     ASSERT_EQ(r.runs.size(), 6u);
     EXPECT_EQ(r.runs[1].config, "all (paper: fused TriTri)");
@@ -66,12 +68,14 @@ TEST(BenchkitGl, EveryBroadPhaseFindsEveryExactlyIntersectingPair) {
 }
 
 TEST(BenchkitGl, RobustAgreesWithTheOracleAndFastIsMeasured) {
-    const ExperimentResult r = runExperiment(only(std::string(R"({"name": "n", "kind": "narrow_phase", "frames": 2, "warmup_frames": 0,
-      "scenes": [)") + kBoxes + R"(], "configs": [
+    const ExperimentResult r = runExperiment(
+        only(std::string(R"({"name": "n", "kind": "narrow_phase", "frames": 2, "warmup_frames": 0,
+      "scenes": [)") +
+             kBoxes + R"(], "configs": [
         {"name": "fast", "patch": {"collision": {"precision": "fast"}}},
         {"name": "robust", "patch": {"collision": {"precision": "robust"}}}],
       "case_families": ["hard"]})"),
-                                             nullptr);
+        nullptr);
     ASSERT_EQ(r.runs.size(), 4u);
     EXPECT_EQ(run(r, "boxes", "robust").error, 0.0);
     EXPECT_EQ(run(r, "pairs: hard", "robust").error, 0.0);
@@ -85,14 +89,15 @@ TEST(BenchkitGl, FreeFlightErrorIsTheSymplecticEulerClosedForm) {
     // Symplectic Euler under constant g: x_N = x0 + v0 t + g t^2/2 + g h t/2, so the largest node
     // error over frames is |g| h T / 2 at the last frame T. Float rounding of positions of a few
     // metres is ~1e-6 m, far below 1 % of the 5e-3 .. 2e-2 m errors here.
-    const ExperimentResult r = runExperiment(only(R"({"name": "i", "kind": "integration", "reference": "ballistic",
+    const ExperimentResult r =
+        runExperiment(only(R"({"name": "i", "kind": "integration", "reference": "ballistic",
       "frames": 30, "warmup_frames": 0,
       "scenes": [{"name": "cloth", "scene": {"format_version": 1, "effects": ["gravity", "springs"],
         "time": {"dt": 0.016666666666666666, "substeps": 2},
         "objects": [{"generator": {"type": "cloth", "size": [1, 1], "resolution": [4, 4]}, "velocity": [1, 4, 0],
                      "mass": 0.3, "springs": {"stiffness": 1}}]}}],
       "configs": [{"name": "2"}, {"name": "4", "substep_factor": 2}, {"name": "8", "substep_factor": 4}]})"),
-                                             nullptr);
+                      nullptr);
     ASSERT_EQ(r.runs.size(), 3u);
     const double T = 30.0 / 60.0;
     for (const RunResult& x : r.runs) {

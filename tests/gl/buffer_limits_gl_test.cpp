@@ -30,8 +30,10 @@ TEST(BufferLimits, ABufferBeyondTheStorageBlockLimitIsRefusedByName) {
         FAIL() << "a " << limit + 16 << "-byte buffer was allocated";
     } catch (const Error& e) {
         const std::string message = e.what();
-        EXPECT_THAT(message, ::testing::HasSubstr("buffer 'positions' needs " + std::to_string(limit + 16) + " bytes"));
-        EXPECT_THAT(message, ::testing::HasSubstr("GL_MAX_SHADER_STORAGE_BLOCK_SIZE of " + std::to_string(limit)));
+        EXPECT_THAT(message, ::testing::HasSubstr("buffer 'positions' needs " + std::to_string(limit + 16) +
+                                                  " bytes"));
+        EXPECT_THAT(message,
+                    ::testing::HasSubstr("GL_MAX_SHADER_STORAGE_BLOCK_SIZE of " + std::to_string(limit)));
     }
     EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }

@@ -34,8 +34,8 @@ using Pairs = std::vector<std::array<std::uint32_t, 2>>;
 constexpr double kThickness = 0.01; // m
 
 struct Soup {
-    model::FlatModel model;             // rest pose (the octree is built on it)
-    std::vector<glm::vec3> current;   // positions the GPU detects on
+    model::FlatModel model;         // rest pose (the octree is built on it)
+    std::vector<glm::vec3> current; // positions the GPU detects on
 };
 
 /// `faces` triangles split over `objects` objects; each object is a random-walk triangle strip
@@ -59,10 +59,12 @@ Soup makeSoup(std::uint32_t faces, std::uint32_t objects, std::uint32_t seed, gl
         for (std::uint32_t k = 0; k < r.nodeCount; ++k) {
             p = glm::clamp(p + glm::vec3(step(rng), step(rng), step(rng)), glm::vec3(0.0f), glm::vec3(1.0f));
             m.positions.emplace_back(p); // float values: exactly what the GPU gets
-            s.current.push_back(p + glm::vec3(jitter(rng), jitter(rng), jitter(rng)) + objectOffset * static_cast<float>(o));
+            s.current.push_back(p + glm::vec3(jitter(rng), jitter(rng), jitter(rng)) +
+                                objectOffset * static_cast<float>(o));
         }
         for (std::uint32_t k = 0; k < n; ++k)
-            m.faceIndices.insert(m.faceIndices.end(), {r.firstNode + k, r.firstNode + k + 1, r.firstNode + k + 2});
+            m.faceIndices.insert(m.faceIndices.end(),
+                                 {r.firstNode + k, r.firstNode + k + 1, r.firstNode + k + 2});
         m.objects.push_back(r);
         faceBegin += n;
     }
@@ -91,9 +93,12 @@ struct Mode {
 
 std::string modeName(const Mode& m) {
     switch (m.broadPhase) {
-    case BroadPhase::Octree: return "Octree" + std::to_string(m.depth);
-    case BroadPhase::Masked: return "Masked" + std::to_string(m.depth);
-    case BroadPhase::AllPairs: return "AllPairs";
+    case BroadPhase::Octree:
+        return "Octree" + std::to_string(m.depth);
+    case BroadPhase::Masked:
+        return "Masked" + std::to_string(m.depth);
+    case BroadPhase::AllPairs:
+        return "AllPairs";
     }
     return "?";
 }
@@ -127,21 +132,26 @@ const Expected& expected(const Soup& soup, std::uint32_t faces, const cpu::PairR
     if (it != cache.end()) return it->second;
     const model::OctreeLayout layout = model::buildOctree(soup.model, 1);
     Expected e;
-    e.candidates = cpu::twinCandidates(soup.model.faceIndices, layout.faceObject, soup.current, kThickness, rules);
+    e.candidates =
+        cpu::twinCandidates(soup.model.faceIndices, layout.faceObject, soup.current, kThickness, rules);
     e.intersections = cpu::twinIntersections(soup.model.faceIndices, soup.current, e.candidates);
     return cache.emplace(key, std::move(e)).first->second;
 }
 
-std::uint32_t seedFor(std::uint32_t faces) { return 1234u + faces; }
+std::uint32_t seedFor(std::uint32_t faces) {
+    return 1234u + faces;
+}
 
-class CollisionDetectionGl : public ::testing::TestWithParam<std::tuple<Mode, std::uint32_t, cpu::PairRules>> {};
+class CollisionDetectionGl
+    : public ::testing::TestWithParam<std::tuple<Mode, std::uint32_t, cpu::PairRules>> {};
 
 TEST_P(CollisionDetectionGl, CandidatesAndIntersectionsMatchTheTwin) {
     const auto& [mode, faces, rules] = GetParam();
     const Soup soup = makeSoup(faces, 3, seedFor(faces));
     const passes::DeviceBuffers buffers = upload(soup);
     const Expected& e = expected(soup, faces, rules);
-    passes::CollisionDetection detection(configFor(mode, rules, TriTriPrecision::Robust, 1u << 16), soup.model);
+    passes::CollisionDetection detection(configFor(mode, rules, TriTriPrecision::Robust, 1u << 16),
+                                         soup.model);
     const passes::CollisionCounts counts = detection.detect(buffers, nullptr);
     EXPECT_EQ(counts.candidates, e.candidates.size());
     EXPECT_EQ(detection.readCandidates(), e.candidates);
@@ -202,14 +212,17 @@ TEST(CollisionDetectionGlCases, GridSnappedSoupWithTouchingAndCoplanarFaces) {
     const passes::DeviceBuffers buffers = upload(soup);
     const cpu::PairRules rules{true, true};
     const model::OctreeLayout layout = model::buildOctree(soup.model, 1);
-    const Pairs candidates = cpu::twinCandidates(soup.model.faceIndices, layout.faceObject, soup.current, kThickness, rules);
+    const Pairs candidates =
+        cpu::twinCandidates(soup.model.faceIndices, layout.faceObject, soup.current, kThickness, rules);
     const Pairs intersections = cpu::twinIntersections(soup.model.faceIndices, soup.current, candidates);
     EXPECT_GT(intersections.size(), 100u);
     for (const Mode& mode : kModes) {
-        passes::CollisionDetection detection(configFor(mode, rules, TriTriPrecision::Robust, 1u << 16), soup.model);
+        passes::CollisionDetection detection(configFor(mode, rules, TriTriPrecision::Robust, 1u << 16),
+                                             soup.model);
         const passes::CollisionCounts counts = detection.detect(buffers, nullptr);
         EXPECT_EQ(detection.readCandidates(), candidates) << modeName(mode);
-        EXPECT_EQ(detection.readIntersections(), intersections) << modeName(mode) << ": robust TriTri vs the exact oracle";
+        EXPECT_EQ(detection.readIntersections(), intersections)
+            << modeName(mode) << ": robust TriTri vs the exact oracle";
         RecordProperty("exact_fallbacks_" + modeName(mode), static_cast<int>(counts.exactFallbacks));
     }
     RecordProperty("candidates", static_cast<int>(candidates.size()));
@@ -220,7 +233,8 @@ TEST(CollisionDetectionGlCases, BodiesFarApartHaveNoCandidates) {
     const Soup soup = makeSoup(1009, 2, 99, glm::vec3(100.0f, 0.0f, 0.0f));
     const passes::DeviceBuffers buffers = upload(soup);
     for (const Mode& mode : kModes) {
-        passes::CollisionDetection detection(configFor(mode, {true, false}, TriTriPrecision::Robust), soup.model);
+        passes::CollisionDetection detection(configFor(mode, {true, false}, TriTriPrecision::Robust),
+                                             soup.model);
         const passes::CollisionCounts counts = detection.detect(buffers, nullptr);
         EXPECT_EQ(counts.boxPairs, 0u) << modeName(mode);
         EXPECT_EQ(counts.candidates, 0u) << modeName(mode);
@@ -234,7 +248,8 @@ TEST(CollisionDetectionGlCases, CapacityOneGrowsAndFindsTheSameSets) {
     const passes::DeviceBuffers buffers = upload(soup);
     const cpu::PairRules rules{true, true};
     for (const Mode& mode : kModes) {
-        passes::CollisionDetection large(configFor(mode, rules, TriTriPrecision::Robust, 1u << 20), soup.model);
+        passes::CollisionDetection large(configFor(mode, rules, TriTriPrecision::Robust, 1u << 20),
+                                         soup.model);
         passes::CollisionDetection small(configFor(mode, rules, TriTriPrecision::Robust, 1u), soup.model);
         const passes::CollisionCounts a = large.detect(buffers, nullptr);
         const passes::CollisionCounts b = small.detect(buffers, nullptr);
@@ -287,7 +302,8 @@ TEST(CollisionDetectionGlCases, AListBeyondTheBlockLimitIsAnErrorNotADrop) {
     const passes::DeviceBuffers buffers = upload(soup);
     const Expected& want = expected(soup, 1009, {true, true});
     ASSERT_GT(want.candidates.size(), 8u);
-    passes::CollisionConfig config = configFor({BroadPhase::AllPairs, 2}, {true, true}, TriTriPrecision::Robust, 1u);
+    passes::CollisionConfig config =
+        configFor({BroadPhase::AllPairs, 2}, {true, true}, TriTriPrecision::Robust, 1u);
     config.listByteLimit = 64;
     passes::CollisionDetection detection(config, soup.model);
     try {
@@ -296,7 +312,8 @@ TEST(CollisionDetectionGlCases, AListBeyondTheBlockLimitIsAnErrorNotADrop) {
     } catch (const Error& e) {
         EXPECT_THAT(e.what(), ::testing::HasSubstr("collision list 'candidates' needs " +
                                                    std::to_string(want.candidates.size()) + " pairs"));
-        EXPECT_THAT(e.what(), ::testing::HasSubstr("GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 64 bytes); no pair was dropped"));
+        EXPECT_THAT(e.what(),
+                    ::testing::HasSubstr("GL_MAX_SHADER_STORAGE_BLOCK_SIZE, 64 bytes); no pair was dropped"));
     }
 }
 
@@ -304,8 +321,8 @@ TEST(CollisionDetectionGlCases, LeafBoxesMatchTheTwin) {
     const Soup soup = makeSoup(1009, 3, seedFor(1009));
     const passes::DeviceBuffers buffers = upload(soup);
     for (int depth = 1; depth <= 3; ++depth) {
-        passes::CollisionDetection detection(configFor({BroadPhase::Octree, depth}, {true, true}, TriTriPrecision::Robust),
-                                             soup.model);
+        passes::CollisionDetection detection(
+            configFor({BroadPhase::Octree, depth}, {true, true}, TriTriPrecision::Robust), soup.model);
         detection.detect(buffers, nullptr);
         const model::OctreeLayout& layout = detection.layout();
         const auto twin = cpu::twinLeafBoxes(layout, soup.model.faceIndices, soup.current, kThickness);
@@ -326,8 +343,8 @@ TEST(CollisionDetectionGlCases, LeafBoxesMatchTheTwin) {
 
 TEST(CollisionDetectionGlCases, FaceInfoAndObjectsAreUploaded) {
     const Soup soup = makeSoup(129, 3, 5);
-    passes::CollisionDetection detection(configFor({BroadPhase::Octree, 2}, {true, true}, TriTriPrecision::Robust),
-                                         soup.model);
+    passes::CollisionDetection detection(
+        configFor({BroadPhase::Octree, 2}, {true, true}, TriTriPrecision::Robust), soup.model);
     const model::OctreeLayout& layout = detection.layout();
     std::vector<gpu::GpuFaceInfo> info(soup.model.faceCount());
     detection.faceInfo().download(0, info.size() * sizeof(gpu::GpuFaceInfo), info.data());
@@ -348,12 +365,16 @@ TEST(CollisionDetectionGlCases, FaceInfoAndObjectsAreUploaded) {
 
 TEST(CollisionDetectionGlCases, PassNamesAndAllocations) {
     const Soup soup = makeSoup(127, 2, 3);
-    passes::CollisionDetection octree(configFor({BroadPhase::Octree, 2}, {true, false}, TriTriPrecision::Robust), soup.model);
-    passes::CollisionDetection masked(configFor({BroadPhase::Masked, 2}, {true, false}, TriTriPrecision::Robust), soup.model);
-    passes::CollisionDetection all(configFor({BroadPhase::AllPairs, 2}, {true, false}, TriTriPrecision::Robust), soup.model);
+    passes::CollisionDetection octree(
+        configFor({BroadPhase::Octree, 2}, {true, false}, TriTriPrecision::Robust), soup.model);
+    passes::CollisionDetection masked(
+        configFor({BroadPhase::Masked, 2}, {true, false}, TriTriPrecision::Robust), soup.model);
+    passes::CollisionDetection all(
+        configFor({BroadPhase::AllPairs, 2}, {true, false}, TriTriPrecision::Robust), soup.model);
     EXPECT_EQ(octree.passNames(), (std::vector<std::string>{"BBUpdate", "BBCollision", "TriTri"}));
     EXPECT_EQ(masked.passNames(), (std::vector<std::string>{"BBUpdate", "BBCollision", "TriTri"}));
-    EXPECT_EQ(all.passNames(), (std::vector<std::string>{"BBCollision", "TriTri"})); // its face-pair stage is timed as BBCollision
+    EXPECT_EQ(all.passNames(), (std::vector<std::string>{
+                                   "BBCollision", "TriTri"})); // its face-pair stage is timed as BBCollision
     auto has = [](const passes::CollisionDetection& d, const std::string& label) {
         const auto labels = d.allocatedLabels();
         return std::find(labels.begin(), labels.end(), label) != labels.end();

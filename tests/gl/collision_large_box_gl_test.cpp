@@ -23,8 +23,10 @@ TEST(CollisionLargeBoxGl, BoxesWithThousandsOfFacesLoseNoCandidate) {
     Scene scene;
     scene.bodies.push_back(detail::generateTetBox({1, 1, 1}, {cells, cells, cells}));
     Body b = detail::generateTetBox({1, 1, 1}, {cells, cells, cells});
-    const glm::dmat4 rotate = glm::rotate(glm::dmat4(1.0), glm::radians(20.0), glm::normalize(glm::dvec3(1, 1, 1)));
-    for (glm::dvec3& p : b.positions) p = glm::dvec3(rotate * glm::dvec4(p, 1.0)) + glm::dvec3(1.05, 0.05, 0.0);
+    const glm::dmat4 rotate =
+        glm::rotate(glm::dmat4(1.0), glm::radians(20.0), glm::normalize(glm::dvec3(1, 1, 1)));
+    for (glm::dvec3& p : b.positions)
+        p = glm::dvec3(rotate * glm::dvec4(p, 1.0)) + glm::dvec3(1.05, 0.05, 0.0);
     scene.bodies.push_back(std::move(b));
     const model::FlatModel model = model::flatten(scene);
 
@@ -38,7 +40,8 @@ TEST(CollisionLargeBoxGl, BoxesWithThousandsOfFacesLoseNoCandidate) {
     buffers.nodeCount = static_cast<std::uint32_t>(packed.size());
     buffers.faceCount = static_cast<std::uint32_t>(model.faceCount());
     buffers.positions = gl::Buffer("positions", packed.size() * sizeof(glm::vec4), packed.data());
-    buffers.faces = gl::Buffer("faces", model.faceIndices.size() * sizeof(std::uint32_t), model.faceIndices.data());
+    buffers.faces =
+        gl::Buffer("faces", model.faceIndices.size() * sizeof(std::uint32_t), model.faceIndices.data());
 
     passes::CollisionConfig config;
     config.betweenObjects = true;

@@ -19,15 +19,20 @@ namespace {
 // Two icospheres (320 faces, radius 0.3 m) with centres `distance` apart in x, closing at 2 m/s,
 // no gravity.
 Scene twoBalls(const std::string& effects, const std::string& collision, double distance = 1.0) {
-    const std::string ball = R"("generator": {"type": "sphere", "radius": 0.3, "subdivisions": 2}, "mass": 1.0,
+    const std::string ball =
+        R"("generator": {"type": "sphere", "radius": 0.3, "subdivisions": 2}, "mass": 1.0,
                                "springs": {"stiffness": 500, "damping": 0.002})";
     const std::string json = R"({"format_version": 1, "name": "two balls", "effects": )" + effects + R"(,
       "time": {"dt": 0.016666666666666666, "substeps": "auto"},
       )" + collision + R"(
       "objects": [
-        {"name": "left", )" + ball + R"(, "transform": {"translate": [)" + std::to_string(-distance / 2) + R"(, 0, 0]},
+        {"name": "left", )" + ball +
+                             R"(, "transform": {"translate": [)" + std::to_string(-distance / 2) +
+                             R"(, 0, 0]},
          "velocity": [1, 0, 0]},
-        {"name": "right", )" + ball + R"(, "transform": {"translate": [)" + std::to_string(distance / 2) + R"(, 0.1, 0]},
+        {"name": "right", )" +
+                             ball + R"(, "transform": {"translate": [)" + std::to_string(distance / 2) +
+                             R"(, 0.1, 0]},
          "velocity": [-1, 0, 0]}]})";
     return parseScene(json, ".", "two balls");
 }
@@ -59,7 +64,8 @@ double maxStrain(const Engine& engine, const std::vector<glm::dvec3>& x) {
         const Body& b = engine.scene().bodies[body];
         const std::uint32_t first = engine.bodyFirstNodes()[body];
         for (const Spring& s : b.springs)
-            strain = std::max(strain, std::abs(glm::length(x[first + s.a] - x[first + s.b]) / s.restLength - 1.0));
+            strain =
+                std::max(strain, std::abs(glm::length(x[first + s.a] - x[first + s.b]) / s.restLength - 1.0));
     }
     return strain;
 }
@@ -81,14 +87,16 @@ TEST(CollisionPhysicsGl, ThrownBodiesCollideDeformAndSeparateWithoutInterpenetra
     }
     const std::vector<glm::dvec3> x = engine.readPositions(), v = engine.readVelocities();
     const BodyMotion left = motion(engine, x, v, 0), right = motion(engine, x, v, 1);
-    std::printf("contacts at most %u, intersecting pairs at most %u, peak strain %.3f, kinetic %.4f -> %.4f J\n",
-                maxContacts, maxIntersecting, peakStrain, kinetic0, engine.energy().kinetic);
+    std::printf(
+        "contacts at most %u, intersecting pairs at most %u, peak strain %.3f, kinetic %.4f -> %.4f J\n",
+        maxContacts, maxIntersecting, peakStrain, kinetic0, engine.energy().kinetic);
     EXPECT_GT(maxContacts, 10u) << "the balls met";
     EXPECT_GT(peakStrain, 0.01) << "and deformed";
     // They bounced: each now moves away from the other.
     EXPECT_LT(left.momentum.x, 0.0);
     EXPECT_GT(right.momentum.x, 0.0);
-    EXPECT_GT(right.centre.x - left.centre.x, 0.6 + 0.02) << "apart by more than two radii plus the thickness";
+    EXPECT_GT(right.centre.x - left.centre.x, 0.6 + 0.02)
+        << "apart by more than two radii plus the thickness";
     // Penalty forces act before the surfaces meet: no face pair ever intersected.
     EXPECT_EQ(maxIntersecting, 0u);
     EXPECT_EQ(engine.lastStep().collision.intersectingPairs, 0u);
@@ -104,7 +112,8 @@ TEST(CollisionPhysicsGl, ThrownBodiesCollideDeformAndSeparateWithoutInterpenetra
 
 // Starts 2 cm short of contact (gap 0.04 m minus the thickness) so a few frames reach it: the
 // all-pairs reference tests 320 x 320 face pairs per substep.
-std::vector<glm::dvec3> trajectory(const std::string& collision, int frames, std::uint32_t* growths = nullptr) {
+std::vector<glm::dvec3> trajectory(const std::string& collision, int frames,
+                                   std::uint32_t* growths = nullptr) {
     Engine engine(twoBalls(R"(["springs", "collisions"])", collision, 0.64));
     std::uint32_t total = 0;
     for (int f = 0; f < frames; ++f) {
@@ -122,11 +131,15 @@ std::vector<glm::dvec3> trajectory(const std::string& collision, int frames, std
 // the triangle test on every pair (robust == oracle is tested in tri_tri_gl_test).
 TEST(CollisionPhysicsGl, EveryBroadPhaseGivesBitIdenticalMotion) {
     const int frames = 3; // in contact from the second frame
-    const std::vector<glm::dvec3> reference =
-        trajectory(R"("collision": {"thickness": 0.02, "stiffness": 300, "precision": "fast", "broad_phase": "all_pairs"},)", frames);
-    for (const char* mode : {R"("broad_phase": "octree", "octree_depth": 1)", R"("broad_phase": "octree", "octree_depth": 2)",
-                             R"("broad_phase": "octree", "octree_depth": 3)", R"("broad_phase": "masked")"}) {
-        const std::string collision = std::string(R"("collision": {"thickness": 0.02, "stiffness": 300, "precision": "fast", )") + mode + "},";
+    const std::vector<glm::dvec3> reference = trajectory(
+        R"("collision": {"thickness": 0.02, "stiffness": 300, "precision": "fast", "broad_phase": "all_pairs"},)",
+        frames);
+    for (const char* mode :
+         {R"("broad_phase": "octree", "octree_depth": 1)", R"("broad_phase": "octree", "octree_depth": 2)",
+          R"("broad_phase": "octree", "octree_depth": 3)", R"("broad_phase": "masked")"}) {
+        const std::string collision =
+            std::string(R"("collision": {"thickness": 0.02, "stiffness": 300, "precision": "fast", )") +
+            mode + "},";
         EXPECT_EQ(trajectory(collision, frames), reference) << mode;
     }
 }
@@ -134,8 +147,8 @@ TEST(CollisionPhysicsGl, EveryBroadPhaseGivesBitIdenticalMotion) {
 TEST(CollisionPhysicsGl, ATinyListCapacityGrowsAndChangesNothing) {
     const int frames = 3;
     std::uint32_t growths = 0;
-    const std::vector<glm::dvec3> tiny =
-        trajectory(R"("collision": {"thickness": 0.02, "stiffness": 300, "initial_capacity": 1},)", frames, &growths);
+    const std::vector<glm::dvec3> tiny = trajectory(
+        R"("collision": {"thickness": 0.02, "stiffness": 300, "initial_capacity": 1},)", frames, &growths);
     EXPECT_GT(growths, 0u);
     EXPECT_EQ(tiny, trajectory(kCollision, frames));
 }

@@ -18,8 +18,8 @@
 namespace glcollide {
 namespace {
 
-constexpr std::uint32_t kOwnAll = GLC_OWN_VERTEX0 | GLC_OWN_VERTEX1 | GLC_OWN_VERTEX2 | GLC_OWN_EDGE01 |
-                                  GLC_OWN_EDGE12 | GLC_OWN_EDGE20;
+constexpr std::uint32_t kOwnAll =
+    GLC_OWN_VERTEX0 | GLC_OWN_VERTEX1 | GLC_OWN_VERTEX2 | GLC_OWN_EDGE01 | GLC_OWN_EDGE12 | GLC_OWN_EDGE20;
 
 struct Soup {
     std::vector<glm::dvec3> positions, velocities; // float values widened to double
@@ -35,8 +35,7 @@ std::vector<glm::vec4> pack(const std::vector<glm::dvec3>& v, float w) {
     return out;
 }
 
-template <typename T>
-gl::Buffer upload(const char* label, const std::vector<T>& v) {
+template <typename T> gl::Buffer upload(const char* label, const std::vector<T>& v) {
     return gl::Buffer(label, v.size() * sizeof(T), v.data());
 }
 
@@ -64,9 +63,10 @@ GpuResult runGpu(const Soup& s, const ContactParams& params) {
                      objectBuffer = upload("objects", objects),
                      counters = upload("counters", std::vector<gpu::GpuCollisionCounters>(1));
     passes::ContactResponsePass pass;
-    pass.dispatch(b, {&candidates, &faceInfo, &objectBuffer, &counters,
-                      static_cast<std::uint32_t>(s.candidates.size())},
-                  params);
+    pass.dispatch(
+        b,
+        {&candidates, &faceInfo, &objectBuffer, &counters, static_cast<std::uint32_t>(s.candidates.size())},
+        params);
     std::vector<glm::ivec4> raw(s.positions.size());
     b.contactForces.download(0, raw.size() * sizeof(glm::ivec4), raw.data());
     gpu::GpuCollisionCounters c{};
@@ -80,7 +80,8 @@ GpuResult runGpu(const Soup& s, const ContactParams& params) {
 cpu::ContactResult runCpu(const Soup& s, const ContactParams& params) {
     std::vector<std::uint8_t> faceClosed;
     for (std::uint32_t o : s.faceObject) faceClosed.push_back(s.objectClosed[o]);
-    return cpu::contactForces(params, {&s.positions, &s.velocities, &s.faces, &s.owned, &faceClosed}, s.candidates);
+    return cpu::contactForces(params, {&s.positions, &s.velocities, &s.faces, &s.owned, &faceClosed},
+                              s.candidates);
 }
 
 ContactParams testParams(double thickness) {
@@ -159,7 +160,8 @@ TEST(ContactResponseGl, MatchesTheTwinOnRandomTriangleSoups) {
             const double tolerance =
                 std::max(1u, cpu.contributions[n]) * (params.forceCap / 65536.0 + 0.5 / params.forceScale);
             for (int k = 0; k < 3; ++k)
-                ASSERT_NEAR(gpu.forces[n][k], cpu.forces[n][k], tolerance) << "faces " << faces << " node " << n;
+                ASSERT_NEAR(gpu.forces[n][k], cpu.forces[n][k], tolerance)
+                    << "faces " << faces << " node " << n;
             total += gpu.forces[n];
         }
         // Momentum: every contact applies opposite forces; only the fixed-point rounding
@@ -174,8 +176,12 @@ TEST(ContactResponseGl, MatchesTheTwinOnRandomTriangleSoups) {
 // vertex-face contact can act (plus none of the probe face's edges).
 Soup probeAboveFace(double probeHeight, bool closed) {
     Soup s;
-    s.positions = {{-1, 0, -1}, {-1, 0, 2}, {2, 0, -1}, // normal = (b-a)x(c-a) = (0,0,3)x(3,0,0) = (0,9,0)
-                   {0.25, probeHeight, 0.25}, {0.25, probeHeight + 5.0, 0.25}, {0.25 + 1e-3, probeHeight + 5.0, 0.25}};
+    s.positions = {{-1, 0, -1},
+                   {-1, 0, 2},
+                   {2, 0, -1}, // normal = (b-a)x(c-a) = (0,0,3)x(3,0,0) = (0,9,0)
+                   {0.25, probeHeight, 0.25},
+                   {0.25, probeHeight + 5.0, 0.25},
+                   {0.25 + 1e-3, probeHeight + 5.0, 0.25}};
     for (glm::dvec3& p : s.positions) p = glm::dvec3(glm::vec3(p)); // what the GPU sees
     s.velocities.assign(6, glm::dvec3(0.0));
     s.faces = {0, 1, 2, 3, 4, 5};
@@ -194,7 +200,8 @@ TEST(ContactResponseGl, VertexAboveAFaceIsPushedOutWithThePenaltyForce) {
     EXPECT_EQ(gpu.contacts, 1u);
     // The face lies exactly in y = 0; the probe's force is one contribution, the face's three.
     EXPECT_NEAR(gpu.forces[3].y, expected, penaltyTolerance(params, expected, 1));
-    EXPECT_NEAR(gpu.forces[0].y + gpu.forces[1].y + gpu.forces[2].y, -expected, penaltyTolerance(params, expected, 3));
+    EXPECT_NEAR(gpu.forces[0].y + gpu.forces[1].y + gpu.forces[2].y, -expected,
+                penaltyTolerance(params, expected, 3));
     EXPECT_EQ(gpu.forces[4], glm::dvec3(0.0));
 }
 
@@ -241,13 +248,15 @@ Soup probeAboveFan(double probeHeight, int sides) {
     s.positions.push_back({0, 0, 0}); // apex, node 0
     for (int i = 0; i < sides; ++i) {
         const double a = 2.0 * 3.14159265358979 * i / sides;
-        s.positions.push_back(glm::dvec3(glm::vec3(static_cast<float>(std::cos(a)), -0.5f, static_cast<float>(std::sin(a)))));
+        s.positions.push_back(
+            glm::dvec3(glm::vec3(static_cast<float>(std::cos(a)), -0.5f, static_cast<float>(std::sin(a)))));
     }
     for (int i = 0; i < sides; ++i) {
         const auto b = static_cast<std::uint32_t>(1 + i), c = static_cast<std::uint32_t>(1 + (i + 1) % sides);
         s.faces.insert(s.faces.end(), {0u, c, b}); // outward (upward) normals
         // Face i owns its edge apex-c (edge 01) and its ring edge c-b (edge 12); face 0 owns the apex.
-        s.owned.push_back(GLC_OWN_EDGE01 | GLC_OWN_EDGE12 | GLC_OWN_VERTEX1 | (i == 0 ? GLC_OWN_VERTEX0 : 0u));
+        s.owned.push_back(GLC_OWN_EDGE01 | GLC_OWN_EDGE12 | GLC_OWN_VERTEX1 |
+                          (i == 0 ? GLC_OWN_VERTEX0 : 0u));
         s.faceObject.push_back(0);
     }
     const auto probe = static_cast<std::uint32_t>(s.positions.size());
@@ -259,7 +268,8 @@ Soup probeAboveFan(double probeHeight, int sides) {
     s.faceObject.push_back(1);
     s.velocities.assign(s.positions.size(), glm::dvec3(0.0));
     s.objectClosed = {0, 0};
-    for (std::uint32_t f = 0; f < static_cast<std::uint32_t>(sides); ++f) s.candidates.push_back({f, static_cast<std::uint32_t>(sides)});
+    for (std::uint32_t f = 0; f < static_cast<std::uint32_t>(sides); ++f)
+        s.candidates.push_back({f, static_cast<std::uint32_t>(sides)});
     return s;
 }
 
@@ -294,7 +304,8 @@ TEST(ContactResponseGl, AVertexNearAnEdgeOfTwoFacesGetsOneContact) {
     const double force = glm::length(gpu.forces[7]);
     // The per-contribution bound of MatchesTheTwinOnRandomTriangleSoups (2^-16 of the cap in float
     // evaluation, 0.5/forceScale fixed point) on each of three components: sqrt(3) of it on the length.
-    EXPECT_NEAR(force, glm::length(cpu.forces[7]), std::sqrt(3.0) * (params.forceCap / 65536.0 + 0.5 / params.forceScale));
+    EXPECT_NEAR(force, glm::length(cpu.forces[7]),
+                std::sqrt(3.0) * (params.forceCap / 65536.0 + 0.5 / params.forceScale));
     EXPECT_LT(force, params.stiffness * params.thickness); // one contact's force at most
 }
 

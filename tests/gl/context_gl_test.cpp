@@ -29,7 +29,9 @@ namespace {
 using test::glTestContext;
 using test::glTestContextOptions;
 
-bool isPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
+bool isPowerOfTwo(int v) {
+    return v > 0 && (v & (v - 1)) == 0;
+}
 
 // After a test made another context current (or none), the environment's context must be back.
 void restoreTestContext() {
@@ -39,9 +41,10 @@ void restoreTestContext() {
 
 TEST(HeadlessContext, EnvironmentContextIsGl43CoreDebug) {
     const GlInfo& info = glTestContext().glInfo();
-    std::printf("device: %s\nEGL: %s %s\nGL: %s | %s | %s | GLSL %s\n", glTestContext().deviceDescription().c_str(),
-                glTestContext().eglVendor().c_str(), glTestContext().eglVersion().c_str(), info.vendor.c_str(),
-                info.renderer.c_str(), info.version.c_str(), info.glslVersion.c_str());
+    std::printf("device: %s\nEGL: %s %s\nGL: %s | %s | %s | GLSL %s\n",
+                glTestContext().deviceDescription().c_str(), glTestContext().eglVendor().c_str(),
+                glTestContext().eglVersion().c_str(), info.vendor.c_str(), info.renderer.c_str(),
+                info.version.c_str(), info.glslVersion.c_str());
     EXPECT_TRUE(info.major > 4 || (info.major == 4 && info.minor >= 3)) << info.version;
     EXPECT_TRUE(info.coreProfile);
     EXPECT_TRUE(info.debugContext);
@@ -115,7 +118,8 @@ TEST(HeadlessContext, SecondContextCoexists) {
         HeadlessContext moved(std::move(second));
         moved.makeCurrent();
         EXPECT_FALSE(moved.deviceDescription().empty());
-        std::printf("second context: %s | %s\n", moved.deviceDescription().c_str(), moved.glInfo().renderer.c_str());
+        std::printf("second context: %s | %s\n", moved.deviceDescription().c_str(),
+                    moved.glInfo().renderer.c_str());
     }
     // Destroying the current second context leaves nothing current on this thread.
     EXPECT_EQ(eglGetCurrentContext(), EGL_NO_CONTEXT);
@@ -141,9 +145,11 @@ EGLDisplay softwareDeviceDisplay() {
         if (!d.software) continue;
         std::vector<EGLDeviceEXT> handles(static_cast<std::size_t>(d.index) + 1);
         EGLint count = 0;
-        if (!eglQueryDevicesEXT(static_cast<EGLint>(handles.size()), handles.data(), &count) || count <= d.index)
+        if (!eglQueryDevicesEXT(static_cast<EGLint>(handles.size()), handles.data(), &count) ||
+            count <= d.index)
             return EGL_NO_DISPLAY;
-        return eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, handles[static_cast<std::size_t>(d.index)], nullptr);
+        return eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, handles[static_cast<std::size_t>(d.index)],
+                                        nullptr);
     }
     return EGL_NO_DISPLAY;
 }
@@ -159,7 +165,8 @@ TEST(HeadlessContext, TerminatesOnlyDisplaysItInitialised) {
     // context usually does not use (Mesa's surfaceless platform does), so both halves below run.
     GLCOLLIDE_REQUIRE_MESA("open its software device's EGL display as a host would");
     const EGLDisplay display = softwareDeviceDisplay();
-    ASSERT_NE(display, EGL_NO_DISPLAY) << "Mesa lists a software device, but its EGL display cannot be opened";
+    ASSERT_NE(display, EGL_NO_DISPLAY)
+        << "Mesa lists a software device, but its EGL display cannot be opened";
     // When the environment's context lives on the same display, it is not ours to terminate.
     const bool sharedWithEnvironment = displayInitialised(display);
     HeadlessContextOptions options;
@@ -197,7 +204,8 @@ TEST(HeadlessContext, PbufferFallbackGivesGl43) {
         HeadlessContext pbuffer(options);
         EXPECT_FALSE(pbuffer.surfaceless());
         EXPECT_TRUE(pbuffer.glInfo().coreProfile);
-        EXPECT_TRUE(pbuffer.glInfo().major > 4 || (pbuffer.glInfo().major == 4 && pbuffer.glInfo().minor >= 3));
+        EXPECT_TRUE(pbuffer.glInfo().major > 4 ||
+                    (pbuffer.glInfo().major == 4 && pbuffer.glInfo().minor >= 3));
     }
     restoreTestContext();
 }
@@ -260,8 +268,10 @@ TEST(HeadlessContext, InvalidSelectorFromEnvironmentNamesTheVariable) {
         EXPECT_NE(std::string(e.what()).find("GLCOLLIDE_EGL_DEVICE"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("\"gpu\""), std::string::npos) << e.what();
     }
-    if (previous) ::setenv("GLCOLLIDE_EGL_DEVICE", saved.c_str(), 1);
-    else ::unsetenv("GLCOLLIDE_EGL_DEVICE");
+    if (previous)
+        ::setenv("GLCOLLIDE_EGL_DEVICE", saved.c_str(), 1);
+    else
+        ::unsetenv("GLCOLLIDE_EGL_DEVICE");
 }
 
 TEST(GlInfo, NoCurrentContextIsAnError) {
@@ -288,15 +298,16 @@ struct ChildResult {
 
 ChildResult runSelfAsChild(const std::string& filter, const std::vector<std::string>& extraEnv) {
     // Everything the child needs is built before fork(): after it only exec-safe calls are made.
-    std::vector<std::string> args = {"/proc/self/exe", "--gtest_filter=" + filter, "--gtest_also_run_disabled_tests",
-                                     "--gtest_color=no"};
+    std::vector<std::string> args = {"/proc/self/exe", "--gtest_filter=" + filter,
+                                     "--gtest_also_run_disabled_tests", "--gtest_color=no"};
     std::vector<std::string> env = extraEnv;
     env.push_back(std::string(test::kChildEnvVar) + "=1");
     for (char** e = environ; *e != nullptr; ++e) {
         const std::string entry = *e;
         bool overridden = false;
         for (const std::string& extra : env)
-            overridden = overridden || entry.substr(0, entry.find('=') + 1) == extra.substr(0, extra.find('=') + 1);
+            overridden =
+                overridden || entry.substr(0, entry.find('=') + 1) == extra.substr(0, extra.find('=') + 1);
         if (!overridden) env.push_back(entry);
     }
     std::vector<char*> argv, envp;
@@ -321,7 +332,8 @@ ChildResult runSelfAsChild(const std::string& filter, const std::vector<std::str
     ChildResult result;
     char buffer[4096];
     ssize_t n = 0;
-    while ((n = ::read(pipeFds[0], buffer, sizeof buffer)) > 0) result.output.append(buffer, static_cast<std::size_t>(n));
+    while ((n = ::read(pipeFds[0], buffer, sizeof buffer)) > 0)
+        result.output.append(buffer, static_cast<std::size_t>(n));
     ::close(pipeFds[0]);
     int status = 0;
     ::waitpid(pid, &status, 0);
@@ -353,7 +365,8 @@ TEST(HeadlessContext, NoEglVendorGivesAClearErrorNotAnAbort) {
     const ChildResult child = runSelfAsChild("NoEglChild.DISABLED_CreateContext",
                                              {"__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json"});
     SCOPED_TRACE(child.output);
-    ASSERT_TRUE(child.exited) << "child killed by signal " << child.signal << " (SIGABRT is " << SIGABRT << ")";
+    ASSERT_TRUE(child.exited) << "child killed by signal " << child.signal << " (SIGABRT is " << SIGABRT
+                              << ")";
     EXPECT_NE(child.exitCode, 0);
     EXPECT_NE(child.exitCode, 127) << "exec failed";
     EXPECT_NE(child.output.find("GLCOLLIDE_CHILD_DEVICES: 0"), std::string::npos);
@@ -364,15 +377,17 @@ TEST(HeadlessContext, NoEglVendorGivesAClearErrorNotAnAbort) {
     EXPECT_NE(message.find("EGL"), std::string::npos) << message;
     EXPECT_NE(message.find("libegl-mesa0"), std::string::npos) << message;
     EXPECT_NE(message.find("__EGL_VENDOR_LIBRARY_FILENAMES"), std::string::npos) << message;
-    EXPECT_EQ(child.output.find("No provider of"), std::string::npos) << "libepoxy aborted on a missing provider";
+    EXPECT_EQ(child.output.find("No provider of"), std::string::npos)
+        << "libepoxy aborted on a missing provider";
 }
 
 TEST(HeadlessContext, NoGl43GivesAClearErrorNamingTheVersionAndThePackages) {
     // Mesa capped at GL 4.2 stands in for a driver without compute shaders. Only Mesa reads the cap,
     // so the child is sent to Mesa's software device even where a GPU would come first.
     GLCOLLIDE_REQUIRE_MESA("cap its OpenGL version at 4.2 with MESA_GL_VERSION_OVERRIDE");
-    const ChildResult child = runSelfAsChild("NoEglChild.DISABLED_CreateContext",
-                                             {"MESA_GL_VERSION_OVERRIDE=4.2", "GLCOLLIDE_EGL_DEVICE=software"});
+    const ChildResult child =
+        runSelfAsChild("NoEglChild.DISABLED_CreateContext",
+                       {"MESA_GL_VERSION_OVERRIDE=4.2", "GLCOLLIDE_EGL_DEVICE=software"});
     SCOPED_TRACE(child.output);
     ASSERT_TRUE(child.exited) << "child killed by signal " << child.signal;
     EXPECT_NE(child.exitCode, 0);

@@ -18,7 +18,7 @@ using test::hostCallback;
 
 // Installs hostCallback for the test and puts the environment's callback back afterwards.
 class DebugOutput : public test::HostDebugCallbackTest {
-protected:
+  protected:
     void insert(const std::string& text, GLuint id = 42) {
         glDebugMessageInsert(GL_DEBUG_SOURCE_THIRD_PARTY, GL_DEBUG_TYPE_OTHER, id, GL_DEBUG_SEVERITY_MEDIUM,
                              static_cast<GLsizei>(text.size()), text.c_str());

@@ -1,9 +1,9 @@
 // Differential tests of NodeForce, SpringUpdate and NodeUpdate against their double-precision CPU
 // twins (src/cpu/dynamics_twin.cpp) on seeded random inputs at sizes 1, L-1, L+1 and a large
-// prime, L = GLC_WORKGROUP_SIZE (docs/design/decisions/0010-cpu-twins-and-exact-oracles.md). The GPU gets float inputs; the twin gets the
-// same float values widened to double, so only the GPU's float arithmetic is being measured.
-// Tolerances are float rounding bounds: u = 2^-24 (unit roundoff of float) times the sum of the
-// magnitudes each result is built from, times a small constant for the operation count.
+// prime, L = GLC_WORKGROUP_SIZE (docs/design/decisions/0010-cpu-twins-and-exact-oracles.md). The GPU gets
+// float inputs; the twin gets the same float values widened to double, so only the GPU's float arithmetic is
+// being measured. Tolerances are float rounding bounds: u = 2^-24 (unit roundoff of float) times the sum of
+// the magnitudes each result is built from, times a small constant for the operation count.
 
 #include "core/gpu_layout.hpp"
 #include "cpu/dynamics_twin.hpp"
@@ -30,7 +30,9 @@ struct RandomModel {
     model::Csr nodeFaces;
 };
 
-double toFloat(double v) { return static_cast<double>(static_cast<float>(v)); }
+double toFloat(double v) {
+    return static_cast<double>(static_cast<float>(v));
+}
 
 RandomModel makeRandomModel(std::uint32_t nodes, std::uint32_t seed) {
     std::mt19937 rng(seed);
@@ -83,8 +85,7 @@ std::vector<glm::vec4> pack(const std::vector<glm::dvec3>& v, const std::vector<
     return out;
 }
 
-template <typename T>
-gl::Buffer upload(const char* label, const std::vector<T>& data) {
+template <typename T> gl::Buffer upload(const char* label, const std::vector<T>& data) {
     return gl::Buffer(label, data.size() * sizeof(T), data.empty() ? nullptr : data.data());
 }
 
@@ -206,10 +207,12 @@ TEST_P(DynamicsGl, NodeUpdateMatchesTwin) {
         // Keep every node's new height at least 1e-4 away from the plane: nearer, float and
         // double may take different sides of the ground test, which is not an arithmetic error.
         for (std::size_t i = 0; i < n; ++i) {
-            const glm::dvec3 v = p.forces ? m.state.velocities[i] + p.h * m.state.inverseMasses[i] * m.state.forces[i]
-                                          : m.state.velocities[i];
+            const glm::dvec3 v =
+                p.forces ? m.state.velocities[i] + p.h * m.state.inverseMasses[i] * m.state.forces[i]
+                         : m.state.velocities[i];
             const double y = m.state.positions[i].y + p.h * v.y;
-            if (std::abs(y - p.groundHeight) < 1e-4) m.state.positions[i].y = toFloat(m.state.positions[i].y + 3e-4);
+            if (std::abs(y - p.groundHeight) < 1e-4)
+                m.state.positions[i].y = toFloat(m.state.positions[i].y + 3e-4);
         }
         passes::DeviceBuffers b = uploadModel(m);
         passes::NodeUpdatePass(p).dispatch(b, p);

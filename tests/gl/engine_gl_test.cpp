@@ -16,9 +16,12 @@ namespace {
 using Names = std::vector<std::string>;
 
 Scene sceneWith(const std::string& effects, const std::string& extra = "") {
-    const std::string json = R"({"format_version": 1, "name": "t", "effects": )" + effects + "," + extra + R"(
+    const std::string json =
+        R"({"format_version": 1, "name": "t", "effects": )" + effects + "," + extra + R"(
       "objects": [{"name": "cloth", "generator": {"type": "cloth", "size": [1, 1], "resolution": [4, 4]},
-                   "mass": 0.1)" + std::string(effects.find("springs") != std::string::npos ? R"(, "springs": {"stiffness": 10})" : "") + "}]}";
+                   "mass": 0.1)" +
+        std::string(effects.find("springs") != std::string::npos ? R"(, "springs": {"stiffness": 10})" : "") +
+        "}]}";
     return parseScene(json, ".", "engine test");
 }
 
@@ -33,12 +36,18 @@ TEST(EngineGl, PassesAndBuffersFollowTheEffects) {
     const Case cases[] = {
         {R"([])", "", {"NodeUpdate"}, {"positions", "velocities", "faces"}},
         {R"(["gravity"])", "", {"NodeForce", "NodeUpdate"}, {"positions", "velocities", "faces", "forces"}},
-        {R"(["springs"])", "", {"SpringUpdate", "NodeUpdate"},
+        {R"(["springs"])",
+         "",
+         {"SpringUpdate", "NodeUpdate"},
          {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList"}},
-        {R"(["gravity", "springs", "damping"])", R"("damping": 0.1,)", {"NodeForce", "SpringUpdate", "NodeUpdate"},
+        {R"(["gravity", "springs", "damping"])",
+         R"("damping": 0.1,)",
+         {"NodeForce", "SpringUpdate", "NodeUpdate"},
          {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList"}},
         {R"(["ground"])", "", {"NodeUpdate"}, {"positions", "velocities", "faces"}},
-        {R"(["wind", "springs"])", R"("wind": {"velocity": [1, 0, 0], "drag": 1},)", {"NodeForce", "SpringUpdate", "NodeUpdate"},
+        {R"(["wind", "springs"])",
+         R"("wind": {"velocity": [1, 0, 0], "drag": 1},)",
+         {"NodeForce", "SpringUpdate", "NodeUpdate"},
          {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList",
           "nodeFaceOffsets", "nodeFaceList"}},
     };
@@ -74,13 +83,14 @@ TEST(EngineGl, EveryShippedSceneComposesAndSteps) {
 
 TEST(EngineGl, CollisionEffectsAddTheirPassesAndBuffers) {
     // Robust precision (the default) adds the undecided list of the exact pass.
-    const Names collisionBuffers = {"faceInfo", "objects", "boxes", "boxFaceOffsets", "boxFaceList", "boxPairs",
-                                    "candidates", "undecided", "intersections", "collisionCounters", "dispatchArgs"};
+    const Names collisionBuffers = {"faceInfo",      "objects",           "boxes",       "boxFaceOffsets",
+                                    "boxFaceList",   "boxPairs",          "candidates",  "undecided",
+                                    "intersections", "collisionCounters", "dispatchArgs"};
     Engine engine(sceneWith(R"(["collisions", "springs"])"));
-    EXPECT_EQ(engine.pipeline(), (Names{"SpringUpdate", "BBUpdate", "BBCollision", "TriTri", "ContactResponse",
-                                        "NodeUpdate"}));
-    Names buffers = {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList",
-                     "contactForces", "health"};
+    EXPECT_EQ(engine.pipeline(),
+              (Names{"SpringUpdate", "BBUpdate", "BBCollision", "TriTri", "ContactResponse", "NodeUpdate"}));
+    Names buffers = {"positions",         "velocities",     "faces",         "forces", "springs",
+                     "nodeSpringOffsets", "nodeSpringList", "contactForces", "health"};
     buffers.insert(buffers.end(), collisionBuffers.begin(), collisionBuffers.end());
     EXPECT_EQ(engine.allocatedBuffers(), buffers);
     engine.step();

@@ -34,23 +34,28 @@ constexpr GLuint kBindings = gl::kStorageBindingCount; // 0..25, as in layout.gl
 // work: box pairs, candidates, intersecting pairs and contacts. Every effect that adds a pass or
 // a buffer is on (wind adds the node-face lists, ground and damping change the shaders).
 Scene collidingBalls(const std::string& broadPhase, std::uint32_t initialCapacity) {
-    const std::string ball = R"("generator": {"type": "sphere", "radius": 0.3, "subdivisions": 2}, "mass": 1.0,
+    const std::string ball =
+        R"("generator": {"type": "sphere", "radius": 0.3, "subdivisions": 2}, "mass": 1.0,
                                "springs": {"stiffness": 500, "damping": 0.002})";
-    const std::string json = R"({"format_version": 1, "name": "colliding balls",
+    const std::string json =
+        R"({"format_version": 1, "name": "colliding balls",
       "effects": ["gravity", "springs", "damping", "wind", "ground", "collisions", "self_collisions"],
       "time": {"dt": 0.002, "substeps": 2},
       "damping": 0.05, "wind": {"velocity": [0, 0, 2], "drag": 1}, "ground": {"height": -2},
-      "collision": {"thickness": 0.02, "stiffness": 300, "broad_phase": ")" + broadPhase +
-                             R"(", "initial_capacity": )" + std::to_string(initialCapacity) + R"(},
+      "collision": {"thickness": 0.02, "stiffness": 300, "broad_phase": ")" +
+        broadPhase + R"(", "initial_capacity": )" + std::to_string(initialCapacity) + R"(},
       "objects": [
-        {"name": "left", )" + ball + R"(, "transform": {"translate": [-0.29, 0, 0]}, "velocity": [1, 0, 0]},
-        {"name": "right", )" + ball + R"(, "transform": {"translate": [0.29, 0.05, 0]}, "velocity": [-1, 0, 0]}]})";
+        {"name": "left", )" +
+        ball + R"(, "transform": {"translate": [-0.29, 0, 0]}, "velocity": [1, 0, 0]},
+        {"name": "right", )" +
+        ball + R"(, "transform": {"translate": [0.29, 0.05, 0]}, "velocity": [-1, 0, 0]}]})";
     return parseScene(json, ".", "colliding balls");
 }
 
 // A flag in the wind: a scene unlike the balls (no collisions, other buffers and programs).
 Scene windyCloth() {
-    const std::string json = R"({"format_version": 1, "name": "flag", "effects": ["gravity", "springs", "wind"],
+    const std::string json =
+        R"({"format_version": 1, "name": "flag", "effects": ["gravity", "springs", "wind"],
       "time": {"dt": 0.01, "substeps": "auto"}, "wind": {"velocity": [3, 0, 1], "drag": 1},
       "objects": [{"name": "flag", "generator": {"type": "cloth", "size": [1, 0.6], "resolution": [12, 8]},
                    "mass": 0.2, "springs": {"stiffness": 100},
@@ -64,12 +69,14 @@ GLuint getName(GLenum binding) {
     return static_cast<GLuint>(v);
 }
 
-bool hasQueryBuffer() { return epoxy_gl_version() >= 44 || epoxy_has_gl_extension("GL_ARB_query_buffer_object"); }
+bool hasQueryBuffer() {
+    return epoxy_gl_version() >= 44 || epoxy_has_gl_extension("GL_ARB_query_buffer_object");
+}
 
 // Everything a host may have bound that glcollide could conceivably disturb.
 struct HostState {
-    GLuint program = 0, vao = 0, arrayBuffer = 0, elementBuffer = 0, storage = 0, dispatchIndirect = 0, copyRead = 0,
-           copyWrite = 0, queryBuffer = 0, timeElapsedQuery = 0;
+    GLuint program = 0, vao = 0, arrayBuffer = 0, elementBuffer = 0, storage = 0, dispatchIndirect = 0,
+           copyRead = 0, copyWrite = 0, queryBuffer = 0, timeElapsedQuery = 0;
     std::array<GLuint, kBindings> indexed{};
     std::array<GLint64, kBindings> start{}, size{};
     bool debugOutput = false, debugSynchronous = false;
@@ -141,7 +148,7 @@ GLuint linkComputeProgram(const char* source) {
 // and element buffers, dispatch-indirect, copy and query buffers, and a GL_TIME_ELAPSED query
 // running across every engine call.
 class HostBindings : public ::testing::TestWithParam<const char*> {
-protected:
+  protected:
     void SetUp() override {
         GLint alignment = 0;
         glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
@@ -152,7 +159,8 @@ protected:
         }
         for (GLuint i = 0; i < kBindings; ++i) {
             if (i % 3 == 0)
-                glBindBufferRange(GL_SHADER_STORAGE_BUFFER, i, m_buffers[i], static_cast<GLintptr>((1 + i % 4) * alignment),
+                glBindBufferRange(GL_SHADER_STORAGE_BUFFER, i, m_buffers[i],
+                                  static_cast<GLintptr>((1 + i % 4) * alignment),
                                   static_cast<GLsizeiptr>(64 + 16 * i));
             else
                 glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, m_buffers[i]);
@@ -235,9 +243,7 @@ TEST_P(HostBindings, SurviveEveryEngineCall) {
     expectSame(m_state, "after move assignment");
     moved.step();
     expectSame(m_state, "after stepping the move-assigned engine");
-    {
-        Engine discarded = std::move(moved);
-    }
+    { Engine discarded = std::move(moved); }
     expectSame(m_state, "after destruction");
 }
 
@@ -248,10 +254,12 @@ TEST_F(HostBindings, SurviveAConstructorThatThrows) {
     // throws after the engine's node buffers and its own face tables were made.
     std::string objects;
     for (int i = 0; i < 129; ++i)
-        objects += std::string(i ? "," : "") + R"({"name": "c)" + std::to_string(i) +
-                   R"(", "generator": {"type": "cloth", "size": [0.1, 0.1], "resolution": [2, 2]}, "mass": 0.1})";
+        objects +=
+            std::string(i ? "," : "") + R"({"name": "c)" + std::to_string(i) +
+            R"(", "generator": {"type": "cloth", "size": [0.1, 0.1], "resolution": [2, 2]}, "mass": 0.1})";
     const Scene scene = parseScene(R"({"format_version": 1, "name": "many", "effects": ["collisions"],
-      "collision": {"broad_phase": "masked", "octree_depth": 3}, "objects": [)" + objects + "]}",
+      "collision": {"broad_phase": "masked", "octree_depth": 3}, "objects": [)" +
+                                       objects + "]}",
                                    ".", "many objects");
     try {
         Engine engine(scene);
@@ -286,10 +294,10 @@ bool contains(const std::vector<std::string>& messages, const std::string& text)
 }
 
 class HostDebugCallback : public test::HostDebugCallbackTest {
-protected:
+  protected:
     static void insert(const std::string& text) {
-        glDebugMessageInsert(GL_DEBUG_SOURCE_APPLICATION, GL_DEBUG_TYPE_MARKER, 1, GL_DEBUG_SEVERITY_NOTIFICATION,
-                             static_cast<GLsizei>(text.size()), text.c_str());
+        glDebugMessageInsert(GL_DEBUG_SOURCE_APPLICATION, GL_DEBUG_TYPE_MARKER, 1,
+                             GL_DEBUG_SEVERITY_NOTIFICATION, static_cast<GLsizei>(text.size()), text.c_str());
     }
     void expectHostCallbackInstalled(const std::string& when) const {
         void* callback = nullptr;

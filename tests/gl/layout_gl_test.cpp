@@ -1,6 +1,7 @@
-// The one-declaration rule (docs/design/decisions/0001-ssbo-layout-shared-by-glsl-and-cpp.md), checked against the driver: every SSBO block of every
-// embedded shader sits at the binding layout.glsl names, and the offsets and strides the driver
-// reports for the shared structs equal the C++ offsetof/sizeof of src/core/gpu_layout.hpp.
+// The one-declaration rule (docs/design/decisions/0001-ssbo-layout-shared-by-glsl-and-cpp.md), checked
+// against the driver: every SSBO block of every embedded shader sits at the binding layout.glsl names, and
+// the offsets and strides the driver reports for the shared structs equal the C++ offsetof/sizeof of
+// src/core/gpu_layout.hpp.
 
 #include <glcollide/error.hpp>
 
@@ -94,7 +95,7 @@ TEST(LayoutGl, NodeArraysHaveVec4StrideForDrawing) {
     for (const gl::ComputeProgram& program : allPrograms()) {
         for (const char* var : {"g_positions[0]", "g_velocities[0]", "g_forces[0]"}) {
             const GLuint index = glGetProgramResourceIndex(program.name(), GL_BUFFER_VARIABLE, var);
-            if (index == GL_INVALID_INDEX) continue; // not every shader declares every array
+            if (index == GL_INVALID_INDEX) continue;             // not every shader declares every array
             const GLenum props[] = {GL_OFFSET, GL_ARRAY_STRIDE}; // an array of vec4, not of structs
             GLint values[2] = {-1, -1};
             glGetProgramResourceiv(program.name(), GL_BUFFER_VARIABLE, index, 2, props, 2, nullptr, values);
@@ -120,7 +121,8 @@ TEST(LayoutGl, SpringStructMatchesCpp) {
         {"g_springs[0].pad1", offsetof(gpu::GpuSpring, pad1)},
     };
     for (const auto& [name, offset] : members)
-        EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset)) << name;
+        EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset))
+            << name;
 }
 
 // GpuObject is not used by a dynamics pass yet; a probe shader built from the same layout.glsl
@@ -130,13 +132,15 @@ TEST(LayoutGl, ObjectStructMatchesCpp) {
     ASSERT_TRUE(in);
     std::stringstream layout;
     layout << in.rdbuf();
-    const std::string source = "#version 430 core\n" + layout.str() +
+    const std::string source =
+        "#version 430 core\n" + layout.str() +
         "layout(local_size_x = 1) in;\n"
         "layout(std430, binding = GLC_BIND_OBJECTS) buffer ObjectsBuf { GpuObject g_objects[]; };\n"
         "void main() { GpuObject o = g_objects[0]; g_objects[1] = o; }\n";
     const gl::ComputeProgram probe = gl::ComputeProgram::fromSource("layout_probe", source);
     const GLuint p = probe.name();
-    EXPECT_EQ(resourceProperty(p, GL_SHADER_STORAGE_BLOCK, "ObjectsBuf", GL_BUFFER_BINDING), GLC_BIND_OBJECTS);
+    EXPECT_EQ(resourceProperty(p, GL_SHADER_STORAGE_BLOCK, "ObjectsBuf", GL_BUFFER_BINDING),
+              GLC_BIND_OBJECTS);
     EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, "g_objects[0].firstNode", GL_TOP_LEVEL_ARRAY_STRIDE),
               static_cast<GLint>(sizeof(gpu::GpuObject)));
     const std::pair<const char*, std::size_t> members[] = {
@@ -148,7 +152,8 @@ TEST(LayoutGl, ObjectStructMatchesCpp) {
         {"g_objects[0].springCount", offsetof(gpu::GpuObject, springCount)},
     };
     for (const auto& [name, offset] : members)
-        EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset)) << name;
+        EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset))
+            << name;
 }
 
 // The collision structs, as the collision shaders see them.
@@ -168,14 +173,16 @@ TEST(LayoutGl, CollisionStructsMatchCpp) {
         {"g_faceInfo[0].box", offsetof(gpu::GpuFaceInfo, box)},
         {"g_faceInfo[0].owned", offsetof(gpu::GpuFaceInfo, owned)},
         {"g_faceInfo[0].pad0", offsetof(gpu::GpuFaceInfo, pad0)},
-        {"g_counters.lists[0].count", offsetof(gpu::GpuCollisionCounters, lists) + offsetof(gpu::GpuListCounter, count)},
+        {"g_counters.lists[0].count",
+         offsetof(gpu::GpuCollisionCounters, lists) + offsetof(gpu::GpuListCounter, count)},
         {"g_counters.lists[0].capacity",
          offsetof(gpu::GpuCollisionCounters, lists) + offsetof(gpu::GpuListCounter, capacity)},
         {"g_counters.exactFallbackCount", offsetof(gpu::GpuCollisionCounters, exactFallbackCount)},
         {"g_counters.contactCount", offsetof(gpu::GpuCollisionCounters, contactCount)},
     };
     for (const auto& [name, offset] : members)
-        EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset)) << name;
+        EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset))
+            << name;
 }
 
 // The list array's stride, which the C++ counters index with (GpuListCounter per list).
@@ -184,7 +191,8 @@ TEST(LayoutGl, ListCountersHaveTheCppStride) {
     for (std::uint32_t list = 0; list < GLC_LIST_COUNT; ++list) {
         const std::string name = "g_counters.lists[" + std::to_string(list) + "].capacity";
         EXPECT_EQ(resourceProperty(expand.name(), GL_BUFFER_VARIABLE, name.c_str(), GL_OFFSET),
-                  static_cast<GLint>(offsetof(gpu::GpuCollisionCounters, lists) + list * sizeof(gpu::GpuListCounter) +
+                  static_cast<GLint>(offsetof(gpu::GpuCollisionCounters, lists) +
+                                     list * sizeof(gpu::GpuListCounter) +
                                      offsetof(gpu::GpuListCounter, capacity)))
             << name;
     }
@@ -210,7 +218,8 @@ TEST(LayoutGl, WorkGroupSizesMatchTheSharedConstants) {
         glGetProgramiv(program.name(), GL_COMPUTE_WORK_GROUP_SIZE, size.data());
         const auto it = expected.find(program.shaderName());
         // Every other shader is one invocation per item in groups of GLC_WORKGROUP_SIZE.
-        const std::array<GLint, 3> want = it != expected.end() ? it->second : std::array<GLint, 3>{GLC_WORKGROUP_SIZE, 1, 1};
+        const std::array<GLint, 3> want =
+            it != expected.end() ? it->second : std::array<GLint, 3>{GLC_WORKGROUP_SIZE, 1, 1};
         EXPECT_EQ(size, want) << program.shaderName();
         checked += it != expected.end() ? 1 : 0;
     }

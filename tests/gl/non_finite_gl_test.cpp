@@ -53,7 +53,7 @@ bool anyNonFinite(const std::vector<glm::dvec3>& v) {
 
 void expectDivergenceReported(const EngineOptions& options) {
     Engine engine(twoChains(1e8), options);
-    ASSERT_FALSE(engine.warnings().empty()); // explicit substeps below the stability limit
+    ASSERT_FALSE(engine.warnings().empty());    // explicit substeps below the stability limit
     std::optional<std::uint64_t> firstReadBack; // first frame whose read-back state is non-finite
     for (int frame = 1; frame <= 100 && !firstReadBack; ++frame) {
         engine.step();

@@ -40,7 +40,7 @@ TEST(PhysicsGl, SpringMassPeriodMatchesTwoPiSqrtMOverK) {
     scene.time.substeps = 4; // ωh = 0.005: symplectic Euler's period error (ωh)²/24 ≈ 1e-6
     Engine engine(scene);
     double previous = engine.readPositions()[1].y + 1.0; // displacement from rest, starts < 0
-    std::vector<double> upCrossings; // times where the displacement crosses zero going up
+    std::vector<double> upCrossings;                     // times where the displacement crosses zero going up
     for (int frame = 1; frame <= 2000; ++frame) {
         engine.step();
         const double current = engine.readPositions()[1].y + 1.0;
@@ -51,7 +51,8 @@ TEST(PhysicsGl, SpringMassPeriodMatchesTwoPiSqrtMOverK) {
         previous = current;
     }
     ASSERT_GE(upCrossings.size(), 5u);
-    const double measured = (upCrossings.back() - upCrossings.front()) / static_cast<double>(upCrossings.size() - 1);
+    const double measured =
+        (upCrossings.back() - upCrossings.front()) / static_cast<double>(upCrossings.size() - 1);
     // Tolerance, derived: symplectic Euler's discrete frequency satisfies cos(w_h h) = 1 - (wh)^2/2,
     // so its period is short by (wh)^2/24 relative (1e-6 at wh = 0.005); the positions, about -1 m,
     // are floats (spacing 2^-23 m) and the node crosses rest at A w = 0.05 m x 20/s = 1 m/s, so
@@ -59,7 +60,8 @@ TEST(PhysicsGl, SpringMassPeriodMatchesTwoPiSqrtMOverK) {
     // interpolation at a crossing errs only at third order (a sine's curvature is 0 there). Ten
     // times their sum: 1.2e-5 relative (measured on llvmpipe: 1.6e-7).
     const double h = scene.time.dt / scene.time.substeps, wh = std::sqrt(k / m) * h;
-    const double bound = expected * wh * wh / 24.0 + 2.0 * 0x1p-23 / static_cast<double>(upCrossings.size() - 1);
+    const double bound =
+        expected * wh * wh / 24.0 + 2.0 * 0x1p-23 / static_cast<double>(upCrossings.size() - 1);
     EXPECT_NEAR(measured, expected, 10.0 * bound) << "period " << measured << " s, expected " << expected;
 }
 
@@ -90,9 +92,12 @@ TEST(PhysicsGl, FreeFallMatchesHalfGTSquared) {
 
 Scene clothScene(const std::string& effects, double damping, int frames) {
     const std::string json = R"({
-      "format_version": 1, "name": "cloth test", "effects": )" + effects + R"(,
-      "time": {"dt": 0.005, "substeps": "auto", "frames": )" + std::to_string(frames) + R"(},
-      )" + (damping > 0 ? "\"damping\": " + std::to_string(damping) + "," : std::string()) + R"(
+      "format_version": 1, "name": "cloth test", "effects": )" +
+                             effects + R"(,
+      "time": {"dt": 0.005, "substeps": "auto", "frames": )" +
+                             std::to_string(frames) + R"(},
+      )" + (damping > 0 ? "\"damping\": " + std::to_string(damping) + "," : std::string()) +
+                             R"(
       "objects": [{"name": "cloth", "generator": {"type": "cloth", "size": [1, 1], "resolution": [12, 12]},
                    "transform": {"translate": [0, 1, 0], "rotate_deg": [90, 0, 0]}, "mass": 0.2,
                    "springs": {"stiffness": 300, "damping": 0.0, "bend_stiffness": 10},
@@ -141,7 +146,8 @@ TEST(PhysicsGl, DampedHangingClothComesToRest) {
     // Damping of 2/s takes energy down by e^-2 per second in every mode. The decay stops at a
     // float floor: rounding of the spring forces at |x| ~ 1 m (u·k·|x| ~ 2e-5 N per spring)
     // keeps ~1e-8 J of jitter (measured on llvmpipe: 8e-9 J at t = 10 s, peak 7e-3 J).
-    EXPECT_LT(finalKinetic, 1e-5 * peakKinetic) << "KE " << finalKinetic << " J, peak " << peakKinetic << " J";
+    EXPECT_LT(finalKinetic, 1e-5 * peakKinetic)
+        << "KE " << finalKinetic << " J, peak " << peakKinetic << " J";
     for (const glm::dvec3& v : engine.readVelocities()) ASSERT_LT(glm::length(v), 5e-3);
 }
 

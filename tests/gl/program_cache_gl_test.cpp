@@ -82,7 +82,9 @@ void writeAll(const fs::path& p, const std::string& bytes) {
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
-std::string probeKey() { return gl::programCacheKey(gl::currentDriverIdentity(), kSource); }
+std::string probeKey() {
+    return gl::programCacheKey(gl::currentDriverIdentity(), kSource);
+}
 
 // The driver must offer a binary format for the cache to do anything. Mesa offers one only while
 // its own shader cache is enabled (MESA_SHADER_CACHE_DISABLE unset), as it is by default; that is
@@ -122,12 +124,22 @@ struct Damage {
     std::string (*apply)(const std::string& good);
 };
 // gtest (and ctest's test list) print the parameter by name, not as bytes holding a pointer.
-[[maybe_unused]] void PrintTo(const Damage& d, std::ostream* os) { *os << d.name; }
+[[maybe_unused]] void PrintTo(const Damage& d, std::ostream* os) {
+    *os << d.name;
+}
 
-std::string truncateHalf(const std::string& good) { return good.substr(0, good.size() / 2); }
-std::string emptyFile(const std::string&) { return {}; }
-std::string badMagic(const std::string& good) { return "XXXXXXXX" + good.substr(8); }
-std::string garbage(const std::string& good) { return std::string(good.size(), '\x5a'); }
+std::string truncateHalf(const std::string& good) {
+    return good.substr(0, good.size() / 2);
+}
+std::string emptyFile(const std::string&) {
+    return {};
+}
+std::string badMagic(const std::string& good) {
+    return "XXXXXXXX" + good.substr(8);
+}
+std::string garbage(const std::string& good) {
+    return std::string(good.size(), '\x5a');
+}
 // The same file name (the key's hash) holding another program's key: a hash collision.
 std::string otherKey(const std::string& good) {
     gl::CacheEntry e = *gl::decodeCacheEntry(good, probeKey());
@@ -138,7 +150,8 @@ std::string otherKey(const std::string& good) {
 // checksum is right, the driver's own check fails, GL_LINK_STATUS is false.
 std::string rejectedByDriver(const std::string& good) {
     gl::CacheEntry e = *gl::decodeCacheEntry(good, probeKey());
-    for (std::size_t i = e.binary.size() / 2; i < e.binary.size(); ++i) e.binary[i] = static_cast<char>(e.binary[i] ^ 0x55);
+    for (std::size_t i = e.binary.size() / 2; i < e.binary.size(); ++i)
+        e.binary[i] = static_cast<char>(e.binary[i] ^ 0x55);
     return gl::encodeCacheEntry(e);
 }
 // A binary format this context does not list (stale entry from another driver).
@@ -173,7 +186,8 @@ TEST_P(ProgramCacheDamageGl, FallsBackToCompilingAndRewritesTheEntry) {
 INSTANTIATE_TEST_SUITE_P(Damages, ProgramCacheDamageGl,
                          ::testing::Values(Damage{"truncated", truncateHalf}, Damage{"empty", emptyFile},
                                            Damage{"bad_magic", badMagic}, Damage{"garbage", garbage},
-                                           Damage{"other_key", otherKey}, Damage{"rejected_by_driver", rejectedByDriver},
+                                           Damage{"other_key", otherKey},
+                                           Damage{"rejected_by_driver", rejectedByDriver},
                                            Damage{"unknown_format", unknownFormat}),
                          [](const ::testing::TestParamInfo<Damage>& i) { return std::string(i.param.name); });
 

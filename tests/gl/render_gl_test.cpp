@@ -36,13 +36,17 @@ const std::filesystem::path kImages = std::filesystem::path(GLCOLLIDE_TEST_DATA_
 /// Two 0.4 m tet boxes standing on the ground, the second turned 30° about y. `gapX` is the x
 /// distance between their centres: 0.7 leaves them apart, 0.25 makes them overlap.
 Scene twoBoxes(double gapX, bool collisions) {
-    const std::string box = R"("generator": {"type": "tet_box", "size": [0.4, 0.4, 0.4], "resolution": [2, 2, 2]},
+    const std::string box =
+        R"("generator": {"type": "tet_box", "size": [0.4, 0.4, 0.4], "resolution": [2, 2, 2]},
                                 "mass": 1)";
     const std::string json = R"({"format_version": 1, "name": "two boxes",
-      "effects": ["ground")" + std::string(collisions ? R"(, "collisions")" : "") + R"(],
+      "effects": ["ground")" +
+                             std::string(collisions ? R"(, "collisions")" : "") + R"(],
       "objects": [
-        {"name": "left", )" + box + R"(, "transform": {"translate": [-0.35, 0.2, 0]}},
-        {"name": "right", )" + box + R"(, "transform": {"translate": [)" + std::to_string(gapX - 0.35) +
+        {"name": "left", )" + box +
+                             R"(, "transform": {"translate": [-0.35, 0.2, 0]}},
+        {"name": "right", )" +
+                             box + R"(, "transform": {"translate": [)" + std::to_string(gapX - 0.35) +
                              R"(, 0.2, 0.05], "rotate_deg": [0, 30, 0]}}
       ]})";
     return parseScene(json, ".", "render test");
@@ -58,7 +62,8 @@ Loaded loadPng(const std::filesystem::path& path) {
     int channels = 0;
     stbi_uc* data = stbi_load(path.string().c_str(), &out.width, &out.height, &channels, 3);
     if (data == nullptr) return out;
-    out.rgb.assign(data, data + static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) * 3);
+    out.rgb.assign(data,
+                   data + static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) * 3);
     stbi_image_free(data);
     return out;
 }
@@ -68,9 +73,12 @@ double hue(double r, double g, double b) {
     const double mx = std::max({r, g, b}), mn = std::min({r, g, b}), c = mx - mn;
     if (c < 1e-6) return -1.0;
     double h = 0.0;
-    if (mx == r) h = std::fmod((g - b) / c + 6.0, 6.0);
-    else if (mx == g) h = (b - r) / c + 2.0;
-    else h = (r - g) / c + 4.0;
+    if (mx == r)
+        h = std::fmod((g - b) / c + 6.0, 6.0);
+    else if (mx == g)
+        h = (b - r) / c + 2.0;
+    else
+        h = (r - g) / c + 4.0;
     return 60.0 * h;
 }
 
@@ -129,9 +137,11 @@ TEST(RenderGl, MatchesTheReferenceImage) {
         if (worst > 8) ++differing;
     }
     if (differing > 160u * 120u / 100u) {
-        const std::filesystem::path actual = std::filesystem::path(::testing::TempDir()) / "two_boxes_160x120_actual.png";
+        const std::filesystem::path actual =
+            std::filesystem::path(::testing::TempDir()) / "two_boxes_160x120_actual.png";
         render::writePng(actual, image);
-        ADD_FAILURE() << differing << " pixels differ by more than 8/255 from " << reference << "; this run: " << actual;
+        ADD_FAILURE() << differing << " pixels differ by more than 8/255 from " << reference
+                      << "; this run: " << actual;
     }
 }
 
@@ -145,7 +155,8 @@ TEST(RenderGl, EachBodyIsWhereTheCameraMatrixPutsIt) {
         // The box centre is inside the box; the front face covers it on screen.
         const glm::dvec3 p = view.project(centroid(scene.bodies[b]), image.width, image.height);
         const int x = static_cast<int>(p.x), y = static_cast<int>(p.y);
-        ASSERT_TRUE(x >= 0 && x < image.width && y >= 0 && y < image.height) << "body " << b << " at " << x << "," << y;
+        ASSERT_TRUE(x >= 0 && x < image.width && y >= 0 && y < image.height)
+            << "body " << b << " at " << x << "," << y;
         const glm::vec3 own = SceneRenderer::bodyColour(b), other = SceneRenderer::bodyColour(1 - b);
         const double h = pixelHue(image, x, y);
         ASSERT_GE(h, 0.0) << "body " << b << ": grey pixel at " << x << "," << y;
@@ -164,7 +175,8 @@ TEST(RenderGl, EachBodyIsWhereTheCameraMatrixPutsIt) {
     const glm::vec3 bg = SceneRenderer::backgroundColour();
     for (int x : {0, image.width - 1}) {
         const auto px = image.pixel(x, 0);
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(px[static_cast<std::size_t>(c)], bg[c] * 255.0f, 1.0) << "corner x=" << x;
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(px[static_cast<std::size_t>(c)], bg[c] * 255.0f, 1.0) << "corner x=" << x;
     }
     // The grid is visible below the bodies: the bottom-centre pixel is floor, neither sky nor body.
     const auto floor = image.pixel(image.width / 2, image.height - 2);
@@ -248,7 +260,8 @@ TEST(RenderGl, PngRoundTrip) {
     ASSERT_EQ(back.height, 30);
     for (std::size_t i = 0; i < 40u * 30u; ++i)
         for (std::size_t c = 0; c < 3; ++c) ASSERT_EQ(back.rgb[3 * i + c], image.rgba[4 * i + c]);
-    EXPECT_THROW(render::writePng(std::filesystem::path(::testing::TempDir()) / "no/such/dir/x.png", image), Error);
+    EXPECT_THROW(render::writePng(std::filesystem::path(::testing::TempDir()) / "no/such/dir/x.png", image),
+                 Error);
 }
 
 TEST(RenderGl, LeavesTheHostsGlStateAsItWas) {

@@ -30,7 +30,7 @@ using test::FreshCacheDir;
 using test::ScopedEnv;
 
 class RobustSelfCheckGl : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override { engine::forgetRememberedSelfChecks(); }
     void TearDown() override { engine::forgetRememberedSelfChecks(); }
     FreshCacheDir dir;
@@ -114,7 +114,8 @@ TEST_F(RobustSelfCheckGl, ADisagreementIsAnErrorNamingDeviceDriverAndCase) {
         const std::string m = e.what();
         EXPECT_NE(m.find("device \"" + gl.renderer + "\""), std::string::npos) << m;
         EXPECT_NE(m.find("driver \"" + gl.vendor + " " + gl.version + "\""), std::string::npos) << m;
-        EXPECT_NE(m.find("2 of " + std::to_string(engine::builtinSelfCheckCases().size())), std::string::npos) << m;
+        EXPECT_NE(m.find("2 of " + std::to_string(engine::builtinSelfCheckCases().size())), std::string::npos)
+            << m;
         EXPECT_NE(m.find("\"" + c.name + "\": " + engine::formatTriPair(c.pair)), std::string::npos) << m;
         // The device answered the truth; the injected expectation is its inverse.
         EXPECT_NE(m.find(std::string("expected ") + (truth ? "0" : "1") + " "), std::string::npos) << m;
@@ -157,7 +158,8 @@ TEST_F(RobustSelfCheckGl, TheEnvironmentVariableWins) {
         const ScopedEnv env("GLCOLLIDE_SELF_CHECK", "error");
         EXPECT_EQ(engine::effectiveSelfCheckMode(SelfCheckMode::Off), SelfCheckMode::Error);
     }
-    EXPECT_EQ(engine::effectiveSelfCheckMode(SelfCheckMode::Warn), SelfCheckMode::Warn) << "unset: the option";
+    EXPECT_EQ(engine::effectiveSelfCheckMode(SelfCheckMode::Warn), SelfCheckMode::Warn)
+        << "unset: the option";
     const ScopedEnv env("GLCOLLIDE_SELF_CHECK", "sometimes");
     EXPECT_THROW((void)engine::effectiveSelfCheckMode(SelfCheckMode::Error), Error);
 }
@@ -169,7 +171,8 @@ TEST_F(RobustSelfCheckGl, AnEngineWithRobustCollisionsRunsItOnce) {
     EXPECT_TRUE(r.passed);
     EXPECT_EQ(r.cases, engine::builtinSelfCheckCases().size());
     bool queryProgram = false;
-    for (const ProgramSetup& p : first.setupStats().programs) queryProgram |= p.shader == "tri_tri_query_filtered";
+    for (const ProgramSetup& p : first.setupStats().programs)
+        queryProgram |= p.shader == "tri_tri_query_filtered";
     EXPECT_TRUE(queryProgram) << "the check's programs count as setup";
     const Engine second(test::twoOverlappingTetBoxes("robust"));
     EXPECT_TRUE(second.setupStats().robustSelfCheck.remembered);

@@ -14,7 +14,7 @@
 namespace glcollide::test {
 
 class ScopedEnv {
-public:
+  public:
     ScopedEnv(const char* name, const std::string& value) : m_name(name) {
         if (const char* old = std::getenv(name)) m_old = old;
         ::setenv(name, value.c_str(), 1);
@@ -28,13 +28,13 @@ public:
     ScopedEnv(const ScopedEnv&) = delete;
     ScopedEnv& operator=(const ScopedEnv&) = delete;
 
-private:
+  private:
     const char* m_name;
     std::optional<std::string> m_old;
 };
 
 class FreshCacheDir {
-public:
+  public:
     FreshCacheDir() {
         static int counter = 0;
         m_path = std::filesystem::temp_directory_path() /
@@ -57,7 +57,7 @@ public:
         return out;
     }
 
-private:
+  private:
     std::filesystem::path m_path;
     std::optional<ScopedEnv> m_env;
 };

@@ -82,8 +82,8 @@ TEST(TriTriGl, RobustMatchesOracleOnHardCases) {
     const std::vector<std::uint8_t> exact = oracle(pairs);
     for (std::size_t i = 0; i < pairs.size(); ++i)
         EXPECT_EQ(gpu.intersect[i], exact[i]) << cases[i].name << " (oracle says " << int(exact[i]) << ")";
-    std::printf("[ hard     ] %zu pairs, %zu intersecting, robust exact fallbacks %llu (%.2f per pair)\n", pairs.size(),
-                static_cast<std::size_t>(std::count(exact.begin(), exact.end(), 1)),
+    std::printf("[ hard     ] %zu pairs, %zu intersecting, robust exact fallbacks %llu (%.2f per pair)\n",
+                pairs.size(), static_cast<std::size_t>(std::count(exact.begin(), exact.end(), 1)),
                 static_cast<unsigned long long>(gpu.exactFallbacks),
                 static_cast<double>(gpu.exactFallbacks) / static_cast<double>(pairs.size()));
 }
@@ -118,9 +118,11 @@ TEST(TriTriGl, RobustMatchesOracleOnRandomSets) {
         const std::size_t hits = static_cast<std::size_t>(std::count(exact.begin(), exact.end(), 1));
         EXPECT_EQ(mismatches(gpu.intersect, exact), 0u) << cpu::toString(set);
         for (std::size_t i = 0, shown = 0; i < pairs.size() && shown < 5; ++i)
-            if (gpu.intersect[i] != exact[i]) ADD_FAILURE() << cpu::toString(set) << " pair " << i << " differs", ++shown;
+            if (gpu.intersect[i] != exact[i])
+                ADD_FAILURE() << cpu::toString(set) << " pair " << i << " differs", ++shown;
         std::printf("[ %-10s] %zu pairs, %zu intersecting, robust exact fallbacks %llu (%.3f per pair)\n",
-                    cpu::toString(set), pairs.size(), hits, static_cast<unsigned long long>(gpu.exactFallbacks),
+                    cpu::toString(set), pairs.size(), hits,
+                    static_cast<unsigned long long>(gpu.exactFallbacks),
                     static_cast<double>(gpu.exactFallbacks) / static_cast<double>(pairs.size()));
         if (set == TriTriSet::Touching) {
             EXPECT_EQ(hits, pairs.size()) << "every touching pair touches by construction";
@@ -133,7 +135,8 @@ TEST(TriTriGl, RobustMatchesOracleOnRandomSets) {
 
 TEST(TriTriGl, BatchSizesAroundTheWorkGroup) {
     const TriTriQueryPass robust(TriTriPrecision::Robust);
-    for (std::size_t n : {std::size_t{1}, std::size_t{GLC_WORKGROUP_SIZE - 1}, std::size_t{GLC_WORKGROUP_SIZE + 1}}) {
+    for (std::size_t n :
+         {std::size_t{1}, std::size_t{GLC_WORKGROUP_SIZE - 1}, std::size_t{GLC_WORKGROUP_SIZE + 1}}) {
         const std::vector<FloatTriPair> pairs = cpu::randomTriTriPairs(TriTriSet::Touching, n, 77);
         const passes::TriTriQueryResult gpu = robust.run(pairs);
         EXPECT_EQ(gpu.intersect, oracle(pairs)) << n << " pairs";
@@ -159,8 +162,10 @@ TEST(TriTriGl, FastAgainstTwinAndOracle) {
     };
     std::vector<Row> rows{{"hard", hardPairs}};
     std::uint32_t seed = 1;
-    for (TriTriSet set : cpu::kAllTriTriSets) rows.push_back({cpu::toString(set), cpu::randomTriTriPairs(set, kRandomPairs, seed++)});
-    std::printf("[ fast     ] set          pairs  gpu!=twin  gpu!=twin(FTZ)  fast!=oracle  false-pos  false-neg\n");
+    for (TriTriSet set : cpu::kAllTriTriSets)
+        rows.push_back({cpu::toString(set), cpu::randomTriTriPairs(set, kRandomPairs, seed++)});
+    std::printf(
+        "[ fast     ] set          pairs  gpu!=twin  gpu!=twin(FTZ)  fast!=oracle  false-pos  false-neg\n");
     for (const Row& row : rows) {
         const std::vector<std::uint8_t> gpu = fast.run(row.pairs).intersect;
         const std::vector<std::uint8_t> cpuTwin = twin(row.pairs);
@@ -172,8 +177,8 @@ TEST(TriTriGl, FastAgainstTwinAndOracle) {
         }
         const std::size_t twinDiff = mismatches(gpu, cpuTwin);
         const std::size_t twinFtzDiff = mismatches(gpu, twin(row.pairs, true));
-        std::printf("[ fast     ] %-11s %6zu  %9zu  %14zu  %12zu  %9zu  %9zu\n", row.set.c_str(), row.pairs.size(), twinDiff,
-                    twinFtzDiff, falsePos + falseNeg, falsePos, falseNeg);
+        std::printf("[ fast     ] %-11s %6zu  %9zu  %14zu  %12zu  %9zu  %9zu\n", row.set.c_str(),
+                    row.pairs.size(), twinDiff, twinFtzDiff, falsePos + falseNeg, falsePos, falseNeg);
         RecordProperty("fast_vs_oracle_" + row.set, static_cast<int>(falsePos + falseNeg));
         RecordProperty("fast_gpu_vs_twin_" + row.set, static_cast<int>(twinDiff));
         EXPECT_EQ(std::min(twinDiff, twinFtzDiff), 0u) << row.set << ": GPU fast differs from its float twin";

@@ -35,25 +35,30 @@ std::string suiteWith(const std::string& experimentFields) {
     return std::string(R"({"name": "t", "experiments": [{"name": "e", )") + experimentFields + "}]}";
 }
 
-std::string sceneList() { return std::string(R"("scenes": [{"name": "s", "scene": )") + kScene + "}]"; }
+std::string sceneList() {
+    return std::string(R"("scenes": [{"name": "s", "scene": )") + kScene + "}]";
+}
 
 TEST(BenchkitSuite, BuiltInAndShippedSuitesParse) {
     const Suite d = defaultSuite();
     EXPECT_EQ(d.name, "default");
     // Every accuracy axis and the scaling run are in the default suite.
-    for (ExperimentKind k : {ExperimentKind::BroadPhase, ExperimentKind::NarrowPhase, ExperimentKind::Integration,
-                             ExperimentKind::Contact, ExperimentKind::Scaling})
-        EXPECT_TRUE(std::any_of(d.experiments.begin(), d.experiments.end(), [&](const Experiment& e) { return e.kind == k; }))
-            << kindName(k);
+    for (ExperimentKind k : {ExperimentKind::BroadPhase, ExperimentKind::NarrowPhase,
+                             ExperimentKind::Integration, ExperimentKind::Contact, ExperimentKind::Scaling})
+        EXPECT_TRUE(std::any_of(d.experiments.begin(), d.experiments.end(), [&](const Experiment& e) {
+            return e.kind == k;
+        })) << kindName(k);
     EXPECT_EQ(smokeSuite().name, "smoke");
     const Suite full = loadSuite(GLCOLLIDE_SOURCE_DIR "/bench/suites/full.json");
     EXPECT_EQ(full.name, "full");
 }
 
 TEST(BenchkitSuite, MergePatchesApplyToTheScene) {
-    const Suite s = parseSuite(suiteWith(R"("kind": "scaling", "scenes": [{"name": "s", "scene": )" + std::string(kScene) +
-                                         R"(, "patch": {"gravity": [0, -1, 0]}}], "configs": [{"name": "c", "patch": {"damping": 2}, "substep_factor": 3}])"),
-                               {}, "t.json");
+    const Suite s = parseSuite(
+        suiteWith(
+            R"("kind": "scaling", "scenes": [{"name": "s", "scene": )" + std::string(kScene) +
+            R"(, "patch": {"gravity": [0, -1, 0]}}], "configs": [{"name": "c", "patch": {"damping": 2}, "substep_factor": 3}])"),
+        {}, "t.json");
     const Experiment& e = s.experiments.at(0);
     EXPECT_THAT(e.scenes.at(0).sceneJson, HasSubstr("\"gravity\":[0,-1,0]"));
     EXPECT_EQ(e.configs.at(0).substepFactor, 3);
@@ -68,26 +73,34 @@ TEST(BenchkitSuite, ErrorsNameTheJsonPointer) {
     EXPECT_THAT(errorOf("{\n\"name\": 1e999}"),
                 HasSubstr("t.json: invalid JSON: line 2: number 1e999 is outside the range of a double"));
     EXPECT_THAT(errorOf(R"({"name": "t", "experiments": [], "extra": 1})"), HasSubstr("/extra: unknown key"));
-    EXPECT_THAT(errorOf(R"({"name": "t", "experiments": []})"), HasSubstr("/experiments: expected a non-empty array"));
+    EXPECT_THAT(errorOf(R"({"name": "t", "experiments": []})"),
+                HasSubstr("/experiments: expected a non-empty array"));
     EXPECT_THAT(errorOf(suiteWith(R"("kind": "speed", )" + sceneList() + ", " + configs)),
                 HasSubstr("/experiments/0/kind: unknown kind \"speed\""));
     EXPECT_THAT(errorOf(suiteWith(R"("kind": "scaling", "scenes": [], )" + configs)),
                 HasSubstr("/experiments/0/scenes: expected a non-empty array"));
-    EXPECT_THAT(errorOf(suiteWith(R"("kind": "scaling", )" + sceneList() + R"(, "configs": [{"name": "c"}, {"name": "c"}])")),
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "scaling", )" + sceneList() +
+                                  R"(, "configs": [{"name": "c"}, {"name": "c"}])")),
                 HasSubstr("/experiments/0/configs/1/name: duplicate name \"c\""));
-    EXPECT_THAT(errorOf(suiteWith(R"("kind": "scaling", "scenes": [{"name": "s", "scene": "missing.json"}], )" + configs)),
+    EXPECT_THAT(errorOf(suiteWith(
+                    R"("kind": "scaling", "scenes": [{"name": "s", "scene": "missing.json"}], )" + configs)),
                 HasSubstr("missing.json: cannot open scene file"));
     EXPECT_THAT(errorOf(suiteWith(R"("kind": "scaling", "scenes": [{"name": "s", "scene": 3}], )" + configs)),
                 HasSubstr("/experiments/0/scenes/0/scene: expected a scene object or a file path"));
-    EXPECT_THAT(errorOf(suiteWith(R"("kind": "scaling", "reference": "ballistic", )" + sceneList() + ", " + configs)),
-                HasSubstr("/experiments/0/reference: only integration experiments have a reference"));
-    EXPECT_THAT(errorOf(suiteWith(R"("kind": "integration", "reference": "exact", )" + sceneList() + ", " + configs)),
-                HasSubstr("/experiments/0/reference: unknown reference \"exact\""));
-    EXPECT_THAT(errorOf(suiteWith(R"("kind": "narrow_phase", "case_families": ["hard", "easy"], )" + sceneList() + ", " + configs)),
+    EXPECT_THAT(
+        errorOf(suiteWith(R"("kind": "scaling", "reference": "ballistic", )" + sceneList() + ", " + configs)),
+        HasSubstr("/experiments/0/reference: only integration experiments have a reference"));
+    EXPECT_THAT(
+        errorOf(suiteWith(R"("kind": "integration", "reference": "exact", )" + sceneList() + ", " + configs)),
+        HasSubstr("/experiments/0/reference: unknown reference \"exact\""));
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "narrow_phase", "case_families": ["hard", "easy"], )" +
+                                  sceneList() + ", " + configs)),
                 HasSubstr("/experiments/0/case_families/1: unknown family"));
-    EXPECT_THAT(errorOf(suiteWith(R"("kind": "scaling", )" + sceneList() + R"(, "configs": [{"name": "c", "substep_factor": 0}])")),
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "scaling", )" + sceneList() +
+                                  R"(, "configs": [{"name": "c", "substep_factor": 0}])")),
                 HasSubstr("/experiments/0/configs/0/substep_factor: expected an integer in 1 ..."));
-    EXPECT_THAT(errorOf(R"({"name": "t", "experiments": [{"name": "Bad Name", "kind": "scaling", )" + sceneList() + ", " + configs + "}]}"),
+    EXPECT_THAT(errorOf(R"({"name": "t", "experiments": [{"name": "Bad Name", "kind": "scaling", )" +
+                        sceneList() + ", " + configs + "}]}"),
                 HasSubstr("/experiments/0/name: use lower-case letters"));
 }
 

@@ -64,18 +64,26 @@ TEST(CollisionTwin, PairRules) {
 TEST(CollisionTwin, CandidatesAndIntersectionsOfAHandMadeCase) {
     // Object 0: a triangle in z = 0. Object 1: one triangle piercing it, one touching it within
     // the thickness, one far away.
-    const std::vector<glm::vec3> p = {
-        {0, 0, 0}, {1, 0, 0}, {0, 1, 0},                 // face 0
-        {0.2f, 0.2f, -0.5f}, {0.3f, 0.2f, 0.5f}, {0.2f, 0.3f, 0.5f}, // face 1: pierces face 0
-        {0.2f, 0.2f, 0.004f}, {0.4f, 0.2f, 0.1f}, {0.2f, 0.4f, 0.1f}, // face 2: box within h/2 + h/2
-        {5, 5, 5}, {6, 5, 5}, {5, 6, 5}};                // face 3: far
+    const std::vector<glm::vec3> p = {{0, 0, 0},
+                                      {1, 0, 0},
+                                      {0, 1, 0}, // face 0
+                                      {0.2f, 0.2f, -0.5f},
+                                      {0.3f, 0.2f, 0.5f},
+                                      {0.2f, 0.3f, 0.5f}, // face 1: pierces face 0
+                                      {0.2f, 0.2f, 0.004f},
+                                      {0.4f, 0.2f, 0.1f},
+                                      {0.2f, 0.4f, 0.1f}, // face 2: box within h/2 + h/2
+                                      {5, 5, 5},
+                                      {6, 5, 5},
+                                      {5, 6, 5}}; // face 3: far
     const std::vector<std::uint32_t> faces = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
     const std::vector<std::uint32_t> object = {0, 1, 1, 1};
     const auto candidates = cpu::twinCandidates(faces, object, p, 0.01, {true, false});
     EXPECT_EQ(candidates, (std::vector<cpu::FacePair>{{0, 1}, {0, 2}}));
     EXPECT_EQ(cpu::twinIntersections(faces, p, candidates), (std::vector<cpu::FacePair>{{0, 1}}));
     // Self only: faces 1 and 2 (object 1, no shared node) have overlapping boxes.
-    EXPECT_EQ(cpu::twinCandidates(faces, object, p, 0.01, {false, true}), (std::vector<cpu::FacePair>{{1, 2}}));
+    EXPECT_EQ(cpu::twinCandidates(faces, object, p, 0.01, {false, true}),
+              (std::vector<cpu::FacePair>{{1, 2}}));
 }
 
 TEST(CollisionTwin, LeafBoxesContainTheirFaceBoxes) {
@@ -84,7 +92,8 @@ TEST(CollisionTwin, LeafBoxesContainTheirFaceBoxes) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> jitter(-0.05f, 0.05f);
     std::vector<glm::vec3> p;
-    for (const glm::dvec3& x : m.positions) p.push_back(glm::vec3(x) + glm::vec3(jitter(rng), jitter(rng), jitter(rng)));
+    for (const glm::dvec3& x : m.positions)
+        p.push_back(glm::vec3(x) + glm::vec3(jitter(rng), jitter(rng), jitter(rng)));
     const auto boxes = cpu::twinLeafBoxes(o, m.faceIndices, p, 0.01);
     const float half = model::halfThicknessFloat(0.01);
     std::size_t empty = 0;

@@ -28,8 +28,8 @@ TEST(DeviceSelector, ToStringRoundTrips) {
 }
 
 TEST(DeviceSelector, RejectsBadTextWithAHelpfulMessage) {
-    for (const char* text : {"", "-1", "gpu", "cuda:", "1x", "+1", " 0", "cuda:-1", "cuda:1x", "AUTO",
-                             "99999999999999999999"}) {
+    for (const char* text :
+         {"", "-1", "gpu", "cuda:", "1x", "+1", " 0", "cuda:-1", "cuda:1x", "AUTO", "99999999999999999999"}) {
         try {
             DeviceSelector::parse(text);
             ADD_FAILURE() << "accepted \"" << text << "\"";
@@ -47,14 +47,17 @@ EglDeviceInfo device(int index, bool software, int cuda = -1) {
     d.index = index;
     d.software = software;
     d.cudaDevice = cuda;
-    d.extensions = software ? "EGL_MESA_device_software EGL_EXT_device_drm_render_node" : "EGL_EXT_device_drm";
+    d.extensions =
+        software ? "EGL_MESA_device_software EGL_EXT_device_drm_render_node" : "EGL_EXT_device_drm";
     if (cuda >= 0) d.extensions += " EGL_NV_device_cuda";
     if (!software) d.drmRenderNode = "/dev/dri/renderD" + std::to_string(128 + index);
     return d;
 }
 
 const Candidate kSurfaceless{Candidate::Kind::Surfaceless, -1};
-Candidate dev(int index) { return {Candidate::Kind::Device, index}; }
+Candidate dev(int index) {
+    return {Candidate::Kind::Device, index};
+}
 
 TEST(DevicePlan, AutoPrefersGpusThenSurfacelessThenSoftware) {
     // Mesa's list puts the software device last, NVIDIA's are merged in front (platform.md §1.6).
@@ -68,18 +71,21 @@ TEST(DevicePlan, AutoOnLlvmpipeUsesSurfacelessFirst) {
     EXPECT_EQ(egl::planCandidates(DeviceSelector{}, {devices, true, true, false}),
               (std::vector<Candidate>{kSurfaceless, dev(0)}));
     // Without device enumeration only the surfaceless platform is left.
-    EXPECT_EQ(egl::planCandidates(DeviceSelector{}, {{}, false, true, false}), (std::vector<Candidate>{kSurfaceless}));
+    EXPECT_EQ(egl::planCandidates(DeviceSelector{}, {{}, false, true, false}),
+              (std::vector<Candidate>{kSurfaceless}));
 }
 
 TEST(DevicePlan, AutoSkipsUnqueryableDevices) {
     std::vector<EglDeviceInfo> devices = {device(0, false), device(1, false)};
     devices[0].queryable = false;
-    EXPECT_EQ(egl::planCandidates(DeviceSelector{}, {devices, true, false, false}), (std::vector<Candidate>{dev(1)}));
+    EXPECT_EQ(egl::planCandidates(DeviceSelector{}, {devices, true, false, false}),
+              (std::vector<Candidate>{dev(1)}));
 }
 
 TEST(DevicePlan, RequireGpuDropsTheSoftwareDevice) {
     const std::vector<EglDeviceInfo> devices = {device(0, true)};
-    EXPECT_EQ(egl::planCandidates(DeviceSelector{}, {devices, true, true, true}), (std::vector<Candidate>{kSurfaceless}));
+    EXPECT_EQ(egl::planCandidates(DeviceSelector{}, {devices, true, true, true}),
+              (std::vector<Candidate>{kSurfaceless}));
     EXPECT_THROW(egl::planCandidates(DeviceSelector{}, {devices, true, false, true}), Error);
     EXPECT_THROW(egl::planCandidates(DeviceSelector::parse("software"), {devices, true, true, true}), Error);
 }
@@ -124,7 +130,8 @@ TEST(DevicePlan, CudaOrdinalMatchesEglCudaDevice) {
 
 TEST(EglDeviceInfo, DescriptionNamesTheKeyFacts) {
     EXPECT_EQ(device(0, true).description(), "EGL device 0 (EGL_MESA_device_software, software)");
-    EXPECT_EQ(device(1, false, 0).description(), "EGL device 1 (EGL_NV_device_cuda, EGL_EXT_device_drm, /dev/dri/renderD129, cuda:0)");
+    EXPECT_EQ(device(1, false, 0).description(),
+              "EGL device 1 (EGL_NV_device_cuda, EGL_EXT_device_drm, /dev/dri/renderD129, cuda:0)");
     EglDeviceInfo bare;
     bare.index = 2;
     bare.queryable = false;

@@ -63,14 +63,16 @@ TEST(PipelinePlan, CollisionEffectsAddTheBroadPhaseNarrowPhaseAndResponse) {
     EXPECT_FALSE(plan.selfCollisions);
     EXPECT_EQ(plan.passes(), (std::vector<std::string>{"NodeForce", "BBUpdate", "BBCollision", "TriTri",
                                                        "ContactResponse", "NodeUpdate"}));
-    EXPECT_EQ(plan.buffers(), (std::vector<std::string>{"positions", "velocities", "faces", "forces", "contactForces"}));
+    EXPECT_EQ(plan.buffers(),
+              (std::vector<std::string>{"positions", "velocities", "faces", "forces", "contactForces"}));
     EXPECT_TRUE(plan.nodeUpdateParams.contacts);
     scene.effects = {Effect::SelfCollisions};
     scene.collision.broadPhase = BroadPhase::AllPairs;
     plan = engine::planPipeline(scene);
     EXPECT_TRUE(plan.selfCollisions);
     // All pairs: one broad-phase stage (every face pair's boxes), timed as BBCollision.
-    EXPECT_EQ(plan.passes(), (std::vector<std::string>{"BBCollision", "TriTri", "ContactResponse", "NodeUpdate"}));
+    EXPECT_EQ(plan.passes(),
+              (std::vector<std::string>{"BBCollision", "TriTri", "ContactResponse", "NodeUpdate"}));
     scene.bodies[0].faces.clear(); // nothing to collide: no collision passes
     EXPECT_EQ(engine::planPipeline(scene).passes(), std::vector<std::string>{"NodeUpdate"});
 }
@@ -175,7 +177,8 @@ TEST(ShaderLog, MesaAndNvidiaLocationsNameTheFile) {
 
 TEST(ShaderLog, DefinesAreInsertedAfterVersionWithoutShiftingLines) {
     const std::string source = gl::shaderSource("node_update", {"GLC_GROUND"});
-    EXPECT_EQ(source.rfind("#version 430 core\n#define GLC_GROUND\n#line 2 0\n", 0), 0u) << source.substr(0, 80);
+    EXPECT_EQ(source.rfind("#version 430 core\n#define GLC_GROUND\n#line 2 0\n", 0), 0u)
+        << source.substr(0, 80);
     EXPECT_THROW(gl::shaderSource("node_update", {"1BAD"}), Error);
     EXPECT_THROW(gl::shaderSource("no_such_shader"), Error);
 }

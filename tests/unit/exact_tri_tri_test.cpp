@@ -20,7 +20,9 @@ namespace {
 
 using V = glm::dvec3;
 
-Triangle tri(V a, V b, V c) { return {a, b, c}; }
+Triangle tri(V a, V b, V c) {
+    return {a, b, c};
+}
 Triangle shifted(Triangle t, V offset) {
     for (V& v : t) v += offset;
     return t;
@@ -40,19 +42,25 @@ const Triangle kUnit = tri({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
 
 TEST(ExactTriTri, CoplanarOverlappingAndDisjoint) {
     expectIntersect(kUnit, tri({0.25, 0.25, 0}, {2, 0.25, 0}, {0.25, 2, 0}), true, "coplanar overlap");
-    expectIntersect(kUnit, tri({0.1, 0.1, 0}, {0.2, 0.1, 0}, {0.1, 0.2, 0}), true, "coplanar, one inside the other");
-    expectIntersect(kUnit, tri({1, 1, 0}, {2, 1, 0}, {1, 2, 0}), false, "coplanar disjoint across the hypotenuse");
-    expectIntersect(kUnit, tri({0.5, 0.5, 0}, {2, 0.5, 0}, {0.5, 2, 0}), true, "coplanar, vertex on the hypotenuse");
+    expectIntersect(kUnit, tri({0.1, 0.1, 0}, {0.2, 0.1, 0}, {0.1, 0.2, 0}), true,
+                    "coplanar, one inside the other");
+    expectIntersect(kUnit, tri({1, 1, 0}, {2, 1, 0}, {1, 2, 0}), false,
+                    "coplanar disjoint across the hypotenuse");
+    expectIntersect(kUnit, tri({0.5, 0.5, 0}, {2, 0.5, 0}, {0.5, 2, 0}), true,
+                    "coplanar, vertex on the hypotenuse");
     const double above = std::nextafter(0.5, 1.0);
-    expectIntersect(kUnit, tri({above, 0.5, 0}, {2, 0.5, 0}, {above, 2, 0}), false, "coplanar, one float step off");
+    expectIntersect(kUnit, tri({above, 0.5, 0}, {2, 0.5, 0}, {above, 2, 0}), false,
+                    "coplanar, one float step off");
 }
 
 TEST(ExactTriTri, TouchingAtAVertexAndSharingAnEdge) {
     expectIntersect(kUnit, tri({1, 0, 0}, {2, 0, 1}, {2, 1, 0}), true, "shared vertex");
     expectIntersect(kUnit, tri({0, 0, 0}, {1, 0, 0}, {0, -1, 0.5}), true, "shared edge");
-    expectIntersect(kUnit, tri({0.25, 0.25, 0}, {0.25, 0.25, 1}, {1, 1, 1}), true, "vertex touching the face");
+    expectIntersect(kUnit, tri({0.25, 0.25, 0}, {0.25, 0.25, 1}, {1, 1, 1}), true,
+                    "vertex touching the face");
     const double up = std::nextafter(0.0, 1.0);
-    expectIntersect(kUnit, tri({0.25, 0.25, up}, {0.25, 0.25, 1}, {1, 1, 1}), false, "one float step above the face");
+    expectIntersect(kUnit, tri({0.25, 0.25, up}, {0.25, 0.25, 1}, {1, 1, 1}), false,
+                    "one float step above the face");
 }
 
 TEST(ExactTriTri, EdgeCrossingEdgeAtOnePoint) {
@@ -93,7 +101,8 @@ TEST(ExactTriTri, SmallTrianglesFarFromTheOrigin) {
 TEST(ExactTriTri, TinyTriangles) {
     const Triangle a = tri({0, 0, 0}, {1e-6, 0, 0}, {0, 1e-6, 0});
     expectIntersect(a, tri({2e-7, 2e-7, -1e-6}, {2e-7, 2e-7, 1e-6}, {5e-7, 3e-7, 0}), true, "tiny crossing");
-    expectIntersect(a, tri({2e-7, 2e-7, 1e-13}, {2e-7, 2e-7, 1e-6}, {5e-7, 3e-7, 1e-6}), false, "tiny, 1e-13 above");
+    expectIntersect(a, tri({2e-7, 2e-7, 1e-13}, {2e-7, 2e-7, 1e-6}, {5e-7, 3e-7, 1e-6}), false,
+                    "tiny, 1e-13 above");
 }
 
 TEST(ExactTriTri, ZeroAreaTriangles) {
@@ -109,7 +118,8 @@ TEST(ExactTriTri, ZeroAreaTriangles) {
     expectIntersect(s1, s2, true, "two degenerate segments crossing");
     expectIntersect(s1, shifted(s2, {0, 0, 1e-9}), false, "skew degenerate segments");
     const Triangle collinearA = tri({0, 0, 0}, {1, 0, 0}, {2, 0, 0});
-    expectIntersect(collinearA, tri({2, 0, 0}, {3, 0, 0}, {4, 0, 0}), true, "collinear segments touching at an end");
+    expectIntersect(collinearA, tri({2, 0, 0}, {3, 0, 0}, {4, 0, 0}), true,
+                    "collinear segments touching at an end");
     expectIntersect(collinearA, tri({2.5, 0, 0}, {3, 0, 0}, {4, 0, 0}), false, "collinear segments apart");
 }
 
@@ -121,7 +131,8 @@ TEST(ExactTriTri, HardFloatCasesHaveTheHandDerivedAnswers) {
     for (const NamedTriPair& c : cases) {
         ASSERT_NE(c.expected, HandAnswer::Missing) << c.name << ": no hand-derived answer";
         EXPECT_FALSE(c.reason.empty()) << c.name << ": no reason for the answer";
-        EXPECT_EQ(exactPairIntersects(c.pair), c.expected == HandAnswer::Intersect) << c.name << ": " << c.reason;
+        EXPECT_EQ(exactPairIntersects(c.pair), c.expected == HandAnswer::Intersect)
+            << c.name << ": " << c.reason;
     }
 }
 
@@ -151,7 +162,8 @@ int satVerdict(const Triangle& a, const Triangle& b) {
         double amin = 1e300, amax = -1e300, bmin = 1e300, bmax = -1e300;
         for (const V& v : a) amin = std::min(amin, glm::dot(n, v)), amax = std::max(amax, glm::dot(n, v));
         for (const V& v : b) bmin = std::min(bmin, glm::dot(n, v)), bmax = std::max(bmax, glm::dot(n, v));
-        const double overlap = std::min(amax - bmin, bmax - amin); // depth: > 0 also when one interval is a point inside the other
+        const double overlap = std::min(
+            amax - bmin, bmax - amin);    // depth: > 0 also when one interval is a point inside the other
         if (overlap < -kMargin) return 0; // clearly separated
         minOverlap = std::min(minOverlap, overlap);
     }

@@ -33,8 +33,8 @@ TEST(Octree, OwnedBitsOfTwoTrianglesSharingAnEdge) {
 }
 
 TEST(Octree, EveryVertexAndEdgeIsOwnedExactlyOnceByItsLowestFace) {
-    const model::FlatModel m = modelOf({detail::generateTetBox({1, 1, 1}, {3, 2, 2}),
-                                      detail::generateCloth(1.0, 1.0, 5, 4, false, false)});
+    const model::FlatModel m = modelOf(
+        {detail::generateTetBox({1, 1, 1}, {3, 2, 2}), detail::generateCloth(1.0, 1.0, 5, 4, false, false)});
     const std::vector<std::uint32_t> owned = model::ownedFeatures(m.faceIndices);
     std::map<std::uint32_t, std::vector<std::uint32_t>> nodeOwners, nodeFaces;
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> edgeOwners, edgeFaces;
@@ -60,9 +60,9 @@ TEST(Octree, EveryVertexAndEdgeIsOwnedExactlyOnceByItsLowestFace) {
 }
 
 TEST(Octree, ClosedFlags) {
-    const model::FlatModel m = modelOf({detail::generateTetBox({1, 1, 1}, {2, 2, 2}),
-                                      detail::generateCloth(1.0, 1.0, 4, 4, false, false),
-                                      detail::generateSphere(0.3, 1)});
+    const model::FlatModel m =
+        modelOf({detail::generateTetBox({1, 1, 1}, {2, 2, 2}),
+                 detail::generateCloth(1.0, 1.0, 4, 4, false, false), detail::generateSphere(0.3, 1)});
     const model::OctreeLayout o = model::buildOctree(m, 1);
     EXPECT_EQ(o.closed, (std::vector<std::uint8_t>{1, 0, 1}));
     // One face removed: its three edges now have one face each.

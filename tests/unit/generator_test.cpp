@@ -30,7 +30,8 @@ double enclosedVolume(const Body& b) {
 double tetVolumeSum(const Body& b, bool requirePositive) {
     double v = 0.0;
     for (const Tet& t : b.tets) {
-        const double d = tetDet(b.positions[t[0]], b.positions[t[1]], b.positions[t[2]], b.positions[t[3]]) / 6.0;
+        const double d =
+            tetDet(b.positions[t[0]], b.positions[t[1]], b.positions[t[2]], b.positions[t[3]]) / 6.0;
         if (requirePositive) {
             EXPECT_GT(d, 0.0);
         }
@@ -64,7 +65,8 @@ TEST(GeneratorCloth, CountsAndLayout) {
         EXPECT_EQ(b.positions[unx - 1], glm::dvec3(1.0, 0.5, 0.0));
         EXPECT_EQ(b.positions.back(), glm::dvec3(1.0, -0.5, 0.0));
         for (const Face& f : b.faces) {
-            const glm::dvec3 n = glm::cross(b.positions[f[1]] - b.positions[f[0]], b.positions[f[2]] - b.positions[f[0]]);
+            const glm::dvec3 n =
+                glm::cross(b.positions[f[1]] - b.positions[f[0]], b.positions[f[2]] - b.positions[f[0]]);
             EXPECT_GT(n.z, 0.0); // counter-clockwise seen from +Z
         }
     }
@@ -73,7 +75,8 @@ TEST(GeneratorCloth, CountsAndLayout) {
 }
 
 TEST(GeneratorTetBox, BoundaryVolumeAndOrientation) {
-    for (auto cells : {std::array<int, 3>{1, 1, 1}, std::array<int, 3>{3, 2, 4}, std::array<int, 3>{5, 1, 2}}) {
+    for (auto cells :
+         {std::array<int, 3>{1, 1, 1}, std::array<int, 3>{3, 2, 4}, std::array<int, 3>{5, 1, 2}}) {
         const glm::dvec3 size(0.5, 2.0, 1.5);
         const Body b = generateTetBox(size, cells);
         const auto cx = static_cast<std::size_t>(cells[0]), cy = static_cast<std::size_t>(cells[1]),

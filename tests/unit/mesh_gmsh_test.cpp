@@ -76,7 +76,8 @@ TEST(GmshReader, ErrorsNameFileAndLine) {
     EXPECT_THAT(errorOf("binary_v41.msh"), HasSubstr("binary_v41.msh:2: binary MSH files are not supported"));
     EXPECT_THAT(errorOf("tet10_v41.msh"), HasSubstr("tet10_v41.msh:27: 10-node"));
     EXPECT_THAT(errorOf("version3.msh"), HasSubstr("version3.msh:2: MSH version 3.0 is not supported"));
-    EXPECT_THAT(errorOf("repeated_node_v22.msh"), HasSubstr("repeated_node_v22.msh:16: tetrahedron repeats node"));
+    EXPECT_THAT(errorOf("repeated_node_v22.msh"),
+                HasSubstr("repeated_node_v22.msh:16: tetrahedron repeats node"));
     EXPECT_THAT(errorOf("flat_v22.msh"), HasSubstr("flat_v22.msh:13: degenerate"));
     EXPECT_THAT(errorOf("does_not_exist.msh"), HasSubstr("does_not_exist.msh: cannot open file"));
     EXPECT_THAT(errorOf("two_tets0.node"), HasSubstr("two_tets0.node:1: "));
@@ -90,18 +91,15 @@ struct IpcMesh {
 class GmshIpcMeshes : public ::testing::TestWithParam<IpcMesh> {};
 
 // Counts from the IPC mesh descriptions (see tests/data/external/README.md).
-INSTANTIATE_TEST_SUITE_P(GmshIpc, GmshIpcMeshes,
-                         ::testing::Values(IpcMesh{"tet.msh", 4, 1, 4}, IpcMesh{"tet-pyramid.msh", 4, 1, 4},
-                                           IpcMesh{"tet-perp-edges.msh", 4, 1, 4}, IpcMesh{"cube.msh", 8, 6, 12},
-                                           IpcMesh{"erleben/spike.msh", 5, 2, 6},
-                                           IpcMesh{"erleben/wedge.msh", 6, 3, 8},
-                                           IpcMesh{"torus.msh", 200, 491, 400},
-                                           IpcMesh{"mat20x20.msh", 800, 2166, 1596},
-                                           IpcMesh{"mat40x40.msh", 3200, 9126, 6396},
-                                           IpcMesh{"sphere1K.msh", 1760, 6851, 2474},
-                                           IpcMesh{"cow_head.msh", 1328, 5029, 1986},
-                                           IpcMesh{"bunny.msh", 4670, 19379, 6266},
-                                           IpcMesh{"Armadillo13K.msh", 13230, 54985, 17296}));
+INSTANTIATE_TEST_SUITE_P(
+    GmshIpc, GmshIpcMeshes,
+    ::testing::Values(IpcMesh{"tet.msh", 4, 1, 4}, IpcMesh{"tet-pyramid.msh", 4, 1, 4},
+                      IpcMesh{"tet-perp-edges.msh", 4, 1, 4}, IpcMesh{"cube.msh", 8, 6, 12},
+                      IpcMesh{"erleben/spike.msh", 5, 2, 6}, IpcMesh{"erleben/wedge.msh", 6, 3, 8},
+                      IpcMesh{"torus.msh", 200, 491, 400}, IpcMesh{"mat20x20.msh", 800, 2166, 1596},
+                      IpcMesh{"mat40x40.msh", 3200, 9126, 6396}, IpcMesh{"sphere1K.msh", 1760, 6851, 2474},
+                      IpcMesh{"cow_head.msh", 1328, 5029, 1986}, IpcMesh{"bunny.msh", 4670, 19379, 6266},
+                      IpcMesh{"Armadillo13K.msh", 13230, 54985, 17296}));
 
 TEST_P(GmshIpcMeshes, CountsAndOutwardBoundary) {
     const IpcMesh& want = GetParam();

@@ -39,7 +39,9 @@ TEST(TetGenReader, ZeroAndOneBasedGiveTheSameMesh) {
     EXPECT_EQ(one.tets, (std::vector<Tet>{{0, 1, 2, 3}, {1, 2, 3, 4}}));
     EXPECT_EQ(zero.tetLines, (std::vector<std::size_t>{3, 4}));
     for (const Tet& t : zero.tets)
-        EXPECT_GT(tetDet(zero.positions[t[0]], zero.positions[t[1]], zero.positions[t[2]], zero.positions[t[3]]), 0.0);
+        EXPECT_GT(
+            tetDet(zero.positions[t[0]], zero.positions[t[1]], zero.positions[t[2]], zero.positions[t[3]]),
+            0.0);
     EXPECT_EQ(boundaryFaces(zero.tets, "two tets").size(), 6u);
 }
 

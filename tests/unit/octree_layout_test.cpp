@@ -28,13 +28,14 @@ model::FlatModel modelOf(const std::vector<Body>& bodies) {
 TEST(Octree, CellsClampAndFlatAxes) {
     const glm::dvec3 lo(0.0), hi(1.0, 2.0, 4.0);
     EXPECT_EQ(model::octreeCell({0.0, 0.0, 0.0}, lo, hi, 2), 0u);
-    EXPECT_EQ(model::octreeCell({1.0, 2.0, 4.0}, lo, hi, 2), 7u); // the upper border is clamped in
-    EXPECT_EQ(model::octreeCell({0.75, 0.1, 0.1}, lo, hi, 2), 1u);  // x fastest
+    EXPECT_EQ(model::octreeCell({1.0, 2.0, 4.0}, lo, hi, 2), 7u);  // the upper border is clamped in
+    EXPECT_EQ(model::octreeCell({0.75, 0.1, 0.1}, lo, hi, 2), 1u); // x fastest
     EXPECT_EQ(model::octreeCell({0.1, 1.5, 0.1}, lo, hi, 2), 2u);
     EXPECT_EQ(model::octreeCell({0.1, 0.1, 3.0}, lo, hi, 2), 4u);
     EXPECT_EQ(model::octreeCell({-5.0, 9.0, 0.5}, lo, hi, 4), 0u + 4u * 3u + 16u * 0u);
     // A flat axis maps to cell 0 on that axis.
-    EXPECT_EQ(model::octreeCell({0.9, 7.0, 0.9}, glm::dvec3(0.0, 7.0, 0.0), glm::dvec3(1.0, 7.0, 1.0), 2), 1u + 4u);
+    EXPECT_EQ(model::octreeCell({0.9, 7.0, 0.9}, glm::dvec3(0.0, 7.0, 0.0), glm::dvec3(1.0, 7.0, 1.0), 2),
+              1u + 4u);
 }
 
 TEST(Octree, DepthOutOfRangeThrows) {
@@ -44,8 +45,8 @@ TEST(Octree, DepthOutOfRangeThrows) {
 }
 
 TEST(Octree, FacesGoToTheCellOfTheirRestCentroid) {
-    const model::FlatModel m = modelOf({detail::generateTetBox({1, 2, 3}, {3, 4, 5}),
-                                      detail::generateSphere(0.5, 2)});
+    const model::FlatModel m =
+        modelOf({detail::generateTetBox({1, 2, 3}, {3, 4, 5}), detail::generateSphere(0.5, 2)});
     for (int depth = 1; depth <= 3; ++depth) {
         const model::OctreeLayout o = model::buildOctree(m, depth);
         const std::uint32_t n = 1u << depth;
@@ -64,8 +65,10 @@ TEST(Octree, FacesGoToTheCellOfTheirRestCentroid) {
                 hi = glm::max(hi, m.positions[m.faceIndices[k]]);
             }
             for (std::uint32_t f = r.firstFace; f < r.firstFace + r.faceCount; ++f) {
-                const glm::dvec3 c = (m.positions[m.faceIndices[3 * f]] + m.positions[m.faceIndices[3 * f + 1]] +
-                                      m.positions[m.faceIndices[3 * f + 2]]) / 3.0;
+                const glm::dvec3 c =
+                    (m.positions[m.faceIndices[3 * f]] + m.positions[m.faceIndices[3 * f + 1]] +
+                     m.positions[m.faceIndices[3 * f + 2]]) /
+                    3.0;
                 EXPECT_EQ(o.faceObject[f], obj);
                 EXPECT_EQ(o.faceBox[f], o.firstBox[obj] + model::octreeCell(c, lo, hi, n));
                 cellsUsed.insert(o.faceBox[f]);

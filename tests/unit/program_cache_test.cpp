@@ -62,7 +62,7 @@ TEST(ProgramCacheKey, NamesDriverAndSource) {
 }
 
 class ProgramCacheEntry : public ::testing::Test {
-protected:
+  protected:
     CacheEntry entry{0x8740u, "the key", std::string("\x01\x02\x00\xff binary", 11)};
     std::string bytes = encodeCacheEntry(entry);
 };
@@ -76,8 +76,8 @@ TEST_F(ProgramCacheEntry, RoundTrips) {
 }
 
 TEST_F(ProgramCacheEntry, RejectsAnotherKey) {
-    EXPECT_FALSE(decodeCacheEntry(bytes, "the kez").has_value());   // same length
-    EXPECT_FALSE(decodeCacheEntry(bytes, "the key2").has_value());  // other length
+    EXPECT_FALSE(decodeCacheEntry(bytes, "the kez").has_value());  // same length
+    EXPECT_FALSE(decodeCacheEntry(bytes, "the key2").has_value()); // other length
 }
 
 TEST_F(ProgramCacheEntry, RejectsEveryTruncation) {

@@ -22,8 +22,9 @@ TEST(RobustSelfCheckCases, HardCasesThenSeededFamilies) {
     const std::size_t hard = cpu::hardTriTriCases().size();
     EXPECT_GE(hard, 300u);
     ASSERT_EQ(cases.size(), hard + 3 * kSelfCheckSamplePerFamily);
-    for (const char* name : {"coplanar, one float step off the hypotenuse", "far away, crossing", "far away, above",
-                             "far away, touching", "far away exact, apex on the face", "denormal triangle pierced"}) {
+    for (const char* name :
+         {"coplanar, one float step off the hypotenuse", "far away, crossing", "far away, above",
+          "far away, touching", "far away exact, apex on the face", "denormal triangle pierced"}) {
         bool found = false;
         for (std::size_t i = 0; i < hard; ++i) found |= cases[i].name.rfind(name, 0) == 0;
         EXPECT_TRUE(found) << name;
@@ -49,9 +50,15 @@ TEST(RobustSelfCheckMode, ParsesTheThreeWordsOnly) {
 // coordinate must read back as the same float, denormals and extremes included.
 TEST(RobustSelfCheckFormat, CoordinatesReadBackExactly) {
     cpu::FloatTriPair pair{};
-    const float values[] = {0.0f, -0.0f, 1.0f / 3.0f, std::numeric_limits<float>::denorm_min(),
-                            std::numeric_limits<float>::max(), -std::numeric_limits<float>::min(), 1e-7f,
-                            std::nextafter(1.0f, 2.0f), 123456.789f};
+    const float values[] = {0.0f,
+                            -0.0f,
+                            1.0f / 3.0f,
+                            std::numeric_limits<float>::denorm_min(),
+                            std::numeric_limits<float>::max(),
+                            -std::numeric_limits<float>::min(),
+                            1e-7f,
+                            std::nextafter(1.0f, 2.0f),
+                            123456.789f};
     for (std::size_t i = 0; i < pair.size(); ++i) pair[i] = values[i % std::size(values)];
     const std::string text = formatTriPair(pair);
     std::size_t at = 0;

@@ -18,7 +18,9 @@ namespace {
 const std::string kSource = GLCOLLIDE_SOURCE_DIR;
 const std::string kData = GLCOLLIDE_TEST_DATA_DIR;
 
-Scene parse(const std::string& text) { return parseScene(text, kData + "/mesh", "test.json"); }
+Scene parse(const std::string& text) {
+    return parseScene(text, kData + "/mesh", "test.json");
+}
 
 std::string errorOf(const std::string& text) {
     try {
@@ -125,10 +127,20 @@ TEST(SceneJson, ClothMassSpringsAndDefaults) {
     for (const Spring& sp : b.springs) {
         EXPECT_DOUBLE_EQ(sp.restLength, glm::length(b.positions[sp.a] - b.positions[sp.b]));
         switch (sp.kind) {
-        case SpringKind::Structural: ++structural; EXPECT_EQ(sp.stiffness, 100.0); break;
-        case SpringKind::Shear: ++shear; EXPECT_EQ(sp.stiffness, 100.0); break;
-        case SpringKind::Bend: ++bend; EXPECT_EQ(sp.stiffness, 10.0); break;
-        default: ADD_FAILURE();
+        case SpringKind::Structural:
+            ++structural;
+            EXPECT_EQ(sp.stiffness, 100.0);
+            break;
+        case SpringKind::Shear:
+            ++shear;
+            EXPECT_EQ(sp.stiffness, 100.0);
+            break;
+        case SpringKind::Bend:
+            ++bend;
+            EXPECT_EQ(sp.stiffness, 10.0);
+            break;
+        default:
+            ADD_FAILURE();
         }
         EXPECT_EQ(sp.damping, 0.0);
     }
@@ -167,12 +179,14 @@ TEST(SceneJson, TransformScaleRotateTranslate) {
 }
 
 TEST(SceneJson, VelocityAndAngularVelocity) {
-    const Scene s = parse(scene(R"({"generator": {"type": "tet_box", "size": [1, 1, 1], "resolution": [2, 2, 2]},
+    const Scene s =
+        parse(scene(R"({"generator": {"type": "tet_box", "size": [1, 1, 1], "resolution": [2, 2, 2]},
         "transform": {"translate": [5, 0, 0]}, "velocity": [1, 0, 0], "angular_velocity": [0, 0, 2],
         "mass": 1, "springs": {"stiffness": 1}})"));
     const Body& b = s.bodies[0];
     for (std::size_t v = 0; v < b.positions.size(); ++v) {
-        const glm::dvec3 r = b.positions[v] - glm::dvec3(5, 0, 0); // the box is symmetric: centre of mass at the translation
+        const glm::dvec3 r =
+            b.positions[v] - glm::dvec3(5, 0, 0); // the box is symmetric: centre of mass at the translation
         const glm::dvec3 want = glm::dvec3(1, 0, 0) + glm::cross(glm::dvec3(0, 0, 2), r);
         EXPECT_NEAR(glm::length(b.velocities[v] - want), 0.0, 1e-12);
     }
@@ -206,7 +220,8 @@ TEST(SceneJson, SurfaceMeshEdgeAndBendSprings) {
     EXPECT_EQ(b.springs.back().stiffness, 1.0);
     EXPECT_NEAR(b.springs.back().restLength, std::sqrt(2.0), 1e-15);
     EXPECT_NEAR(totalMass(b), 2.0, 1e-14);
-    const Scene noBend = parse(scene(R"({"mesh": "seam_square.obj", "mass": 2, "springs": {"stiffness": 10}})"));
+    const Scene noBend =
+        parse(scene(R"({"mesh": "seam_square.obj", "mass": 2, "springs": {"stiffness": 10}})"));
     EXPECT_EQ(noBend.bodies[0].springs.size(), 5u);
 }
 
@@ -220,11 +235,12 @@ TEST(SceneJson, PinnedBox) {
 }
 
 TEST(SceneJson, SettingsAndEffects) {
-    const Scene s = parse(scene(kCloth,
-                                R"("name": "x", "time": {"dt": 0.01, "substeps": 7, "frames": 3},
+    const Scene s = parse(
+        scene(kCloth,
+              R"("name": "x", "time": {"dt": 0.01, "substeps": 7, "frames": 3},
         "gravity": [0, -1, 0], "damping": 0.5, "wind": {"velocity": [1, 2, 3], "drag": 0.5},
         "ground": {"height": -1, "restitution": 0.5, "friction": 0.25})",
-                                R"(["gravity", "springs", "damping", "wind", "ground", "collisions", "self_collisions"])"));
+              R"(["gravity", "springs", "damping", "wind", "ground", "collisions", "self_collisions"])"));
     EXPECT_EQ(s.name, "x");
     EXPECT_EQ(s.time.dt, 0.01);
     EXPECT_EQ(s.time.substeps, 7);
@@ -259,8 +275,10 @@ TEST(SceneJson, SettingsAndEffects) {
 }
 
 TEST(SceneJson, UnknownKeysAreErrors) {
-    EXPECT_THAT(errorOf(scene(kCloth, R"("gravty": [0, 0, 0])")),
-                HasSubstr("test.json: /gravty: unknown key 'gravty'; allowed keys here: format_version, name, effects"));
+    EXPECT_THAT(
+        errorOf(scene(kCloth, R"("gravty": [0, 0, 0])")),
+        HasSubstr(
+            "test.json: /gravty: unknown key 'gravty'; allowed keys here: format_version, name, effects"));
     EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5]},
         "masss": 0.6, "springs": {"stiffness": 100}})")),
                 HasSubstr("test.json: /objects/0/masss: unknown key 'masss'"));
@@ -272,12 +290,15 @@ TEST(SceneJson, UnknownKeysAreErrors) {
                 HasSubstr("/objects/0/generator/resolutoin: unknown key"));
     EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5]},
         "transform": {"rotate": [0, 0, 0]}, "mass": 0.6, "springs": {"stiffness": 100}})")),
-                HasSubstr("/objects/0/transform/rotate: unknown key 'rotate'; allowed keys here: translate, rotate_deg, scale"));
-    EXPECT_THAT(errorOf(scene(kCloth, R"("time": {"dt": 0.01, "step": 2})")), HasSubstr("/time/step: unknown key"));
+                HasSubstr("/objects/0/transform/rotate: unknown key 'rotate'; allowed keys here: translate, "
+                          "rotate_deg, scale"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("time": {"dt": 0.01, "step": 2})")),
+                HasSubstr("/time/step: unknown key"));
     // Keys that belong to other body kinds are unknown too.
-    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "tet_box", "size": [1, 1, 1], "resolution": [1, 1, 1]},
+    EXPECT_THAT(
+        errorOf(scene(R"({"generator": {"type": "tet_box", "size": [1, 1, 1], "resolution": [1, 1, 1]},
         "mass": 1, "springs": {"stiffness": 1, "bend_stiffness": 1}})")),
-                HasSubstr("/objects/0/springs/bend_stiffness: unknown key"));
+        HasSubstr("/objects/0/springs/bend_stiffness: unknown key"));
 }
 
 TEST(SceneJson, ValueErrorsNameFileAndPointer) {
@@ -286,10 +307,13 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
                 HasSubstr("test.json: /objects/0/springs/stiffness: expected a positive number, got -3"));
     EXPECT_THAT(errorOf(R"({"format_version": 2, "effects": [], "objects": []})"),
                 HasSubstr("test.json: /format_version: unsupported format version 2; supported versions: 1"));
-    EXPECT_THAT(errorOf(R"({"effects": [], "objects": []})"), HasSubstr("/format_version: required key is missing"));
-    EXPECT_THAT(errorOf(scene(kCloth, "", R"(["gravity", "sprigs"])")),
-                HasSubstr("/effects/1: unknown effect 'sprigs'; known effects: gravity, springs, damping, wind, ground, "
-                          "collisions, self_collisions"));
+    EXPECT_THAT(errorOf(R"({"effects": [], "objects": []})"),
+                HasSubstr("/format_version: required key is missing"));
+    EXPECT_THAT(
+        errorOf(scene(kCloth, "", R"(["gravity", "sprigs"])")),
+        HasSubstr(
+            "/effects/1: unknown effect 'sprigs'; known effects: gravity, springs, damping, wind, ground, "
+            "collisions, self_collisions"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("wind": {"velocity": [1, 0, 0]})")),
                 HasSubstr("test.json: /wind: given but 'wind' is not in /effects"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("damping": 0.1)")), HasSubstr("/damping: given but 'damping'"));
@@ -297,7 +321,8 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
                 HasSubstr("/collision: given but neither 'collisions' nor 'self_collisions' is in /effects"));
     const char* collide = R"(["springs", "collisions"])";
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"broad_phase": "bvh"})", collide)),
-                HasSubstr("/collision/broad_phase: unknown broad phase \"bvh\"; expected \"octree\", \"masked\" or \"all_pairs\""));
+                HasSubstr("/collision/broad_phase: unknown broad phase \"bvh\"; expected \"octree\", "
+                          "\"masked\" or \"all_pairs\""));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"octree_depth": 4})", collide)),
                 HasSubstr("/collision/octree_depth: expected an integer 1, 2 or 3"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"precision": "exact"})", collide)),
@@ -308,12 +333,15 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
                 HasSubstr("/collision/initial_capacity: expected an integer in 1 ... 2^30, got 0"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"thicknes": 1})", collide)),
                 HasSubstr("/collision/thicknes: unknown key"));
-    EXPECT_THAT(errorOf(scene(kCloth, "", R"(["gravity"])")), HasSubstr("/objects/0/springs: given but 'springs'"));
-    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 1], "resolution": [2, 2]}, "mass": 1})")),
+    EXPECT_THAT(errorOf(scene(kCloth, "", R"(["gravity"])")),
+                HasSubstr("/objects/0/springs: given but 'springs'"));
+    EXPECT_THAT(errorOf(scene(
+                    R"({"generator": {"type": "cloth", "size": [1, 1], "resolution": [2, 2]}, "mass": 1})")),
                 HasSubstr("/objects/0/springs: required because 'springs' is in /effects"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("time": {"substeps": "fast"})")),
                 HasSubstr("/time/substeps: expected \"auto\" or a positive integer, got \"fast\""));
-    EXPECT_THAT(errorOf(scene(kCloth, R"("time": {"dt": 0})")), HasSubstr("/time/dt: expected a positive number, got 0"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("time": {"dt": 0})")),
+                HasSubstr("/time/dt: expected a positive number, got 0"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("ground": {"restitution": 1.5})", R"(["springs", "ground"])")),
                 HasSubstr("/ground/restitution: expected a number in [0, 1], got 1.5"));
     EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "cloth", "size": [1, 1], "resolution": [2, 2]},
@@ -328,7 +356,8 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
         "mass": 1, "springs": {"stiffness": 1}})")),
                 HasSubstr("/objects/0/generator/resolution/0: expected an integer in [2, 4096], got 1"));
     EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "donut"}, "mass": 1, "springs": {"stiffness": 1}})")),
-                HasSubstr("/objects/0/generator/type: unknown generator 'donut'; known generators: cloth, tet_box, sphere"));
+                HasSubstr("/objects/0/generator/type: unknown generator 'donut'; known generators: cloth, "
+                          "tet_box, sphere"));
     EXPECT_THAT(errorOf(scene(R"({"mesh": "x.stl", "mass": 1, "springs": {"stiffness": 1}})")),
                 HasSubstr("/objects/0/mesh: unsupported mesh file 'x.stl'"));
     EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "sphere", "radius": 1}, "mass": 1,
@@ -342,7 +371,8 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
 
 TEST(SceneJson, CameraIsOptionalWithDefaults) {
     EXPECT_FALSE(parse(scene(kCloth)).camera.has_value());
-    const Scene full = parse(scene(kCloth, R"("camera": {"eye": [3, 2, 5], "target": [0, 0.5, 0], "up": [0, 0, 1],
+    const Scene full =
+        parse(scene(kCloth, R"("camera": {"eye": [3, 2, 5], "target": [0, 0.5, 0], "up": [0, 0, 1],
                                                         "fov_deg": 30})"));
     ASSERT_TRUE(full.camera.has_value());
     EXPECT_EQ(full.camera->eye, glm::dvec3(3, 2, 5));
@@ -356,14 +386,19 @@ TEST(SceneJson, CameraIsOptionalWithDefaults) {
 }
 
 TEST(SceneJson, CameraErrorsNamePointer) {
-    const auto camera = [](const std::string& body) { return errorOf(scene(kCloth, R"("camera": )" + body)); };
+    const auto camera = [](const std::string& body) {
+        return errorOf(scene(kCloth, R"("camera": )" + body));
+    };
     EXPECT_THAT(camera("[0, 1, 2]"), HasSubstr("test.json: /camera: expected an object"));
-    EXPECT_THAT(camera(R"({"target": [0, 0, 0]})"), HasSubstr("test.json: /camera/eye: required key is missing"));
+    EXPECT_THAT(camera(R"({"target": [0, 0, 0]})"),
+                HasSubstr("test.json: /camera/eye: required key is missing"));
     EXPECT_THAT(camera(R"({"eye": [0, 0, 1]})"), HasSubstr("/camera/target: required key is missing"));
     EXPECT_THAT(camera(R"({"eye": [0, 0], "target": [0, 0, 0]})"),
                 HasSubstr("/camera/eye: expected an array of 3 numbers, got [0,0]"));
-    EXPECT_THAT(camera(R"({"eye": [0, 0, 1], "target": [0, "x", 0]})"), HasSubstr("/camera/target/1: expected a number"));
-    EXPECT_THAT(camera(R"({"eye": [1, 2, 3], "target": [1, 2, 3]})"), HasSubstr("/camera/target: must differ from eye"));
+    EXPECT_THAT(camera(R"({"eye": [0, 0, 1], "target": [0, "x", 0]})"),
+                HasSubstr("/camera/target/1: expected a number"));
+    EXPECT_THAT(camera(R"({"eye": [1, 2, 3], "target": [1, 2, 3]})"),
+                HasSubstr("/camera/target: must differ from eye"));
     EXPECT_THAT(camera(R"({"eye": [0, 0, 1], "target": [0, 0, 0], "up": [0, 0, 0]})"),
                 HasSubstr("/camera/up: expected a non-zero vector, got [0,0,0]"));
     EXPECT_THAT(camera(R"({"eye": [0, 5, 0], "target": [0, 0, 0], "up": [0, 1, 0]})"),
@@ -383,9 +418,10 @@ TEST(SceneJson, DuplicateKeysAreErrors) {
         "mass": 0.6, "mass": 0.7, "springs": {"stiffness": 100}})")),
                 HasSubstr("test.json: /objects/0/mass: duplicate key 'mass'"));
     // The pointer counts array elements, nested arrays included.
-    EXPECT_THAT(errorOf(scene(kCloth + R"(, {"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5],
+    EXPECT_THAT(
+        errorOf(scene(kCloth + R"(, {"generator": {"type": "cloth", "size": [1, 2], "resolution": [4, 5],
         "size": [1, 2]}, "mass": 0.6, "springs": {"stiffness": 100}})")),
-                HasSubstr("test.json: /objects/1/generator/size: duplicate key 'size'"));
+        HasSubstr("test.json: /objects/1/generator/size: duplicate key 'size'"));
     // The same key in two different objects is fine.
     EXPECT_NO_THROW(parse(scene(kCloth + ", " + kCloth)));
 }
@@ -414,8 +450,9 @@ TEST(SceneJson, MeshErrorsNameSceneAndMesh) {
     }
     EXPECT_THAT(errorOf(scene(R"({"mesh": "bad_tag_v41.msh", "mass": 1, "springs": {"stiffness": 1}})")),
                 HasSubstr("/objects/0/mesh: " + kData + "/mesh/bad_tag_v41.msh:29: node tag 77"));
-    EXPECT_THAT(errorOf(scene(R"({"mesh": "isolated_node_v22.msh", "mass": 1, "springs": {"stiffness": 1}})")),
-                HasSubstr("/objects/0/mesh: isolated_node_v22.msh: vertex 5 belongs to no tetrahedron"));
+    EXPECT_THAT(
+        errorOf(scene(R"({"mesh": "isolated_node_v22.msh", "mass": 1, "springs": {"stiffness": 1}})")),
+        HasSubstr("/objects/0/mesh: isolated_node_v22.msh: vertex 5 belongs to no tetrahedron"));
     try {
         loadScene(kData + "/scene/nope.json");
         FAIL();

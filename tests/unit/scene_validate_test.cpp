@@ -45,21 +45,36 @@ std::string errorAfter(const std::function<void(Scene&)>& change) {
 
 } // namespace
 
-TEST(SceneValidate, AcceptsAValidScene) { EXPECT_NO_THROW(validateScene(twoNodes())); }
+TEST(SceneValidate, AcceptsAValidScene) {
+    EXPECT_NO_THROW(validateScene(twoNodes()));
+}
 
 TEST(SceneValidate, RejectsBrokenInvariants) {
     EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].masses.pop_back(); }),
                 HasSubstr("body 0 'pair': per-node vectors differ in length"));
-    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].masses[1] = 0; }), HasSubstr("body 0 'pair': node 1: mass"));
-    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].positions[0].x = std::numeric_limits<double>::quiet_NaN(); }),
-                HasSubstr("node 0: position is not finite"));
-    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].springs[0].b = 0; }), HasSubstr("spring 0: both ends are node 0"));
-    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].springs[0].b = 2; }), HasSubstr("spring 0: end index out of range"));
-    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].springs[0].restLength = 0; }), HasSubstr("spring 0: rest length"));
-    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].springs[0].stiffness = -1; }), HasSubstr("spring 0: stiffness"));
-    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].springs[0].damping = -1; }), HasSubstr("spring 0: damping"));
-    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].faces = {{0, 1, 2}}; }), HasSubstr("face 0: index 2 out of range"));
-    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].tets = {{0, 1, 0, 5}}; }), HasSubstr("tet 0: index 5 out of range"));
+    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].masses[1] = 0; }),
+                HasSubstr("body 0 'pair': node 1: mass"));
+    EXPECT_THAT(
+        errorAfter([](Scene& s) { s.bodies[0].positions[0].x = std::numeric_limits<double>::quiet_NaN(); }),
+        HasSubstr("node 0: position is not finite"));
+    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].springs[0].b = 0; }),
+                HasSubstr("spring 0: both ends are node 0"));
+    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].springs[0].b = 2; }),
+                HasSubstr("spring 0: end index out of range"));
+    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].springs[0].restLength = 0; }),
+                HasSubstr("spring 0: rest length"));
+    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].springs[0].stiffness = -1; }),
+                HasSubstr("spring 0: stiffness"));
+    EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].springs[0].damping = -1; }),
+                HasSubstr("spring 0: damping"));
+    EXPECT_THAT(errorAfter([](Scene& s) {
+                    s.bodies[0].faces = {{0, 1, 2}};
+                }),
+                HasSubstr("face 0: index 2 out of range"));
+    EXPECT_THAT(errorAfter([](Scene& s) {
+                    s.bodies[0].tets = {{0, 1, 0, 5}};
+                }),
+                HasSubstr("tet 0: index 5 out of range"));
     EXPECT_THAT(errorAfter([](Scene& s) { s.time.dt = 0; }), HasSubstr("scene 'code': time.dt"));
     EXPECT_THAT(errorAfter([](Scene& s) { s.time.frames = 0; }), HasSubstr("time.frames"));
     EXPECT_THAT(errorAfter([](Scene& s) { s.time.substeps = -1; }), HasSubstr("time.substeps"));

@@ -48,8 +48,10 @@ mpq_class q(float f) {
     const std::uint32_t e = (b >> 23) & 0xffu, m = (b & 0x7fffffu) | (e != 0 ? 0x800000u : 0u);
     const int exponent = (e == 0 ? 1 : static_cast<int>(e)) - 150;
     mpq_class v = mpz_class(m);
-    if (exponent >= 0) v *= mpq_class(mpz_class(1) << static_cast<unsigned>(exponent));
-    else v /= mpq_class(mpz_class(1) << static_cast<unsigned>(-exponent));
+    if (exponent >= 0)
+        v *= mpq_class(mpz_class(1) << static_cast<unsigned>(exponent));
+    else
+        v /= mpq_class(mpz_class(1) << static_cast<unsigned>(-exponent));
     return (b >> 31) ? mpq_class(-v) : v;
 }
 
@@ -80,7 +82,9 @@ int exactOrient2d(vec3 a, vec3 b, vec3 c, int drop) {
     return sgn((q(b[u]) - q(a[u])) * (q(c[w]) - q(a[w])) - (q(b[w]) - q(a[w])) * (q(c[u]) - q(a[u])));
 }
 
-std::uint32_t bits(std::mt19937& rng) { return static_cast<std::uint32_t>(rng()); }
+std::uint32_t bits(std::mt19937& rng) {
+    return static_cast<std::uint32_t>(rng());
+}
 
 // Any finite float, exponents uniform over the whole range (denormals and zero included).
 float anyFloat(std::mt19937& rng) {
@@ -88,7 +92,9 @@ float anyFloat(std::mt19937& rng) {
     return std::bit_cast<float>(sign << 31 | exponent << 23 | mantissa);
 }
 
-vec3 anyPoint(std::mt19937& rng) { return {anyFloat(rng), anyFloat(rng), anyFloat(rng)}; }
+vec3 anyPoint(std::mt19937& rng) {
+    return {anyFloat(rng), anyFloat(rng), anyFloat(rng)};
+}
 
 // Points of one random magnitude 2^e (e in [lo, hi]) around a random centre.
 vec3 pointNear(std::mt19937& rng, vec3 centre, int e) {
@@ -106,7 +112,8 @@ vec3 nearlyCoplanar(std::mt19937& rng, vec3 a, vec3 b, vec3 c) {
     for (int k = 0; k < 3; ++k) {
         const double v = double(a[k]) + s * (double(b[k]) - double(a[k])) + t * (double(c[k]) - double(a[k]));
         float f = static_cast<float>(v);
-        for (std::uint32_t steps = bits(rng) % 3u; steps > 0; --steps) f = std::nextafter(f, (rng() & 1u) ? 1e38f : -1e38f);
+        for (std::uint32_t steps = bits(rng) % 3u; steps > 0; --steps)
+            f = std::nextafter(f, (rng() & 1u) ? 1e38f : -1e38f);
         d[k] = f;
     }
     return d;
@@ -124,11 +131,15 @@ std::vector<Quad> predicateInputs(std::uint32_t seed, int count) {
     for (int i = 0; i < count; ++i) {
         Quad x;
         switch (i % 4) {
-        case 0: x = {anyPoint(rng), anyPoint(rng), anyPoint(rng), anyPoint(rng)}; break;
+        case 0:
+            x = {anyPoint(rng), anyPoint(rng), anyPoint(rng), anyPoint(rng)};
+            break;
         case 1: {
             const int e = static_cast<int>(rng() % 250u) - 140, spread = static_cast<int>(rng() % 30u);
-            const vec3 centre = (rng() & 1u) ? vec3(0.0f) : pointNear(rng, vec3(0.0f), std::min(e + spread, 100));
-            x = {pointNear(rng, centre, e), pointNear(rng, centre, e), pointNear(rng, centre, e), pointNear(rng, centre, e)};
+            const vec3 centre =
+                (rng() & 1u) ? vec3(0.0f) : pointNear(rng, vec3(0.0f), std::min(e + spread, 100));
+            x = {pointNear(rng, centre, e), pointNear(rng, centre, e), pointNear(rng, centre, e),
+                 pointNear(rng, centre, e)};
             break;
         }
         case 2: {
@@ -158,8 +169,10 @@ mpq_class registerValue(int r, int n, int low) {
     for (int k = n - 1; k >= 0; --k) z = z * mpz_class(4294967296.0) + sh::glcLimbs[r * n + k];
     if (sh::glcLimbs[r * n + n - 1] >> 31) z -= mpz_class(1) << static_cast<unsigned>(32 * n);
     mpq_class value(z);
-    if (low >= 0) value *= mpq_class(mpz_class(1) << static_cast<unsigned>(low));
-    else value /= mpq_class(mpz_class(1) << static_cast<unsigned>(-low));
+    if (low >= 0)
+        value *= mpq_class(mpz_class(1) << static_cast<unsigned>(low));
+    else
+        value /= mpq_class(mpz_class(1) << static_cast<unsigned>(-low));
     return value;
 }
 
@@ -172,7 +185,8 @@ LIBRARY_TEST(FloatsConvertToTheExactIntegerOfTheirFrame) {
         for (float v : {x, y}) {
             sh::glcBigSetFloat(0, v, f, n);
             if (v == 0.0f && f.high <= f.low) continue; // both zero: no frame
-            ASSERT_EQ(registerValue(0, n, f.low), q(v)) << "float " << v << " (bits " << std::bit_cast<std::uint32_t>(v) << ")";
+            ASSERT_EQ(registerValue(0, n, f.low), q(v))
+                << "float " << v << " (bits " << std::bit_cast<std::uint32_t>(v) << ")";
         }
     }
 }
@@ -258,14 +272,16 @@ LIBRARY_TEST(FilterErrorStaysWithinTheBoundOfTheArgument) {
         bool inRange = true;
         for (vec3 p : {x.a, x.b, x.c, x.d})
             for (int k = 0; k < 3; ++k)
-                inRange = inRange && std::fabs(p[k]) <= 1099511627776.0f && (p[k] == 0.0f || std::fabs(p[k]) >= 1e-20f);
+                inRange = inRange && std::fabs(p[k]) <= 1099511627776.0f &&
+                          (p[k] == 0.0f || std::fabs(p[k]) >= 1e-20f);
         if (!inRange) continue;
         const vec3 e = sh::glcOrient3dEstimate(x.a, x.b, x.c, x.d);
         const mpq_class bx = q(x.b.x) - q(x.a.x), by = q(x.b.y) - q(x.a.y), bz = q(x.b.z) - q(x.a.z);
         const mpq_class cx = q(x.c.x) - q(x.a.x), cy = q(x.c.y) - q(x.a.y), cz = q(x.c.z) - q(x.a.z);
         const mpq_class dx = q(x.d.x) - q(x.a.x), dy = q(x.d.y) - q(x.a.y), dz = q(x.d.z) - q(x.a.z);
         const mpq_class det = bx * (cy * dz - cz * dy) + by * (cz * dx - cx * dz) + bz * (cx * dy - cy * dx);
-        const mpq_class permanent = abs(bx) * (abs(cy * dz) + abs(cz * dy)) + abs(by) * (abs(cz * dx) + abs(cx * dz)) +
+        const mpq_class permanent = abs(bx) * (abs(cy * dz) + abs(cz * dy)) +
+                                    abs(by) * (abs(cz * dx) + abs(cx * dz)) +
                                     abs(bz) * (abs(cx * dy) + abs(cy * dx));
         if (sgn(permanent) == 0 || permanent < mpq_class(1e-30)) continue; // the flush term's range
         const mpq_class error = abs(mpq_class(static_cast<double>(e.x)) - det);
@@ -274,7 +290,8 @@ LIBRARY_TEST(FilterErrorStaysWithinTheBoundOfTheArgument) {
         ++measured;
     }
     EXPECT_GT(measured, 10000);
-    std::printf("[ filter   ] %d inputs: largest |det error| = %.3f u * permanent (bound 26 u)\n", measured, worst);
+    std::printf("[ filter   ] %d inputs: largest |det error| = %.3f u * permanent (bound 26 u)\n", measured,
+                worst);
 }
 
 bool robust(const cpu::FloatTriPair& p) {
@@ -299,15 +316,18 @@ LIBRARY_TEST(RobustTriTriEqualsTheOracleOnEveryRandomFamily) {
         std::size_t wrong = 0, decidedByFilter = 0;
         for (const cpu::FloatTriPair& p : cpu::randomTriTriPairs(set, kPairs, seed++)) {
             const bool exact = oracle(p);
-            if (robust(p) != exact && ++wrong <= 3) ADD_FAILURE() << cpu::toString(set) << ": oracle says " << exact;
+            if (robust(p) != exact && ++wrong <= 3)
+                ADD_FAILURE() << cpu::toString(set) << ": oracle says " << exact;
             auto v = [&](int k) {
                 const auto i = static_cast<std::size_t>(3 * k);
                 return vec3(p[i], p[i + 1], p[i + 2]);
             };
-            decidedByFilter += sh::glcTriTriFiltered(v(0), v(1), v(2), v(3), v(4), v(5)) != sh::GLC_UNDECIDED ? 1 : 0;
+            decidedByFilter +=
+                sh::glcTriTriFiltered(v(0), v(1), v(2), v(3), v(4), v(5)) != sh::GLC_UNDECIDED ? 1 : 0;
         }
         EXPECT_EQ(wrong, 0u) << cpu::toString(set);
-        std::printf("[ %-10s] %zu pairs, %zu decided by the filtered pass\n", cpu::toString(set), kPairs, decidedByFilter);
+        std::printf("[ %-10s] %zu pairs, %zu decided by the filtered pass\n", cpu::toString(set), kPairs,
+                    decidedByFilter);
     }
 }
 
@@ -320,16 +340,17 @@ LIBRARY_TEST(RobustTriTriEqualsTheOracleOnEveryRandomFamily) {
 int doubleExpansionOrient3d(vec3 fa, vec3 fb, vec3 fc, vec3 fd) {
     const glm::dvec3 pts[4] = {glm::dvec3(fa), glm::dvec3(fb), glm::dvec3(fc), glm::dvec3(fd)};
     const int triples[4][4] = {{1, 2, 3, 1}, {0, 2, 3, -1}, {1, 0, 3, -1}, {1, 2, 0, -1}};
-    const int perms[6][4] = {{0, 1, 2, 1}, {0, 2, 1, -1}, {1, 2, 0, 1}, {1, 0, 2, -1}, {2, 0, 1, 1}, {2, 1, 0, -1}};
+    const int perms[6][4] = {{0, 1, 2, 1},  {0, 2, 1, -1}, {1, 2, 0, 1},
+                             {1, 0, 2, -1}, {2, 0, 1, 1},  {2, 1, 0, -1}};
     std::vector<double> e;
     for (const auto& tr : triples) {
         for (const auto& pm : perms) {
             double x = pts[tr[0]][pm[0]];
             const double y = pts[tr[1]][pm[1]], z = pts[tr[2]][pm[2]];
             if (tr[3] * pm[3] < 0) x = -x;
-            const double prod = x * y;                    // exact: 48 bits
+            const double prod = x * y; // exact: 48 bits
             const double c = 134217729.0 * prod, hi = c - (c - prod), lo = prod - hi;
-            for (double q : {hi * z, lo * z}) {           // exact: at most 50 bits each
+            for (double q : {hi * z, lo * z}) { // exact: at most 50 bits each
                 std::vector<double> out;
                 for (double ei : e) {
                     const double sum = q + ei, bv = sum - q, av = sum - bv;
@@ -350,7 +371,8 @@ LIBRARY_TEST(DoubleExpansionsAreExactOnlyUnderStrictIeee) {
     for (const Quad& x : predicateInputs(16, 40000)) {
         bool normal = true; // fabad4e rebuilt denormals from their bits; keep to normal floats here
         for (vec3 p : {x.a, x.b, x.c, x.d})
-            for (int k = 0; k < 3; ++k) normal = normal && (p[k] == 0.0f || std::fabs(p[k]) >= 1e-30f) && std::fabs(p[k]) <= 1e30f;
+            for (int k = 0; k < 3; ++k)
+                normal = normal && (p[k] == 0.0f || std::fabs(p[k]) >= 1e-30f) && std::fabs(p[k]) <= 1e30f;
         if (!normal) continue;
         ++inputs;
         wrong += doubleExpansionOrient3d(x.a, x.b, x.c, x.d) != exactOrient3d(x.a, x.b, x.c, x.d) ? 1 : 0;

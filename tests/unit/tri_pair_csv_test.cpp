@@ -26,7 +26,8 @@ std::string errorOf(const std::string& text) {
 }
 
 TEST(TriPairCsv, ParsesRowsSkippingBlankAndCommentLines) {
-    const TriPairCsv csv = parseTriPairCsv("# header comment\n\n" + kRow + "\r\n   \n  # indented comment\n\t" + kRow + "\t", "x.csv");
+    const TriPairCsv csv = parseTriPairCsv(
+        "# header comment\n\n" + kRow + "\r\n   \n  # indented comment\n\t" + kRow + "\t", "x.csv");
     ASSERT_EQ(csv.pairs.size(), 2u);
     EXPECT_EQ(csv.lines, (std::vector<std::size_t>{3, 6}));
     EXPECT_EQ(csv.pairs[0][9], 0.25f);
@@ -52,13 +53,18 @@ TEST(TriPairCsv, BadRowsNameFileLineAndProblem) {
     EXPECT_THAT(errorOf(kRow + "\n1,2,3\n"), HasSubstr("pairs.csv:2: expected 18 numbers"));
     EXPECT_THAT(errorOf(kRow + "\n1,2,3\n"), HasSubstr("got 3 fields"));
     EXPECT_THAT(errorOf("#c\n" + kRow + ",7\n"), HasSubstr("pairs.csv:2: expected 18 numbers"));
-    EXPECT_THAT(errorOf("\n\n" + std::string("x") + kRow.substr(1)), HasSubstr("pairs.csv:3: field 1 'x' is not a number"));
-    EXPECT_THAT(errorOf("0,0,0,1,0,0,0,1,0,0,0,0,1,1,1,2,2,nan"), HasSubstr("pairs.csv:1: field 18 'nan' is not finite"));
+    EXPECT_THAT(errorOf("\n\n" + std::string("x") + kRow.substr(1)),
+                HasSubstr("pairs.csv:3: field 1 'x' is not a number"));
+    EXPECT_THAT(errorOf("0,0,0,1,0,0,0,1,0,0,0,0,1,1,1,2,2,nan"),
+                HasSubstr("pairs.csv:1: field 18 'nan' is not finite"));
     EXPECT_THAT(errorOf("0,0,0,1,0,0,0,1,0,0,0,0,1,1,1,2,2,inf"), HasSubstr("field 18 'inf' is not finite"));
-    EXPECT_THAT(errorOf("0,0,0,1,0,0,0,1,0,0,0,0,1,1,1,2,2,1e39"), HasSubstr("field 18 '1e39' is outside float range"));
-    EXPECT_THAT(errorOf("0,0,0,1,0,0,0,1,0,0,0,0,1,1,1,2,2,-1e999"), HasSubstr("field 18 '-1e999' is outside float range"));
+    EXPECT_THAT(errorOf("0,0,0,1,0,0,0,1,0,0,0,0,1,1,1,2,2,1e39"),
+                HasSubstr("field 18 '1e39' is outside float range"));
+    EXPECT_THAT(errorOf("0,0,0,1,0,0,0,1,0,0,0,0,1,1,1,2,2,-1e999"),
+                HasSubstr("field 18 '-1e999' is outside float range"));
     EXPECT_THAT(errorOf("0,0,0,1,0,0,0,1,0,,0,0,1,1,1,2,2,3"), HasSubstr("field 10 '' is not a number"));
-    EXPECT_THAT(errorOf("0,0,0,1,0,0,0,1,0,1 2,0,0,1,1,1,2,2,3"), HasSubstr("field 10 '1 2' is not a number"));
+    EXPECT_THAT(errorOf("0,0,0,1,0,0,0,1,0,1 2,0,0,1,1,1,2,2,3"),
+                HasSubstr("field 10 '1 2' is not a number"));
     EXPECT_THAT(errorOf("0;0;0"), HasSubstr("got 1 field"));
 }
 

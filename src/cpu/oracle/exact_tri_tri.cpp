@@ -11,14 +11,24 @@ struct QVec {
     mpq_class x, y, z;
 };
 
-QVec toQ(const glm::dvec3& v) { return {mpq_class(v.x), mpq_class(v.y), mpq_class(v.z)}; }
-QVec sub(const QVec& a, const QVec& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+QVec toQ(const glm::dvec3& v) {
+    return {mpq_class(v.x), mpq_class(v.y), mpq_class(v.z)};
+}
+QVec sub(const QVec& a, const QVec& b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
 QVec cross(const QVec& a, const QVec& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-mpq_class dot(const QVec& a, const QVec& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-bool isZero(const QVec& v) { return sgn(v.x) == 0 && sgn(v.y) == 0 && sgn(v.z) == 0; }
-bool equal(const QVec& a, const QVec& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+mpq_class dot(const QVec& a, const QVec& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+bool isZero(const QVec& v) {
+    return sgn(v.x) == 0 && sgn(v.y) == 0 && sgn(v.z) == 0;
+}
+bool equal(const QVec& a, const QVec& b) {
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
 
 /// Sign of det[b-a, c-a, d-a]: d above (+), on (0) or below (-) the plane abc.
 int orient3d(const QVec& a, const QVec& b, const QVec& c, const QVec& d) {
@@ -84,14 +94,17 @@ Shape shapeOf(const Triangle& t) {
     const QVec a = toQ(t[0]), b = toQ(t[1]), c = toQ(t[2]);
     if (!isZero(cross(sub(b, a), sub(c, a)))) return {{a, b, c}};
     // Collinear: the hull is the segment between the farthest pair.
-    const mpq_class ab = dot(sub(b, a), sub(b, a)), bc = dot(sub(c, b), sub(c, b)), ca = dot(sub(a, c), sub(a, c));
+    const mpq_class ab = dot(sub(b, a), sub(b, a)), bc = dot(sub(c, b), sub(c, b)),
+                    ca = dot(sub(a, c), sub(a, c));
     if (sgn(ab) == 0 && sgn(bc) == 0) return {{a}};
     if (ab >= bc && ab >= ca) return {{a, b}};
     if (bc >= ca) return {{b, c}};
     return {{c, a}};
 }
 
-bool pointPoint(const QVec& p, const QVec& q) { return equal(p, q); }
+bool pointPoint(const QVec& p, const QVec& q) {
+    return equal(p, q);
+}
 
 bool pointSegment(const QVec& p, const QVec& a, const QVec& b) {
     if (!isZero(cross(sub(b, a), sub(p, a)))) return false;
@@ -139,8 +152,9 @@ bool triangleTriangle(const Shape& s, const Shape& t) {
     // Two closed triangles meet iff an edge of one meets the other: for non-coplanar ones the
     // intersection is a segment whose ends lie on edges; for coplanar ones either edges cross or
     // one triangle contains a vertex (hence an edge) of the other.
-    return segmentTriangle(a, b, d, e, f) || segmentTriangle(b, c, d, e, f) || segmentTriangle(c, a, d, e, f) ||
-           segmentTriangle(d, e, a, b, c) || segmentTriangle(e, f, a, b, c) || segmentTriangle(f, d, a, b, c);
+    return segmentTriangle(a, b, d, e, f) || segmentTriangle(b, c, d, e, f) ||
+           segmentTriangle(c, a, d, e, f) || segmentTriangle(d, e, a, b, c) ||
+           segmentTriangle(e, f, a, b, c) || segmentTriangle(f, d, a, b, c);
 }
 
 bool shapesIntersect(const Shape& s, const Shape& t) {
@@ -152,12 +166,15 @@ bool shapesIntersect(const Shape& s, const Shape& t) {
         if (q.size() == 2) return segmentTriangle(q[0], q[1], p[0], p[1], p[2]);
         return pointTriangle(q[0], p[0], p[1], p[2]);
     }
-    if (p.size() == 2) return q.size() == 2 ? segmentSegment(p[0], p[1], q[0], q[1]) : pointSegment(q[0], p[0], p[1]);
+    if (p.size() == 2)
+        return q.size() == 2 ? segmentSegment(p[0], p[1], q[0], q[1]) : pointSegment(q[0], p[0], p[1]);
     return pointPoint(p[0], q[0]);
 }
 
 } // namespace
 
-bool exactTrianglesIntersect(const Triangle& a, const Triangle& b) { return shapesIntersect(shapeOf(a), shapeOf(b)); }
+bool exactTrianglesIntersect(const Triangle& a, const Triangle& b) {
+    return shapesIntersect(shapeOf(a), shapeOf(b));
+}
 
 } // namespace glcollide::cpu

@@ -51,9 +51,9 @@ enum class TriTriSet {
     Scaled,     ///< grid pairs scaled to 1e-6 .. 1e6 and moved far from the origin
 };
 
-inline constexpr std::array<TriTriSet, 7> kAllTriTriSets = {TriTriSet::Uniform, TriTriSet::Grid,    TriTriSet::Coplanar,
-                                                            TriTriSet::Touching, TriTriSet::Ulp, TriTriSet::Degenerate,
-                                                            TriTriSet::Scaled};
+inline constexpr std::array<TriTriSet, 7> kAllTriTriSets = {
+    TriTriSet::Uniform, TriTriSet::Grid,       TriTriSet::Coplanar, TriTriSet::Touching,
+    TriTriSet::Ulp,     TriTriSet::Degenerate, TriTriSet::Scaled};
 
 const char* toString(TriTriSet set);
 

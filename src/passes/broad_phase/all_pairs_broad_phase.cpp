@@ -13,8 +13,9 @@ AllPairsBroadPhase::AllPairsBroadPhase(const BroadPhaseContext& c)
 }
 
 void AllPairsBroadPhase::addStages(StageChain& chain, AppendLists&) {
-    chain.add({PassId::BBCollision, {GLC_LIST_CANDIDATES},
-               [this] { dispatchUpperTriangle(m_facePairs, m_faceCount, GLC_FACE_PAIR_TILE); }});
+    chain.add({PassId::BBCollision, {GLC_LIST_CANDIDATES}, [this] {
+                   dispatchUpperTriangle(m_facePairs, m_faceCount, GLC_FACE_PAIR_TILE);
+               }});
 }
 
 } // namespace glcollide::passes

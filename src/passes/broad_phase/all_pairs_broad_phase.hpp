@@ -7,7 +7,7 @@
 namespace glcollide::passes {
 
 class AllPairsBroadPhase final : public BroadPhase {
-public:
+  public:
     static constexpr std::array kPasses = {PassId::BBCollision};
 
     explicit AllPairsBroadPhase(const BroadPhaseContext& context);
@@ -16,7 +16,7 @@ public:
     void bind() const override {}
     [[nodiscard]] std::vector<const gl::Buffer*> buffers() const override { return {}; }
 
-private:
+  private:
     std::uint32_t m_faceCount;
     gl::ComputeProgram m_facePairs;
 };

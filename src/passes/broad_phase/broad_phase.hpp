@@ -37,16 +37,16 @@ struct BroadPhaseContext {
     /// the collision detection: GpuFaceInfo.box comes from it.
     const model::OctreeLayout& layout;
     const CollisionSettings& settings;
-    std::uint32_t pairRules = 0;    ///< GLC_RULE_* bits of the scene's collision effects
-    float halfThickness = 0.0f;     ///< face-box inflation, model::halfThicknessFloat(settings.thickness)
+    std::uint32_t pairRules = 0; ///< GLC_RULE_* bits of the scene's collision effects
+    float halfThickness = 0.0f;  ///< face-box inflation, model::halfThicknessFloat(settings.thickness)
     /// First capacity of a list of the broad phase's own; 0 = settings.initialCapacity (tests
     /// overflow one list at a time).
     std::uint32_t boxPairCapacity = 0;
-    bool sweptBoxes = false;        ///< CCD: bound each face over the substep's start and end positions
+    bool sweptBoxes = false; ///< CCD: bound each face over the substep's start and end positions
 };
 
 class BroadPhase {
-public:
+  public:
     virtual ~BroadPhase() = default;
 
     /// The passes its stages are timed under, in dispatch order.

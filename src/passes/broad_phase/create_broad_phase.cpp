@@ -8,17 +8,19 @@
 
 namespace glcollide::passes {
 namespace {
-template <typename T>
-std::vector<PassId> passesOf() {
+template <typename T> std::vector<PassId> passesOf() {
     return {T::kPasses.begin(), T::kPasses.end()};
 }
 } // namespace
 
 std::vector<PassId> broadPhasePasses(glcollide::BroadPhase kind) {
     switch (kind) {
-    case glcollide::BroadPhase::Octree: return passesOf<OctreeBroadPhase>();
-    case glcollide::BroadPhase::Masked: return passesOf<MaskedBroadPhase>();
-    case glcollide::BroadPhase::AllPairs: return passesOf<AllPairsBroadPhase>();
+    case glcollide::BroadPhase::Octree:
+        return passesOf<OctreeBroadPhase>();
+    case glcollide::BroadPhase::Masked:
+        return passesOf<MaskedBroadPhase>();
+    case glcollide::BroadPhase::AllPairs:
+        return passesOf<AllPairsBroadPhase>();
     }
     throw Error("unknown broad phase");
 }
@@ -26,9 +28,12 @@ std::vector<PassId> broadPhasePasses(glcollide::BroadPhase kind) {
 std::unique_ptr<BroadPhase> createBroadPhase(const BroadPhaseContext& context) {
     if (context.sweptBoxes) throw Error("collision: no broad phase supports swept boxes yet");
     switch (context.settings.broadPhase) {
-    case glcollide::BroadPhase::Octree: return std::make_unique<OctreeBroadPhase>(context);
-    case glcollide::BroadPhase::Masked: return std::make_unique<MaskedBroadPhase>(context);
-    case glcollide::BroadPhase::AllPairs: return std::make_unique<AllPairsBroadPhase>(context);
+    case glcollide::BroadPhase::Octree:
+        return std::make_unique<OctreeBroadPhase>(context);
+    case glcollide::BroadPhase::Masked:
+        return std::make_unique<MaskedBroadPhase>(context);
+    case glcollide::BroadPhase::AllPairs:
+        return std::make_unique<AllPairsBroadPhase>(context);
     }
     throw Error("unknown broad phase");
 }

@@ -10,15 +10,17 @@
 namespace glcollide::passes {
 
 class LeafBoxes {
-public:
+  public:
     explicit LeafBoxes(const BroadPhaseContext& context);
     /// The BBUpdate stage: refits every leaf box to the current positions.
     [[nodiscard]] Stage refitStage() const;
     void bind() const;
-    [[nodiscard]] std::vector<const gl::Buffer*> buffers() const { return {&m_boxes, &m_boxFaceOffsets, &m_boxFaceList}; }
+    [[nodiscard]] std::vector<const gl::Buffer*> buffers() const {
+        return {&m_boxes, &m_boxFaceOffsets, &m_boxFaceList};
+    }
     [[nodiscard]] std::uint32_t boxCount() const { return m_boxCount; }
 
-private:
+  private:
     std::uint32_t m_boxCount;
     gl::Buffer m_boxes, m_boxFaceOffsets, m_boxFaceList;
     gl::ComputeProgram m_refit;

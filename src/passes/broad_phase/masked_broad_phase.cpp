@@ -17,11 +17,9 @@ std::uint32_t checkedBoxCount(const model::OctreeLayout& layout) {
 } // namespace
 
 MaskedBroadPhase::MaskedBroadPhase(const BroadPhaseContext& c)
-    : m_leafBoxes(c),
-      m_faceCount(static_cast<std::uint32_t>(c.model.faceCount())),
+    : m_leafBoxes(c), m_faceCount(static_cast<std::uint32_t>(c.model.faceCount())),
       m_mask("boxMask", std::size_t{checkedBoxCount(c.layout)} * c.layout.boxCount * sizeof(std::uint32_t)),
-      m_boxMask("box_mask"),
-      m_facePairs("masked_face_pairs") {
+      m_boxMask("box_mask"), m_facePairs("masked_face_pairs") {
     for (const gl::ComputeProgram* p : {&m_boxMask, &m_facePairs}) {
         p->set("u_pairRules", c.pairRules);
         p->set("u_boxCount", c.layout.boxCount);
@@ -33,10 +31,12 @@ MaskedBroadPhase::MaskedBroadPhase(const BroadPhaseContext& c)
 
 void MaskedBroadPhase::addStages(StageChain& chain, AppendLists&) {
     chain.add(m_leafBoxes.refitStage());
-    chain.add({PassId::BBCollision, {},
-               [this] { dispatchUpperTriangle(m_boxMask, m_leafBoxes.boxCount(), GLC_BOX_PAIR_TILE); }});
-    chain.add({PassId::BBCollision, {GLC_LIST_CANDIDATES},
-               [this] { dispatchUpperTriangle(m_facePairs, m_faceCount, GLC_FACE_PAIR_TILE); }});
+    chain.add({PassId::BBCollision, {}, [this] {
+                   dispatchUpperTriangle(m_boxMask, m_leafBoxes.boxCount(), GLC_BOX_PAIR_TILE);
+               }});
+    chain.add({PassId::BBCollision, {GLC_LIST_CANDIDATES}, [this] {
+                   dispatchUpperTriangle(m_facePairs, m_faceCount, GLC_FACE_PAIR_TILE);
+               }});
 }
 
 void MaskedBroadPhase::bind() const {

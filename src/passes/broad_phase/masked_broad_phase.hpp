@@ -11,7 +11,7 @@
 namespace glcollide::passes {
 
 class MaskedBroadPhase final : public BroadPhase {
-public:
+  public:
     static constexpr std::array kPasses = {PassId::BBUpdate, PassId::BBCollision};
 
     explicit MaskedBroadPhase(const BroadPhaseContext& context);
@@ -20,7 +20,7 @@ public:
     void bind() const override;
     [[nodiscard]] std::vector<const gl::Buffer*> buffers() const override;
 
-private:
+  private:
     LeafBoxes m_leafBoxes;
     std::uint32_t m_faceCount;
     gl::Buffer m_mask;

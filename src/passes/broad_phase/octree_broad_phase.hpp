@@ -11,7 +11,7 @@
 namespace glcollide::passes {
 
 class OctreeBroadPhase final : public BroadPhase {
-public:
+  public:
     static constexpr std::array kPasses = {PassId::BBUpdate, PassId::BBCollision};
 
     explicit OctreeBroadPhase(const BroadPhaseContext& context);
@@ -20,7 +20,7 @@ public:
     void bind() const override { m_leafBoxes.bind(); }
     [[nodiscard]] std::vector<const gl::Buffer*> buffers() const override { return m_leafBoxes.buffers(); }
 
-private:
+  private:
     LeafBoxes m_leafBoxes;
     std::uint32_t m_boxPairCapacity;
     std::uint32_t m_expandSlices; ///< z groups per box pair in the expansion

@@ -15,16 +15,15 @@ constexpr std::size_t kArgsPerList = 3 * sizeof(std::uint32_t); // glDispatchCom
 } // namespace
 
 AppendLists::AppendLists(std::uint64_t byteLimit)
-    : m_byteLimit(byteLimit),
-      m_counters("collisionCounters", sizeof(gpu::GpuCollisionCounters)),
-      m_dispatchArgs("dispatchArgs", GLC_LIST_COUNT * kArgsPerList),
-      m_argsProgram("list_dispatch_args") {
+    : m_byteLimit(byteLimit), m_counters("collisionCounters", sizeof(gpu::GpuCollisionCounters)),
+      m_dispatchArgs("dispatchArgs", GLC_LIST_COUNT * kArgsPerList), m_argsProgram("list_dispatch_args") {
     const gpu::GpuCollisionCounters zero{};
     m_counters.upload(0, sizeof zero, &zero);
 }
 
 void AppendLists::declare(std::uint32_t list, const ListSpec& spec) {
-    if (spec.capacity < 1) throw Error(std::string("collision list '") + spec.label + "': capacity must be at least 1");
+    if (spec.capacity < 1)
+        throw Error(std::string("collision list '") + spec.label + "': capacity must be at least 1");
     List& l = m_lists.at(list);
     l.spec = spec;
     l.capacity = spec.capacityOf >= 0 ? capacity(static_cast<std::uint32_t>(spec.capacityOf)) : spec.capacity;
@@ -47,7 +46,8 @@ void AppendLists::bind() const {
 void AppendLists::writeCapacities() {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after earlier shader writes to the counters
     for (std::size_t i = 0; i < m_lists.size(); ++i)
-        m_counters.upload(kCountersOffset + i * sizeof(gpu::GpuListCounter) + offsetof(gpu::GpuListCounter, capacity),
+        m_counters.upload(kCountersOffset + i * sizeof(gpu::GpuListCounter) +
+                              offsetof(gpu::GpuListCounter, capacity),
                           sizeof(std::uint32_t), &m_lists[i].capacity);
 }
 
@@ -56,7 +56,8 @@ void AppendLists::resetCounts(const std::vector<std::uint32_t>& lists, bool cont
     const std::uint32_t zero = 0;
     for (std::uint32_t list : lists) {
         m_lists.at(list).count = 0;
-        m_counters.upload(kCountersOffset + list * sizeof(gpu::GpuListCounter) + offsetof(gpu::GpuListCounter, count),
+        m_counters.upload(kCountersOffset + list * sizeof(gpu::GpuListCounter) +
+                              offsetof(gpu::GpuListCounter, count),
                           sizeof zero, &zero);
     }
     // The statistics belong to the stages at the end of the chain, which rerun with any list.
@@ -83,10 +84,11 @@ void AppendLists::grow(std::uint32_t list) {
     // A list is bound whole as one shader storage block: past the limit the items cannot be
     // stored, and dropping them silently is not an option.
     if (count > maxEntries)
-        throw Error(std::string("collision list '") + l.spec.label + "' needs " + std::to_string(count) + " " +
-                    l.spec.itemNoun + " (" + std::to_string(std::uint64_t{count} * l.spec.itemBytes) +
+        throw Error(std::string("collision list '") + l.spec.label + "' needs " + std::to_string(count) +
+                    " " + l.spec.itemNoun + " (" + std::to_string(std::uint64_t{count} * l.spec.itemBytes) +
                     " bytes), more than one shader storage block can hold on this device "
-                    "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, " + std::to_string(m_byteLimit) +
+                    "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, " +
+                    std::to_string(m_byteLimit) +
                     " bytes); no pair was dropped: use fewer or smaller bodies, a smaller thickness or a "
                     "deeper octree");
     // Next power of two (fewer regrowths) when it fits; 2^31 and up: exact size.
@@ -95,16 +97,18 @@ void AppendLists::grow(std::uint32_t list) {
     l.capacity = capacity;
     l.storage = gl::Buffer(l.spec.label, std::size_t{capacity} * l.spec.itemBytes);
     for (List& follower : m_lists)
-        if (follower.storage && follower.spec.capacityOf == static_cast<int>(list) && follower.capacity < capacity) {
+        if (follower.storage && follower.spec.capacityOf == static_cast<int>(list) &&
+            follower.capacity < capacity) {
             follower.capacity = capacity;
-            follower.storage = gl::Buffer(follower.spec.label, std::size_t{capacity} * follower.spec.itemBytes);
+            follower.storage =
+                gl::Buffer(follower.spec.label, std::size_t{capacity} * follower.spec.itemBytes);
         }
     writeCapacities();
     bind();
 }
 
-void AppendLists::dispatchOver(const gl::ComputeProgram& program, std::uint32_t list, std::uint32_t itemsPerGroup,
-                               std::uint32_t zGroups) const {
+void AppendLists::dispatchOver(const gl::ComputeProgram& program, std::uint32_t list,
+                               std::uint32_t itemsPerGroup, std::uint32_t zGroups) const {
     m_argsProgram.use();
     m_argsProgram.set("u_list", list);
     m_argsProgram.set("u_itemsPerGroup", itemsPerGroup);

@@ -17,24 +17,26 @@ namespace glcollide::passes {
 
 /// What a list holds and where the kernels find it.
 struct ListSpec {
-    const char* label = "";       ///< buffer label; names the list in errors
-    const char* itemNoun = "";    ///< "pairs", "indices": errors say "needs N <noun>"
-    std::size_t itemBytes = 0;    ///< 8 for uvec2 pairs, 4 for uint indices
-    std::uint32_t binding = 0;    ///< GLC_BIND_* storage binding
-    std::uint32_t capacity = 1;   ///< first capacity, >= 1
+    const char* label = "";     ///< buffer label; names the list in errors
+    const char* itemNoun = "";  ///< "pairs", "indices": errors say "needs N <noun>"
+    std::size_t itemBytes = 0;  ///< 8 for uvec2 pairs, 4 for uint indices
+    std::uint32_t binding = 0;  ///< GLC_BIND_* storage binding
+    std::uint32_t capacity = 1; ///< first capacity, >= 1
     /// A list whose items are a subset of another list's entries (the undecided candidate
     /// indices) keeps that list's capacity, so it never overflows on its own; -1: none.
     int capacityOf = -1;
 };
 
 class AppendLists {
-public:
+  public:
     /// The counter and indirect-argument buffers; no list is declared yet. `byteLimit`: bytes one
     /// list may grow to (a list is bound whole as one shader storage block).
     explicit AppendLists(std::uint64_t byteLimit);
 
     void declare(std::uint32_t list, const ListSpec& spec);
-    [[nodiscard]] bool declared(std::uint32_t list) const { return static_cast<bool>(m_lists.at(list).storage); }
+    [[nodiscard]] bool declared(std::uint32_t list) const {
+        return static_cast<bool>(m_lists.at(list).storage);
+    }
     [[nodiscard]] const gl::Buffer& storage(std::uint32_t list) const { return m_lists.at(list).storage; }
     [[nodiscard]] std::uint32_t capacity(std::uint32_t list) const { return m_lists.at(list).capacity; }
     /// Exact count at the last readCounters() (may exceed the capacity: the list overflowed).
@@ -66,7 +68,7 @@ public:
     /// The buffers allocated here, for Engine::allocatedBuffers().
     [[nodiscard]] std::vector<const gl::Buffer*> buffers() const;
 
-private:
+  private:
     struct List {
         ListSpec spec;
         gl::Buffer storage;

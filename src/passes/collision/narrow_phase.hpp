@@ -15,13 +15,13 @@
 namespace glcollide::passes {
 
 class NarrowPhase {
-public:
+  public:
     explicit NarrowPhase(TriTriPrecision precision);
     /// Declares the undecided list (robust; it keeps the candidates' capacity) and adds the TriTri
     /// stages to `chain`. Call after the candidate and intersection lists are declared.
     void addStages(StageChain& chain, AppendLists& lists);
 
-private:
+  private:
     gl::ComputeProgram m_test;  ///< fast, or the robust filtered test
     gl::ComputeProgram m_exact; ///< robust only
 };

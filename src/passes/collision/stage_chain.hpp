@@ -23,7 +23,7 @@ struct Stage {
 };
 
 class StageChain {
-public:
+  public:
     void add(Stage stage) { m_stages.push_back(std::move(stage)); }
     /// The passes of the stages, each once, in order.
     [[nodiscard]] std::vector<PassId> passes() const;
@@ -34,7 +34,7 @@ public:
     /// Returns the number of reruns. Throws glcollide::Error when a list cannot grow enough.
     std::uint32_t run(AppendLists& lists, gl::GpuTimer* timer) const;
 
-private:
+  private:
     void runFrom(std::size_t first, gl::GpuTimer* timer) const;
     [[nodiscard]] std::vector<std::uint32_t> outputsFrom(std::size_t first) const;
 

@@ -22,9 +22,9 @@ namespace {
 // synchronous output off) and the listener.
 struct ErrorLog {
     std::mutex mutex;
-    std::vector<std::string> pending;  // errors not yet reported
-    std::size_t total = 0;             // all errors ever received
-    int expectScopes = 0;              // live ExpectGlErrors
+    std::vector<std::string> pending; // errors not yet reported
+    std::size_t total = 0;            // all errors ever received
+    int expectScopes = 0;             // live ExpectGlErrors
 };
 ErrorLog& errorLog() {
     static ErrorLog log;
@@ -35,7 +35,7 @@ std::unique_ptr<HeadlessContext> g_context;
 std::string g_contextError; // why g_context could not be created
 
 class GlTestEnvironment final : public ::testing::Environment {
-public:
+  public:
     void SetUp() override {
         try {
             g_context = std::make_unique<HeadlessContext>(glTestContextOptions());
@@ -62,8 +62,8 @@ public:
                 std::lock_guard lock(log.mutex);
                 ++log.total;
                 if (log.expectScopes == 0)
-                    log.pending.push_back("GL error (id " + std::to_string(message.id) + "): " +
-                                          std::string(message.text));
+                    log.pending.push_back("GL error (id " + std::to_string(message.id) +
+                                          "): " + std::string(message.text));
             },
             gl::DebugOutputScope::kEnableOutput | gl::DebugOutputScope::kSynchronous);
     }
@@ -74,7 +74,7 @@ public:
         g_context.reset();
     }
 
-private:
+  private:
     std::optional<gl::DebugOutputScope> m_debug;
 };
 

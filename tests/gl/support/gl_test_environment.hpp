@@ -20,7 +20,7 @@ HeadlessContext& glTestContext();
 /// While alive, GL_DEBUG_TYPE_ERROR messages are counted instead of failing the current test.
 /// For tests that provoke a GL error on purpose.
 class ExpectGlErrors {
-public:
+  public:
     ExpectGlErrors();
     ~ExpectGlErrors();
     ExpectGlErrors(const ExpectGlErrors&) = delete;
@@ -28,7 +28,7 @@ public:
     /// Error messages received since construction.
     std::size_t count() const;
 
-private:
+  private:
     std::size_t m_start = 0;
 };
 

@@ -23,7 +23,7 @@ inline void GLAPIENTRY hostCallback(GLenum, GLenum, GLuint, GLenum, GLsizei leng
 }
 
 class HostDebugCallbackTest : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         glGetPointerv(GL_DEBUG_CALLBACK_FUNCTION, &m_envCallback);
         glGetPointerv(GL_DEBUG_CALLBACK_USER_PARAM, &m_envParam);

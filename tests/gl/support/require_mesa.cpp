@@ -12,7 +12,8 @@ std::string missingMesa() {
     const std::vector<EglDeviceInfo> devices = HeadlessContext::listDevices();
     for (const EglDeviceInfo& d : devices)
         if (d.software) return {};
-    return "no EGL device advertises EGL_MESA_device_software (Mesa's llvmpipe; Debian packages libegl-mesa0 and "
+    return "no EGL device advertises EGL_MESA_device_software (Mesa's llvmpipe; Debian packages libegl-mesa0 "
+           "and "
            "libgl1-mesa-dri), " +
            std::to_string(devices.size()) + " EGL device(s) found";
 }

@@ -31,12 +31,13 @@ std::string mesaMissingMessage(const std::string& missing, const std::string& wh
 /// In a test body: returns from the test (skipped, or failed under GLCOLLIDE_REQUIRE_MESA=1) when
 /// Mesa's software device is absent. `why` completes "this test needs Mesa to ...".
 /// A macro because GTEST_SKIP() and FAIL() return from the function they are written in.
-#define GLCOLLIDE_REQUIRE_MESA(why)                                                                  \
-    do {                                                                                             \
-        if (const std::string glcollideMissing_ = ::glcollide::test::missingMesa();                  \
-            !glcollideMissing_.empty()) {                                                            \
-            const std::string glcollideMessage_ = ::glcollide::test::mesaMissingMessage(glcollideMissing_, why); \
-            if (::glcollide::test::mesaRequired()) FAIL() << glcollideMessage_;                      \
-            GTEST_SKIP() << glcollideMessage_;                                                       \
-        }                                                                                            \
+#define GLCOLLIDE_REQUIRE_MESA(why)                                                                          \
+    do {                                                                                                     \
+        if (const std::string glcollideMissing_ = ::glcollide::test::missingMesa();                          \
+            !glcollideMissing_.empty()) {                                                                    \
+            const std::string glcollideMessage_ =                                                            \
+                ::glcollide::test::mesaMissingMessage(glcollideMissing_, why);                               \
+            if (::glcollide::test::mesaRequired()) FAIL() << glcollideMessage_;                              \
+            GTEST_SKIP() << glcollideMessage_;                                                               \
+        }                                                                                                    \
     } while (false)
