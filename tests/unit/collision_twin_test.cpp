@@ -7,6 +7,8 @@
 #include "model/octree_layout.hpp"
 #include "scene/scene_detail.hpp"
 
+#include "model_of.hpp"
+
 #include <gtest/gtest.h>
 
 #include <glm/common.hpp>
@@ -19,11 +21,7 @@
 namespace glcollide {
 namespace {
 
-model::FlatModel modelOf(const std::vector<Body>& bodies) {
-    Scene scene;
-    scene.bodies = bodies;
-    return model::flatten(scene);
-}
+using test::modelOf;
 
 TEST(CollisionTwin, ClosedBoxOverlapAndEmptyBoxes) {
     const cpu::FloatBox a{{0, 0, 0}, {1, 1, 1}}, touching{{1, 0.5f, 0.5f}, {2, 2, 2}},

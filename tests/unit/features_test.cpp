@@ -6,6 +6,8 @@
 #include "model/octree_layout.hpp"
 #include "scene/scene_detail.hpp"
 
+#include "model_of.hpp"
+
 #include <gtest/gtest.h>
 
 #include <map>
@@ -15,11 +17,7 @@
 namespace glcollide {
 namespace {
 
-model::FlatModel modelOf(const std::vector<Body>& bodies) {
-    Scene scene;
-    scene.bodies = bodies;
-    return model::flatten(scene);
-}
+using test::modelOf;
 
 TEST(Octree, OwnedBitsOfTwoTrianglesSharingAnEdge) {
     // Face 0 (0,1,2) owns everything it has; face 1 (2,1,3) shares edge {1,2} and nodes 1, 2:

@@ -8,6 +8,8 @@
 
 #include <glcollide/error.hpp>
 
+#include "model_of.hpp"
+
 #include <gtest/gtest.h>
 
 #include <glm/common.hpp>
@@ -19,11 +21,7 @@
 namespace glcollide {
 namespace {
 
-model::FlatModel modelOf(const std::vector<Body>& bodies) {
-    Scene scene;
-    scene.bodies = bodies;
-    return model::flatten(scene);
-}
+using test::modelOf;
 
 TEST(Octree, CellsClampAndFlatAxes) {
     const glm::dvec3 lo(0.0), hi(1.0, 2.0, 4.0);
