@@ -24,7 +24,7 @@ struct PaperFusedTriTri::Impl {
     passes::CollisionTables tables;
     gl::Buffer faces, positions;
     std::uint32_t faceCount;
-    passes::AppendLists lists{std::uint64_t{1} << 31};
+    passes::AppendLists lists{0}; // the device's block limit
     std::optional<passes::LeafBoxes> leafBoxes;
     gl::Buffer mask;
     gl::ComputeProgram boxMask, fused;

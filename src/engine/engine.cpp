@@ -63,6 +63,7 @@ struct Engine::Impl {
     std::optional<passes::NodeUpdatePass> nodeUpdate;
     std::optional<passes::CollisionDetection> collision;
     std::optional<passes::ContactResponsePass> contact;
+    std::vector<passes::PassId> passIds; ///< the substep's passes in order; stats.passes follows it
     std::vector<std::string> passNames;
     gl::GpuTimer timer{passes::kPassCount}; // one section per pass: passes::passIndex(id)
     StepStats stats;
@@ -194,7 +195,8 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
                 d.warnings.push_back(d.setup.robustSelfCheck.message);
         }
     }
-    d.passNames = d.plan.passes();
+    d.passIds = d.plan.passIds();
+    for (passes::PassId id : d.passIds) d.passNames.emplace_back(passes::passName(id));
     d.stats.substeps = d.substeps.substeps;
     d.stats.collisions = d.plan.collisions;
     for (const std::string& name : d.passNames) d.stats.passes.push_back({name, 0.0});
@@ -288,7 +290,7 @@ void Engine::step() {
     d.readHealth();
     if (d.options.gpuTiming) {
         const std::vector<double> ms = d.timer.resolveMilliseconds();
-        const std::vector<passes::PassId> ids = d.plan.passIds();
+        const std::vector<passes::PassId>& ids = d.passIds;
         for (std::size_t p = 0; p < ids.size(); ++p)
             d.stats.passes[p].gpuMilliseconds = ms[passes::passIndex(ids[p])];
     }

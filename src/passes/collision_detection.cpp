@@ -25,13 +25,6 @@ const CollisionSettings& checked(const CollisionSettings& s) {
     return s;
 }
 
-std::uint64_t listByteLimit(const CollisionConfig& c) {
-    if (c.listByteLimit != 0) return c.listByteLimit;
-    GLint64 limit = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &limit);
-    return static_cast<std::uint64_t>(std::max<GLint64>(limit, GLint64{1} << 24)); // 2^24: GL 4.3's minimum
-}
-
 } // namespace
 
 CollisionTables::CollisionTables(const model::FlatModel& model, const model::OctreeLayout& layout) {
@@ -56,8 +49,7 @@ void CollisionTables::bind() const {
 CollisionDetection::CollisionDetection(const CollisionConfig& config, const model::FlatModel& model)
     : m_faceCount(static_cast<std::uint32_t>(model.faceCount())),
       m_layout(model::buildOctree(model, checked(config.settings).octreeDepth)), m_tables(model, m_layout),
-      m_lists(std::make_unique<AppendLists>(listByteLimit(config))),
-      m_narrowPhase(config.settings.precision) {
+      m_lists(std::make_unique<AppendLists>(config.listByteLimit)), m_narrowPhase(config.settings.precision) {
     const CollisionSettings& s = config.settings;
     const auto initial = [&](std::uint32_t capacity) { return capacity ? capacity : s.initialCapacity; };
     m_lists->declare(GLC_LIST_CANDIDATES, {"candidates", "pairs", kPairBytes, GLC_BIND_FACE_PAIRS,

@@ -4,6 +4,7 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstddef>
 #include <string>
@@ -14,11 +15,19 @@ constexpr std::size_t kCountersOffset = offsetof(gpu::GpuCollisionCounters, list
 constexpr std::size_t kArgsPerList = 3 * sizeof(std::uint32_t); // glDispatchComputeIndirect's x, y, z
 } // namespace
 
+namespace {
+std::uint64_t deviceListByteLimit() {
+    GLint64 limit = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &limit);
+    return static_cast<std::uint64_t>(std::max<GLint64>(limit, GLint64{1} << 24)); // 2^24: GL 4.3's minimum
+}
+} // namespace
+
 AppendLists::AppendLists(std::uint64_t byteLimit)
-    : m_byteLimit(byteLimit), m_counters("collisionCounters", sizeof(gpu::GpuCollisionCounters)),
+    : m_byteLimit(byteLimit != 0 ? byteLimit : deviceListByteLimit()),
+      m_counters("collisionCounters", sizeof(gpu::GpuCollisionCounters)),
       m_dispatchArgs("dispatchArgs", GLC_LIST_COUNT * kArgsPerList), m_argsProgram("list_dispatch_args") {
-    const gpu::GpuCollisionCounters zero{};
-    m_counters.upload(0, sizeof zero, &zero);
+    writeCounters();
 }
 
 void AppendLists::declare(std::uint32_t list, const ListSpec& spec) {
@@ -28,7 +37,7 @@ void AppendLists::declare(std::uint32_t list, const ListSpec& spec) {
     l.spec = spec;
     l.capacity = spec.capacityOf >= 0 ? capacity(static_cast<std::uint32_t>(spec.capacityOf)) : spec.capacity;
     l.storage = gl::Buffer(spec.label, std::size_t{l.capacity} * spec.itemBytes);
-    writeCapacities();
+    writeCounters();
 }
 
 std::uint32_t AppendLists::storedCount(std::uint32_t list) const {
@@ -43,26 +52,18 @@ void AppendLists::bind() const {
         if (l.storage) l.storage.bindStorage(l.spec.binding);
 }
 
-void AppendLists::writeCapacities() {
+void AppendLists::writeCounters() {
+    // The host holds an exact copy of every count (readCounters) and capacity, so the whole block
+    // is written at once: one upload per reset, not one per field.
+    gpu::GpuCollisionCounters c{};
+    for (std::size_t i = 0; i < m_lists.size(); ++i) c.lists[i] = {m_lists[i].count, m_lists[i].capacity};
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after earlier shader writes to the counters
-    for (std::size_t i = 0; i < m_lists.size(); ++i)
-        m_counters.upload(kCountersOffset + i * sizeof(gpu::GpuListCounter) +
-                              offsetof(gpu::GpuListCounter, capacity),
-                          sizeof(std::uint32_t), &m_lists[i].capacity);
+    m_counters.upload(0, sizeof c, &c);
 }
 
-void AppendLists::resetCounts(const std::vector<std::uint32_t>& lists, bool contacts) {
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    const std::uint32_t zero = 0;
-    for (std::uint32_t list : lists) {
-        m_lists.at(list).count = 0;
-        m_counters.upload(kCountersOffset + list * sizeof(gpu::GpuListCounter) +
-                              offsetof(gpu::GpuListCounter, count),
-                          sizeof zero, &zero);
-    }
-    // The statistics belong to the stages at the end of the chain, which rerun with any list.
-    m_counters.upload(offsetof(gpu::GpuCollisionCounters, exactFallbackCount), sizeof zero, &zero);
-    if (contacts) m_counters.upload(offsetof(gpu::GpuCollisionCounters, contactCount), sizeof zero, &zero);
+void AppendLists::resetCounts(const std::vector<std::uint32_t>& lists) {
+    for (std::uint32_t list : lists) m_lists.at(list).count = 0;
+    writeCounters();
 }
 
 void AppendLists::resetGrowths() {
@@ -103,8 +104,7 @@ void AppendLists::grow(std::uint32_t list) {
             follower.storage =
                 gl::Buffer(follower.spec.label, std::size_t{capacity} * follower.spec.itemBytes);
         }
-    writeCapacities();
-    bind();
+    // The chain resets the counts (writeCounters) and binds the new storage before it reruns.
 }
 
 void AppendLists::dispatchOver(const gl::ComputeProgram& program, std::uint32_t list,

@@ -30,7 +30,8 @@ struct ListSpec {
 class AppendLists {
   public:
     /// The counter and indirect-argument buffers; no list is declared yet. `byteLimit`: bytes one
-    /// list may grow to (a list is bound whole as one shader storage block).
+    /// list may grow to (a list is bound whole as one shader storage block); 0 = the device's
+    /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
     explicit AppendLists(std::uint64_t byteLimit);
 
     void declare(std::uint32_t list, const ListSpec& spec);
@@ -50,15 +51,17 @@ class AppendLists {
 
     /// Binds the counters, the indirect arguments and every declared list to their bindings.
     void bind() const;
-    /// Zeroes the counts of `lists` and the statistics of the stages that rerun with them
-    /// (exactFallbackCount); contactCount too when `contacts`.
-    void resetCounts(const std::vector<std::uint32_t>& lists, bool contacts = false);
+    /// Zeroes the counts of `lists` and the statistics (exactFallbackCount, written by the last
+    /// stages, which rerun with any list; contactCount, which the response adds to after the
+    /// chain), keeping the other counts, in one upload of the counter block.
+    void resetCounts(const std::vector<std::uint32_t>& lists);
     void resetGrowths();
     /// One download of every counter.
     void readCounters();
     /// Reallocates an overflowed list with room for its exact count (the next power of two when
     /// it fits), and the lists that keep its capacity; throws glcollide::Error, naming the list,
-    /// when that would exceed the byte limit.
+    /// when that would exceed the byte limit. The new capacity reaches the GPU with the next
+    /// resetCounts(), the new storage with the next bind().
     void grow(std::uint32_t list);
     /// Writes the indirect arguments of `list` on the GPU (list_dispatch_args.comp: groups of
     /// `itemsPerGroup` entries, `zGroups` in z) and dispatches `program` with them.
@@ -74,7 +77,7 @@ class AppendLists {
         gl::Buffer storage;
         std::uint32_t capacity = 0, count = 0, growths = 0;
     };
-    void writeCapacities();
+    void writeCounters();
 
     std::uint64_t m_byteLimit;
     std::array<List, GLC_LIST_COUNT> m_lists;

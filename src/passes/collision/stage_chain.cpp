@@ -28,7 +28,7 @@ void StageChain::runFrom(std::size_t first, gl::GpuTimer* timer) const {
 
 std::uint32_t StageChain::run(AppendLists& lists, gl::GpuTimer* timer) const {
     lists.resetGrowths();
-    lists.resetCounts(outputsFrom(0), true);
+    lists.resetCounts(outputsFrom(0));
     lists.bind();
     runFrom(0, timer);
     // The one sync point of the chain (plus one per rerun).
