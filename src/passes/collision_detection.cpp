@@ -83,10 +83,10 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
     const std::uint32_t reruns = m_chain.run(*m_lists, timer);
     const AppendLists& l = *m_lists;
     m_counts = {};
-    m_counts.boxPairs = l.declared(GLC_LIST_BOX_PAIRS) ? l.count(GLC_LIST_BOX_PAIRS) : 0u;
+    m_counts.boxPairs = l.count(GLC_LIST_BOX_PAIRS); // 0 when the broad phase has no such list
     m_counts.candidates = l.count(GLC_LIST_CANDIDATES);
     m_counts.intersections = l.count(GLC_LIST_INTERSECTIONS);
-    m_counts.undecided = l.declared(GLC_LIST_UNDECIDED) ? l.count(GLC_LIST_UNDECIDED) : 0u;
+    m_counts.undecided = l.count(GLC_LIST_UNDECIDED); // 0 with fast precision
     m_counts.exactFallbacks = l.exactFallbacks();
     m_counts.reruns = reruns;
     m_counts.boxPairGrowths = l.growths(GLC_LIST_BOX_PAIRS);
