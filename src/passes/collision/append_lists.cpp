@@ -11,7 +11,6 @@
 
 namespace glcollide::passes {
 namespace {
-constexpr std::size_t kCountersOffset = offsetof(gpu::GpuCollisionCounters, lists);
 constexpr std::size_t kArgsPerList = 3 * sizeof(std::uint32_t); // glDispatchComputeIndirect's x, y, z
 } // namespace
 
