@@ -61,6 +61,27 @@ enum class BroadPhase : std::uint8_t {
     Octree,   ///< AABB-octree boxes, overlapping box pairs expanded to face pairs: work ~ candidates
     Masked,   ///< the paper's scheme: every face pair dispatched, masked by the box-pair overlap mask
     AllPairs, ///< every face pair dispatched and tested: the reference the others are measured against
+    Bvh,      ///< linear BVH over all faces, built, refit and traversed on the GPU: work ~ candidates
+};
+
+/// When the linear BVH is rebuilt (Morton codes, sort, hierarchy); every other substep only
+/// refits its boxes. A refit tree stays correct but loosens as the mesh deforms; the traversal's
+/// node visits (CollisionCounts::bvhNodeVisits) measure what that costs.
+enum class BvhRebuild : std::uint8_t {
+    EverySubstep,
+    EveryFrame,
+    EveryNFrames, ///< BvhSettings::rebuildFrames
+    Never,        ///< built once, on the first substep; refit after
+};
+
+/// Settings of the linear BVH broad phase (`collision.bvh` in a scene).
+struct BvhSettings {
+    BvhRebuild rebuild = BvhRebuild::EveryFrame;
+    int rebuildFrames = 1; ///< >= 1: frames between rebuilds with EveryNFrames
+    /// Nodes one traversal invocation visits per dispatch before it saves its place and a further
+    /// dispatch resumes it. Below 65,535 because llvmpipe ends a shader loop silently after that
+    /// many iterations; small values are for tests.
+    std::uint32_t visitsPerRound = 16384;
 };
 
 /// Precision of the triangle-triangle test (docs/collisions.md).
@@ -78,6 +99,7 @@ struct CollisionSettings {
     double stiffness = 1.0e4; ///< N/m, > 0: penalty stiffness per vertex-face or edge-edge contact
     double damping = 0.0;     ///< N·s/m, >= 0: damping of the normal relative velocity in a contact
     std::uint32_t initialCapacity = 4096; ///< >= 1: first size of every pair list (grown on overflow)
+    BvhSettings bvh;                      ///< used by BroadPhase::Bvh
 };
 
 struct TimeSettings {

@@ -33,6 +33,21 @@
 #define GLC_BIND_HEALTH 24             // GpuHealth: the first non-finite node NodeUpdate produced
 #define GLC_BIND_UNDECIDED 25          // uint[]: robust TriTri: items the filtered pass left to the exact pass
                                        // (candidate indices; query: pair indices)
+// The linear BVH broad phase (docs/design/decisions/0017-gpu-linear-bvh.md). Node n < faces-1 is
+// internal node n, node faces-1+i is the leaf of the i-th face in Morton order; node 0 is the root.
+#define GLC_BIND_BVH_BOXES 26          // GpuBox[2*faces-1]: node boxes (leaves: inflated face boxes), refit each substep
+#define GLC_BIND_BVH_LINKS 27          // uvec4[2*faces-1]: (left child | leaf: face, right child | leaf: sorted index, parent, escape)
+#define GLC_BIND_BVH_VISITS 28         // uint[faces-1]: refit arrival counters, 0 between refits
+#define GLC_BIND_BVH_RESUME 29         // uint[faces]: traversal: the next node of each query, GLC_BVH_NONE when done
+#define GLC_BIND_SORT_KEYS_IN 30       // uint[]: radix sort pass input keys (Morton codes)
+#define GLC_BIND_SORT_VALUES_IN 31     // uint[]: radix sort pass input values (face indices)
+#define GLC_BIND_SORT_KEYS_OUT 32      // uint[]: radix sort pass output keys
+#define GLC_BIND_SORT_VALUES_OUT 33    // uint[]: radix sort pass output values
+#define GLC_BIND_SORT_BLOCK_COUNTS 34  // uint[16 * blocks]: per-block digit counts, scanned to offsets in place
+#define GLC_BIND_BVH_BOUNDS 35         // uvec4[2]: bounds of the face-box centroids as order-preserving uints
+// Representative-Triangle feature pairs (docs/design/decisions/0018-representative-triangles.md).
+#define GLC_BIND_VERTEX_FACE_PAIRS 36  // uvec2[capacity]: (node, face): a vertex against a face
+#define GLC_BIND_EDGE_EDGE_PAIRS 37    // uvec2[capacity]: (3*face+edge, 3*face+edge): two edges, edge e from corner e to e+1
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -55,6 +70,11 @@
 #define GLC_BOX_PAIR_TILE 8      // box-pair kernels: 8 x 8 tiles of the boxes x boxes grid
 #define GLC_FACE_PAIR_TILE 16    // face-pair kernels: 16 x 16 tiles of the faces x faces grid
 #define GLC_EXPAND_GROUP 64      // octree expansion: one group (x z slices) per box pair
+#define GLC_SORT_BLOCK 256       // radix sort: items per work group (one per invocation)
+#define GLC_SORT_DIGIT_BITS 4    // radix sort: bits per pass (16 digits)
+#define GLC_SCAN_GROUP 256       // radix sort: the one work group that scans the block counts
+
+#define GLC_BVH_NONE 0xFFFFFFFFu // BVH link that points nowhere (the root's parent, the last escape)
 
 // Append lists of the collision pipeline: the index of each list's (count, capacity) in
 // GpuCollisionCounters.lists and of its indirect dispatch arguments (GLC_BIND_DISPATCH_ARGS).
@@ -62,7 +82,9 @@
 #define GLC_LIST_CANDIDATES 1u    // uvec2 candidate face pairs (every broad phase)
 #define GLC_LIST_UNDECIDED 2u     // uint candidate indices the filtered TriTri left to the exact pass
 #define GLC_LIST_INTERSECTIONS 3u // uvec2 face pairs whose closed triangles intersect
-#define GLC_LIST_COUNT 4
+#define GLC_LIST_VERTEX_FACE 4u   // uvec2 (node, face) feature pairs of the candidates (R-Triangles)
+#define GLC_LIST_EDGE_EDGE 5u     // uvec2 (edge, edge) feature pairs of the candidates (R-Triangles)
+#define GLC_LIST_COUNT 6
 
 // A spring between two nodes (global node indices).
 struct GpuSpring {
@@ -115,8 +137,8 @@ struct GpuCollisionCounters {
     GpuListCounter lists[GLC_LIST_COUNT]; // indexed by GLC_LIST_*
     uint exactFallbackCount; // robust TriTri: predicates the exact pass evaluated in integers
     uint contactCount;       // vertex-face and edge-edge contacts that produced a force
-    uint pad0;
-    uint pad1;
+    uint bvhUnfinished;      // BVH traversal: queries that used up their rounds (the stage reruns with more)
+    uint bvhNodeVisits;      // BVH traversal: nodes whose box was tested (the tree-quality figure)
 };
 
 // Written by NodeUpdate when a node's new position or velocity is not finite (EngineOptions::

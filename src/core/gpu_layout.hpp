@@ -45,7 +45,7 @@ static_assert(offsetof(GpuFaceInfo, owned) == 8);
 static_assert(sizeof(GpuListCounter) == 8);
 static_assert(offsetof(GpuListCounter, count) == 0);
 static_assert(offsetof(GpuListCounter, capacity) == 4);
-static_assert(sizeof(GpuCollisionCounters) == 48);
+static_assert(sizeof(GpuCollisionCounters) == 8 * GLC_LIST_COUNT + 16);
 static_assert(offsetof(GpuCollisionCounters, lists) == 0);
 static_assert(offsetof(GpuCollisionCounters, exactFallbackCount) == 8 * GLC_LIST_COUNT);
 static_assert(offsetof(GpuCollisionCounters, contactCount) == 8 * GLC_LIST_COUNT + 4);

@@ -15,15 +15,20 @@ enum class PassId : std::uint8_t {
     SpringUpdate,
     BBUpdate,
     BBCollision,
+    BvhBuild,    ///< linear BVH: Morton codes, radix sort, hierarchy (when the cadence rebuilds)
+    BvhRefit,    ///< linear BVH: node boxes bottom-up
+    BvhTraverse, ///< linear BVH: candidate face pairs
     TriTri,
+    FeaturePairs, ///< Representative Triangles: candidate face pairs -> vertex-face, edge-edge pairs
     ContactResponse,
     NodeUpdate
 };
 
-inline constexpr std::size_t kPassCount = 7;
+inline constexpr std::size_t kPassCount = 11;
 
 inline constexpr std::array<const char*, kPassCount> kPassNames = {
-    "NodeForce", "SpringUpdate", "BBUpdate", "BBCollision", "TriTri", "ContactResponse", "NodeUpdate"};
+    "NodeForce",   "SpringUpdate", "BBUpdate",     "BBCollision",     "BvhBuild",  "BvhRefit",
+    "BvhTraverse", "TriTri",       "FeaturePairs", "ContactResponse", "NodeUpdate"};
 
 constexpr const char* passName(PassId id) {
     return kPassNames[static_cast<std::size_t>(id)];

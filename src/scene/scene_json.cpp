@@ -433,10 +433,37 @@ Body parseObject(const Ctx& c, const json& j, const Ptr& p, const EffectSet& eff
     return body;
 }
 
+BvhSettings parseBvh(const Ctx& c, const json& j, const Ptr& p) {
+    checkObject(c, j, p, {"rebuild", "visits_per_round"});
+    BvhSettings s;
+    if (const json* v = find(j, "rebuild")) {
+        if (v->is_number_integer() && v->get<long long>() >= 1 && v->get<long long>() <= 1000000) {
+            s.rebuild = BvhRebuild::EveryNFrames;
+            s.rebuildFrames = static_cast<int>(v->get<long long>());
+        } else if (v->is_string() && v->get<std::string>() == "substep") {
+            s.rebuild = BvhRebuild::EverySubstep;
+        } else if (v->is_string() && v->get<std::string>() == "frame") {
+            s.rebuild = BvhRebuild::EveryFrame;
+        } else if (v->is_string() && v->get<std::string>() == "never") {
+            s.rebuild = BvhRebuild::Never;
+        } else {
+            c.fail(p / "rebuild", "expected \"substep\", \"frame\", \"never\" or a number of frames "
+                                  "1 ... 1000000, got " +
+                                      shown(*v));
+        }
+    }
+    if (const json* v = find(j, "visits_per_round")) {
+        if (!v->is_number_integer() || v->get<long long>() < 1 || v->get<long long>() > 65535)
+            c.fail(p / "visits_per_round", "expected an integer in 1 ... 65535, got " + shown(*v));
+        s.visitsPerRound = static_cast<std::uint32_t>(v->get<long long>());
+    }
+    return s;
+}
+
 CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p,
                 {"broad_phase", "octree_depth", "precision", "thickness", "stiffness", "damping",
-                 "initial_capacity"});
+                 "initial_capacity", "bvh"});
     CollisionSettings s;
     if (const json* v = find(j, "broad_phase")) {
         const std::string name = string(c, *v, p / "broad_phase");
@@ -446,10 +473,13 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
             s.broadPhase = BroadPhase::Masked;
         else if (name == "all_pairs")
             s.broadPhase = BroadPhase::AllPairs;
+        else if (name == "bvh")
+            s.broadPhase = BroadPhase::Bvh;
         else
-            c.fail(p / "broad_phase",
-                   "unknown broad phase " + shown(*v) + "; expected \"octree\", \"masked\" or \"all_pairs\"");
+            c.fail(p / "broad_phase", "unknown broad phase " + shown(*v) +
+                                          "; expected \"octree\", \"masked\", \"all_pairs\" or \"bvh\"");
     }
+    if (const json* v = find(j, "bvh")) s.bvh = parseBvh(c, *v, p / "bvh");
     if (const json* v = find(j, "octree_depth")) {
         if (!v->is_number_integer() || v->get<long long>() < 1 || v->get<long long>() > 3)
             c.fail(p / "octree_depth",

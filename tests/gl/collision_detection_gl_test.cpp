@@ -99,6 +99,8 @@ std::string modeName(const Mode& m) {
         return "Masked" + std::to_string(m.depth);
     case BroadPhase::AllPairs:
         return "AllPairs";
+    case BroadPhase::Bvh:
+        return "Bvh";
     }
     return "?";
 }

@@ -21,6 +21,8 @@ std::vector<PassId> broadPhasePasses(glcollide::BroadPhase kind) {
         return passesOf<MaskedBroadPhase>();
     case glcollide::BroadPhase::AllPairs:
         return passesOf<AllPairsBroadPhase>();
+    case glcollide::BroadPhase::Bvh:
+        throw Error("collision: the bvh broad phase is being written (work in progress)");
     }
     throw Error("unknown broad phase");
 }
@@ -34,6 +36,8 @@ std::unique_ptr<BroadPhase> createBroadPhase(const BroadPhaseContext& context) {
         return std::make_unique<MaskedBroadPhase>(context);
     case glcollide::BroadPhase::AllPairs:
         return std::make_unique<AllPairsBroadPhase>(context);
+    case glcollide::BroadPhase::Bvh:
+        throw Error("collision: the bvh broad phase is being written (work in progress)");
     }
     throw Error("unknown broad phase");
 }
