@@ -320,9 +320,16 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {})")),
                 HasSubstr("/collision: given but neither 'collisions' nor 'self_collisions' is in /effects"));
     const char* collide = R"(["springs", "collisions"])";
-    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"broad_phase": "bvh"})", collide)),
-                HasSubstr("/collision/broad_phase: unknown broad phase \"bvh\"; expected \"octree\", "
-                          "\"masked\" or \"all_pairs\""));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"broad_phase": "kd_tree"})", collide)),
+                HasSubstr("/collision/broad_phase: unknown broad phase \"kd_tree\"; expected \"octree\", "
+                          "\"masked\", \"all_pairs\" or \"bvh\""));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"bvh": {"rebuild": 0}})", collide)),
+                HasSubstr("/collision/bvh/rebuild: expected \"substep\", \"frame\", \"never\" or a number of "
+                          "frames 1 ... 1000000, got 0"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"bvh": {"visits_per_round": 65536}})", collide)),
+                HasSubstr("/collision/bvh/visits_per_round: expected an integer in 1 ... 65535, got 65536"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"bvh": {"depth": 3}})", collide)),
+                HasSubstr("/collision/bvh"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"octree_depth": 4})", collide)),
                 HasSubstr("/collision/octree_depth: expected an integer 1, 2 or 3"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"precision": "exact"})", collide)),
