@@ -127,6 +127,12 @@ std::vector<const gl::Buffer*> CollisionDetection::allBuffers() const {
     return all;
 }
 
+std::size_t CollisionDetection::broadPhaseBytes() const {
+    std::size_t bytes = 0;
+    for (const gl::Buffer* b : m_broadPhase->buffers()) bytes += b->bytes();
+    return bytes;
+}
+
 std::vector<std::string> CollisionDetection::allocatedLabels() const {
     std::vector<std::string> labels;
     for (const gl::Buffer* b : allBuffers()) labels.push_back(b->label());

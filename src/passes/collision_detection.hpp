@@ -99,6 +99,9 @@ class CollisionDetection {
     [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> readCandidates() const;
     [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> readIntersections() const;
 
+    /// Bytes of the broad phase's own buffers (its tree, sort buffers, traversal state; the
+    /// lists aside).
+    [[nodiscard]] std::size_t broadPhaseBytes() const;
     [[nodiscard]] std::vector<std::string> allocatedLabels() const;
     [[nodiscard]] std::size_t allocatedBytes() const;
 
