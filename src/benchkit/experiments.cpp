@@ -1,5 +1,6 @@
 #include "benchkit/experiments.hpp"
 
+#include "benchkit/bvh_experiment.hpp"
 #include "benchkit/paper_fused_tri_tri.hpp"
 
 #include "core/gpu_layout.hpp"
@@ -524,8 +525,10 @@ ExperimentResult runExperiment(const Experiment& experiment, const Progress& pro
     ExperimentResult out;
     out.experiment = experiment;
     std::size_t done = 0;
-    const std::size_t total = experiment.scenes.size() * experiment.configs.size() +
-                              experiment.caseFamilies.size() * experiment.configs.size();
+    const std::size_t total = experiment.kind == ExperimentKind::Bvh
+                                  ? bvhRunCount(experiment)
+                                  : experiment.scenes.size() * experiment.configs.size() +
+                                        experiment.caseFamilies.size() * experiment.configs.size();
     const Progress counted = [&](const std::string& what) {
         if (progress)
             progress(experiment.name + " " + std::to_string(std::min(++done, total)) + "/" +
@@ -546,6 +549,9 @@ ExperimentResult runExperiment(const Experiment& experiment, const Progress& pro
         break;
     case ExperimentKind::Contact:
         contact(experiment, out, counted);
+        break;
+    case ExperimentKind::Bvh:
+        runBvhExperiment(experiment, out, counted);
         break;
     }
     return out;

@@ -90,6 +90,17 @@ std::vector<std::pair<std::string, std::string>> tableMetrics(ExperimentKind kin
         return {{"deepest_penetration_m", "deepest penetration (m)"},
                 {"max_intersecting_pairs", "max intersecting pairs"},
                 {"max_contacts", "max contacts"}};
+    case ExperimentKind::Bvh:
+        return {{"candidate_pairs", "candidates"},
+                {"broad_phase_ms", "broad phase ms"},
+                {"build_ms", "build"},
+                {"refit_ms", "refit"},
+                {"traverse_ms", "traverse"},
+                {"bbupdate_ms", "BBUpdate"},
+                {"bbcollision_ms", "BBCollision"},
+                {"broad_phase_bytes_per_face", "bytes/face"},
+                {"detection_ms_per_substep", "engine: detection ms/substep"},
+                {"dynamics_ms_per_substep", "engine: rest ms/substep"}};
     }
     return {};
 }
@@ -137,6 +148,18 @@ std::string markdownTable(const Table& t) {
         s << "|";
         for (const std::string& cell : row) s << ' ' << cell << " |";
         s << "\n";
+    }
+    return s.str();
+}
+
+/// The experiment's own tables (bvh), as Markdown.
+std::string summaryMarkdown(const ExperimentResult& r) {
+    std::ostringstream s;
+    for (const SummaryTable& t : r.tables) {
+        Table table;
+        table.header = t.header;
+        table.rows = t.rows;
+        s << "**" << t.title << "**\n\n" << markdownTable(table) << "\n";
     }
     return s.str();
 }
@@ -241,7 +264,25 @@ std::string benchmarkJson(const RunContext& c, const Suite& suite,
             if (run.wallMs.samples) entry("wall", run.wallMs, instance++);
             ++family;
         }
-    return json{{"context", context}, {"benchmarks", benchmarks}}.dump(2) + "\n";
+    // Experiment-level numbers and tables (the bvh experiment's slopes, ratios, seed tables);
+    // compare.py reads only `benchmarks` and ignores this.
+    json summaries = json::array();
+    for (const ExperimentResult& r : results) {
+        if (r.summary.empty() && r.tables.empty()) continue;
+        json metrics = json::object();
+        for (const Metric& m : r.summary) metrics[m.key] = finiteOrNull(m.value);
+        json tables = json::array();
+        for (const SummaryTable& t : r.tables)
+            tables.push_back({{"title", t.title}, {"header", t.header}, {"rows", t.rows}});
+        summaries.push_back({{"experiment", r.experiment.name},
+                             {"kind", kindName(r.experiment.kind)},
+                             {"metrics", metrics},
+                             {"tables", tables},
+                             {"notes", r.notes}});
+    }
+    return json{{"context", context}, {"benchmarks", benchmarks}, {"experiment_summaries", summaries}}.dump(
+               2) +
+           "\n";
 }
 
 std::string textTable(const ExperimentResult& r) {
@@ -261,6 +302,21 @@ std::string textTable(const ExperimentResult& r) {
     };
     line(t.header);
     for (const auto& row : t.rows) line(row);
+    for (const SummaryTable& table : r.tables) {
+        std::vector<std::size_t> w(table.header.size(), 0);
+        for (std::size_t i = 0; i < w.size(); ++i) w[i] = table.header[i].size();
+        for (const auto& row : table.rows)
+            for (std::size_t i = 0; i < row.size() && i < w.size(); ++i) w[i] = std::max(w[i], row[i].size());
+        s << "-- " << table.title << "\n";
+        const auto put = [&](const std::vector<std::string>& cells) {
+            for (std::size_t i = 0; i < cells.size() && i < w.size(); ++i)
+                s << (i ? "  " : "") << (i == 0 ? std::left : std::right) << std::setw(static_cast<int>(w[i]))
+                  << cells[i];
+            s << std::right << "\n";
+        };
+        put(table.header);
+        for (const auto& row : table.rows) put(row);
+    }
     if (r.experiment.kind == ExperimentKind::Scaling)
         for (const ConfigEntry& c : r.experiment.configs) {
             s << "   " << c.name << ": GPU time per substep grows as faces^"
@@ -272,6 +328,36 @@ std::string textTable(const ExperimentResult& r) {
 
 std::vector<PlotFile> plots(const ExperimentResult& r) {
     std::vector<PlotFile> files;
+    if (r.experiment.kind == ExperimentKind::Bvh) {
+        // Time per detection (engine rows: per substep) against faces on the generated cloths.
+        PlotSpec spec;
+        spec.title = r.experiment.title;
+        spec.xLabel = "faces";
+        spec.yLabel = "GPU ms per detection / per engine substep";
+        spec.logX = spec.logY = true;
+        std::vector<std::string> configs;
+        for (const RunResult& run : r.runs)
+            if (run.metric("generated") == 1 &&
+                std::find(configs.begin(), configs.end(), run.config) == configs.end())
+                configs.push_back(run.config);
+        for (const std::string& config : configs) {
+            PlotSeries series;
+            std::vector<RunResult> runs;
+            for (const RunResult& run : r.runs)
+                if (run.config == config && run.failure.empty() && run.metric("generated") == 1 &&
+                    run.time > 0) {
+                    runs.push_back(run);
+                    series.points.push_back({double(run.faces), run.time, ""});
+                }
+            if (series.points.empty()) continue;
+            series.name = config + " (slope " + num(logLogSlope(runs)) + ")";
+            std::sort(series.points.begin(), series.points.end(),
+                      [](const PlotPoint& a, const PlotPoint& b) { return a.x < b.x; });
+            spec.series.push_back(std::move(series));
+        }
+        if (!spec.series.empty()) files.push_back({r.experiment.name + ".svg", spec.title, renderSvg(spec)});
+        return files;
+    }
     if (!accuracy(r)) {
         PlotSpec spec;
         spec.title = r.experiment.title;
@@ -326,7 +412,10 @@ std::string markdownReport(const RunContext& c, const Suite& suite,
           << kindName(r.experiment.kind) << ")\n\n";
         s << r.experiment.warmupFrames << " warm-up and " << r.experiment.frames
           << " measured frames per run.";
-        if (accuracy(r)) s << " Plotted: " << r.timeLabel << " against " << r.errorLabel << ".";
+        if (r.experiment.kind == ExperimentKind::Bvh)
+            s << " Plotted: GPU ms per detection against faces on the folded cloths, log-log.";
+        else if (accuracy(r))
+            s << " Plotted: " << r.timeLabel << " against " << r.errorLabel << ".";
         s << "\n\n";
         for (const std::string& note : r.notes) s << "- " << note << "\n";
         if (r.experiment.kind == ExperimentKind::Scaling)
@@ -334,7 +423,7 @@ std::string markdownReport(const RunContext& c, const Suite& suite,
                 s << "- " << cfg.name << ": GPU time per substep grows as faces^"
                   << num(logLogSlope(runsOf(r, cfg.name))) << "\n";
             }
-        s << "\n" << markdownTable(tableOf(r)) << "\n";
+        s << "\n" << markdownTable(tableOf(r)) << "\n" << summaryMarkdown(r);
         if (i < plotFiles.size())
             for (const PlotFile& f : plotFiles[i]) s << "![" << f.title << "](" << f.name << ")\n";
         s << "\n";
@@ -350,7 +439,7 @@ std::string headlineTable(const RunContext& c, const std::vector<ExperimentResul
     s << "| experiment | scene | fastest: config (time, error) | least error: config (time, error) |\n";
     s << "|---|---|---|---|\n";
     for (const ExperimentResult& r : results) {
-        if (!accuracy(r)) continue;
+        if (!accuracy(r) || r.experiment.kind == ExperimentKind::Bvh) continue;
         // Triangle-pair families are summed into one row per configuration: one line for all of them.
         std::vector<std::string> scenes;
         std::map<std::string, std::map<std::string, std::pair<double, double>>>
@@ -392,10 +481,17 @@ std::string headlineTable(const RunContext& c, const std::vector<ExperimentResul
               << " faces |\n";
         }
     }
+    for (const ExperimentResult& r : results) {
+        if (r.experiment.kind != ExperimentKind::Bvh) continue;
+        for (const Metric& m : r.summary)
+            if (m.key.rfind("slope_detection/", 0) == 0)
+                s << "| " << r.experiment.title << " | " << m.key.substr(16)
+                  << " | detection per substep grows as faces^" << num(m.value) << " | folded cloth |\n";
+    }
     s << "\nTimes and errors in each experiment's units: ";
     std::string units;
     for (const ExperimentResult& r : results)
-        if (accuracy(r))
+        if (accuracy(r) && r.experiment.kind != ExperimentKind::Bvh)
             units +=
                 (units.empty() ? "" : "; ") + r.experiment.name + ": " + r.timeLabel + ", " + r.errorLabel;
     s << units << ".\n";

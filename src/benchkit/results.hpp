@@ -45,13 +45,23 @@ struct RunResult {
     void set(const std::string& key, double value);
 };
 
+/// A table of an experiment's own layout (the bvh experiment's seed tables, slopes, ratios),
+/// printed after the run table and kept in the JSON's `experiment_summaries`.
+struct SummaryTable {
+    std::string title;
+    std::vector<std::string> header;
+    std::vector<std::vector<std::string>> rows;
+};
+
 struct ExperimentResult {
     Experiment experiment;
     std::string timeLabel;  ///< "collision GPU ms per substep", ...
     std::string errorLabel; ///< "missed intersecting pairs", ...
     bool errorIsCount = false;
     std::vector<RunResult> runs;
-    std::vector<std::string> notes; ///< what a reader must know (reference used, what is not measured)
+    std::vector<std::string> notes;   ///< what a reader must know (reference used, what is not measured)
+    std::vector<SummaryTable> tables; ///< experiment-level tables (bvh)
+    std::vector<Metric> summary;      ///< experiment-level numbers (bvh: slopes, ratios, bytes per face)
 };
 
 } // namespace glcollide::benchkit

@@ -80,11 +80,11 @@ std::string readFile(const std::filesystem::path& path, const std::string& what)
 ExperimentKind parseKind(const json& experiment, const Where& at) {
     const std::string kind = stringAt(experiment, at, "kind");
     for (ExperimentKind k : {ExperimentKind::Scaling, ExperimentKind::BroadPhase, ExperimentKind::NarrowPhase,
-                             ExperimentKind::Integration, ExperimentKind::Contact})
+                             ExperimentKind::Integration, ExperimentKind::Contact, ExperimentKind::Bvh})
         if (kind == kindName(k)) return k;
     (at / "kind")
         .fail("unknown kind \"" + kind +
-              "\" (expected scaling, broad_phase, narrow_phase, integration or contact)");
+              "\" (expected scaling, broad_phase, narrow_phase, integration, contact or bvh)");
 }
 
 /// A scene is inline (an object in the scene format) or a path relative to the suite; either may
@@ -145,11 +145,67 @@ std::vector<T> parseList(const json& object, const Where& at, const char* key, F
     return out;
 }
 
+/// A list of face counts, each in 2 ... 2^26.
+std::vector<std::uint32_t> faceCounts(const json& object, const Where& at, const char* key) {
+    std::vector<std::uint32_t> counts;
+    if (!object.contains(key)) return counts;
+    const json& list = object.at(key);
+    if (!list.is_array()) (at / key).fail("expected an array of face counts");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        if (!list[i].is_number_integer() || list[i].get<long long>() < 2 ||
+            list[i].get<long long>() > (1 << 26))
+            (at / key / i).fail("expected a face count in 2 ... 67108864");
+        counts.push_back(static_cast<std::uint32_t>(list[i].get<long long>()));
+    }
+    return counts;
+}
+
+/// Names of configurations of the experiment (each must exist).
+std::vector<std::string> configNames(const json& object, const Where& at, const char* key,
+                                     const std::vector<ConfigEntry>& configs) {
+    std::vector<std::string> names;
+    if (!object.contains(key)) return names;
+    const json& list = object.at(key);
+    if (!list.is_array()) (at / key).fail("expected an array of configuration names");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        const std::string name = list[i].is_string() ? list[i].get<std::string>() : "";
+        if (std::none_of(configs.begin(), configs.end(),
+                         [&](const ConfigEntry& c) { return c.name == name; }))
+            (at / key / i).fail("not the name of one of this experiment's configs");
+        names.push_back(name);
+    }
+    return names;
+}
+
+BvhSpec parseBvhSpec(const json& e, const Where& at, const std::vector<ConfigEntry>& configs) {
+    BvhSpec b;
+    b.tableFaces = faceCounts(e, at, "table_faces");
+    b.scalingFaces = faceCounts(e, at, "scaling_faces");
+    b.octreeMaxFaces = static_cast<std::uint32_t>(intAt(e, at, "octree_max_faces", 0, 0, 1 << 26));
+    b.slowRunSeconds = intAt(e, at, "slow_run_seconds", 0, 0, 86400);
+    b.cpuCheckMaxFaces = static_cast<std::uint32_t>(intAt(e, at, "cpu_check_max_faces", 40000, 0, 1 << 26));
+    b.foldLayers = intAt(e, at, "fold_layers", 4, 1, 64);
+    if (e.contains("cloth_patch")) {
+        if (!e.at("cloth_patch").is_object())
+            (at / "cloth_patch").fail("expected an object (a JSON merge patch)");
+        b.clothPatch = e.at("cloth_patch").dump();
+    }
+    b.engineConfigs = configNames(e, at, "engine_configs", configs);
+    b.sceneConfigs = configNames(e, at, "scene_configs", configs);
+    return b;
+}
+
+constexpr const char* kBvhKeys[] = {"table_faces",         "scaling_faces",  "octree_max_faces",
+                                    "slow_run_seconds",    "fold_layers",    "cloth_patch",
+                                    "cpu_check_max_faces", "engine_configs", "scene_configs"};
+
 Experiment parseExperiment(const json& e, const Where& at, const std::filesystem::path& baseDir, int warmup,
                            int frames) {
     allowOnly(e, at,
               {"name", "kind", "title", "scenes", "configs", "warmup_frames", "frames", "reference",
-               "reference_factor", "case_families"});
+               "reference_factor", "case_families", "table_faces", "scaling_faces", "octree_max_faces",
+               "slow_run_seconds", "fold_layers", "cloth_patch", "cpu_check_max_faces", "engine_configs",
+               "scene_configs"});
     Experiment x;
     x.kind = parseKind(e, at);
     x.name = stringAt(e, at, "name");
@@ -158,9 +214,19 @@ Experiment parseExperiment(const json& e, const Where& at, const std::filesystem
     x.title = e.contains("title") ? stringAt(e, at, "title") : x.name;
     x.warmupFrames = intAt(e, at, "warmup_frames", warmup, 0, 1000);
     x.frames = intAt(e, at, "frames", frames, 1, 100000);
-    x.scenes = parseList<SceneEntry>(
-        e, at, "scenes", [&](const json& s, const Where& w) { return parseSceneEntry(s, w, baseDir); });
+    // A bvh experiment generates its cloths; further scenes are optional.
+    if (x.kind != ExperimentKind::Bvh || e.contains("scenes"))
+        x.scenes = parseList<SceneEntry>(
+            e, at, "scenes", [&](const json& s, const Where& w) { return parseSceneEntry(s, w, baseDir); });
     x.configs = parseList<ConfigEntry>(e, at, "configs", parseConfig);
+    if (x.kind == ExperimentKind::Bvh) {
+        x.bvh = parseBvhSpec(e, at, x.configs);
+        if (x.bvh.tableFaces.empty() && x.bvh.scalingFaces.empty() && x.scenes.empty())
+            at.fail("a bvh experiment needs table_faces, scaling_faces or scenes");
+    } else {
+        for (const char* key : kBvhKeys)
+            if (e.contains(key)) (at / key).fail("only bvh experiments have this key");
+    }
     const bool integration = x.kind == ExperimentKind::Integration;
     if (!integration && (e.contains("reference") || e.contains("reference_factor")))
         (at / (e.contains("reference") ? "reference" : "reference_factor"))
@@ -208,6 +274,8 @@ const char* kindName(ExperimentKind kind) {
         return "integration";
     case ExperimentKind::Contact:
         return "contact";
+    case ExperimentKind::Bvh:
+        return "bvh";
     }
     return "unknown";
 }

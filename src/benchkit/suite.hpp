@@ -2,6 +2,7 @@
 /// \file A benchmark suite: which scenes `glcollide bench` runs, under which configurations, and
 /// what each experiment measures (docs/benchmarks.md, "Suite files").
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -15,6 +16,8 @@ enum class ExperimentKind {
     NarrowPhase, ///< false positives / negatives of the triangle test against the exact oracle
     Integration, ///< trajectory error and energy drift against an analytic or converged solution
     Contact,     ///< deepest penetration and intersecting pairs left after the contact response
+    Bvh,         ///< BVH vs octree on folded cloth and mesh scenes: per-pass times, equal candidates
+                 ///< (bvh_experiment.hpp)
 };
 
 const char* kindName(ExperimentKind kind);
@@ -43,6 +46,24 @@ enum class IntegrationReference {
     Ballistic, ///< the closed form of free flight under gravity (springs at rest)
 };
 
+/// The `bvh` kind's sizes and limits (docs/benchmarks.md, "The bvh experiment"). Its generated
+/// scenes are the folded cloth of benchkit/folded_cloth.hpp at each size; `Experiment::scenes`
+/// (optional for this kind) are further scenes, e.g. a mesh file, measured under `sceneConfigs`.
+struct BvhSpec {
+    std::vector<std::uint32_t> tableFaces; ///< laid out like the seed's Tables 1-3 (2,244 / 27,030 / 35,992)
+    std::vector<std::uint32_t> scalingFaces; ///< the cost exponent is fitted over these
+    std::uint32_t octreeMaxFaces = 0;        ///< octree configs skip generated cloths above this; 0: no limit
+    int slowRunSeconds =
+        0; ///< a non-BVH config slower than this per detection: 1 sample, no larger sizes; 0: off
+    std::uint32_t cpuCheckMaxFaces =
+        40000;          ///< candidates also checked against the CPU brute force up to here
+    int foldLayers = 4; ///< layers of the folded cloth
+    std::string clothPatch =
+        "{}"; ///< merge patch on the generated cloths' base scene (effects, thickness, dt)
+    std::vector<std::string> engineConfigs; ///< configs also timed as Engine steps; empty: the bvh ones
+    std::vector<std::string> sceneConfigs;  ///< configs run on `scenes`; empty: all
+};
+
 struct Experiment {
     ExperimentKind kind = ExperimentKind::Scaling;
     std::string name;  ///< unique in the suite; names output files
@@ -54,6 +75,7 @@ struct Experiment {
     IntegrationReference reference = IntegrationReference::Converged;
     int referenceFactor = 16;              ///< integration: reference substeps / first configuration's
     std::vector<std::string> caseFamilies; ///< narrow phase: triangle-pair families also measured
+    BvhSpec bvh;                           ///< kind bvh only
 };
 
 struct Suite {

@@ -1,6 +1,8 @@
 // The benchmark harness without GL: suite files (built-in and shipped ones parse; bad ones fail
 // with a JSON pointer), the order statistics, the log-log slope, and the Google Benchmark JSON.
 
+#include "benchkit/bvh_experiment.hpp"
+#include "benchkit/folded_cloth.hpp"
 #include "benchkit/report.hpp"
 #include "benchkit/results.hpp"
 #include "benchkit/suite.hpp"
@@ -11,7 +13,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 #include <string>
 
 namespace glcollide::benchkit {
@@ -51,6 +56,105 @@ TEST(BenchkitSuite, BuiltInAndShippedSuitesParse) {
     EXPECT_EQ(smokeSuite().name, "smoke");
     const Suite full = loadSuite(GLCOLLIDE_SOURCE_DIR "/bench/suites/full.json");
     EXPECT_EQ(full.name, "full");
+    // The bvh experiment: quick in smoke, the seed's sizes in default, to ~1M faces in bvh.json.
+    for (const Suite& s : {smokeSuite(), d, loadSuite(GLCOLLIDE_SOURCE_DIR "/bench/suites/bvh.json")}) {
+        const auto bvh = std::find_if(s.experiments.begin(), s.experiments.end(),
+                                      [](const Experiment& e) { return e.kind == ExperimentKind::Bvh; });
+        ASSERT_NE(bvh, s.experiments.end()) << s.name;
+        EXPECT_EQ(bvh->name, "bvh");
+    }
+    const Suite bvh = loadSuite(GLCOLLIDE_SOURCE_DIR "/bench/suites/bvh.json");
+    const BvhSpec& spec = bvh.experiments.at(0).bvh;
+    EXPECT_EQ(spec.tableFaces, (std::vector<std::uint32_t>{2244, 27030, 35992}));
+    EXPECT_EQ(spec.scalingFaces.back(), 1000000u);
+    EXPECT_THAT(bvh.experiments.at(0).scenes.at(0).sceneJson, HasSubstr("cloth_ball92.ply"));
+}
+
+TEST(BenchkitSuite, BvhKeys) {
+    const std::string configs =
+        R"("configs": [{"name": "bvh", "patch": {"collision": {"broad_phase": "bvh"}}}, {"name": "o"}])";
+    const Suite s =
+        parseSuite(suiteWith(R"("kind": "bvh", "table_faces": [2244], "scaling_faces": [1000, 3000],
+        "octree_max_faces": 2000, "slow_run_seconds": 7, "cpu_check_max_faces": 10, "fold_layers": 3,
+        "cloth_patch": {"collision": {"thickness": 0.02}}, "engine_configs": ["o"], "scene_configs": ["bvh"], )" +
+                             configs),
+                   {}, "t.json");
+    const Experiment& e = s.experiments.at(0);
+    EXPECT_TRUE(e.scenes.empty()); // optional for this kind
+    EXPECT_EQ(e.bvh.tableFaces, (std::vector<std::uint32_t>{2244}));
+    EXPECT_EQ(e.bvh.scalingFaces, (std::vector<std::uint32_t>{1000, 3000}));
+    EXPECT_EQ(e.bvh.octreeMaxFaces, 2000u);
+    EXPECT_EQ(e.bvh.slowRunSeconds, 7);
+    EXPECT_EQ(e.bvh.cpuCheckMaxFaces, 10u);
+    EXPECT_EQ(e.bvh.foldLayers, 3);
+    EXPECT_THAT(e.bvh.clothPatch, HasSubstr("0.02"));
+    EXPECT_EQ(e.bvh.engineConfigs, (std::vector<std::string>{"o"}));
+    EXPECT_EQ(e.bvh.sceneConfigs, (std::vector<std::string>{"bvh"}));
+
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "bvh", )" + configs)),
+                HasSubstr("/experiments/0: a bvh experiment needs table_faces, scaling_faces or scenes"));
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "bvh", "table_faces": [1], )" + configs)),
+                HasSubstr("/experiments/0/table_faces/0: expected a face count"));
+    EXPECT_THAT(
+        errorOf(suiteWith(R"("kind": "bvh", "table_faces": [100], "engine_configs": ["x"], )" + configs)),
+        HasSubstr("/experiments/0/engine_configs/0: not the name of one of this experiment's configs"));
+    EXPECT_THAT(
+        errorOf(suiteWith(R"("kind": "scaling", "table_faces": [100], )" + sceneList() + ", " + configs)),
+        HasSubstr("/experiments/0/table_faces: only bvh experiments have this key"));
+}
+
+TEST(BenchkitSeed, TablesAsPrinted) {
+    const auto& rows = seedTables();
+    EXPECT_EQ(rows[0].triangles, 2244u);
+    EXPECT_EQ(rows[1].triangles, 27030u);
+    EXPECT_EQ(rows[2].triangles, 35992u);
+    EXPECT_STREQ(rows[0].build[0], "23.94 ms");
+    EXPECT_STREQ(rows[2].traverse[0], "041 s"); // garbled in the OCR: quoted, not read as 0.41 s
+}
+
+/// Unique edges -> number of faces using each.
+std::map<std::pair<std::uint32_t, std::uint32_t>, int> edgeUse(const Body& b) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> use;
+    for (const auto& f : b.faces)
+        for (int k = 0; k < 3; ++k) ++use[std::minmax(f[k], f[(k + 1) % 3])];
+    return use;
+}
+
+TEST(BenchkitFoldedCloth, ExactTriangleCountsAndAValidSheet) {
+    for (std::uint32_t faces : {2u, 3u, 1000u, 2244u, 27030u, 35992u}) {
+        const Body b = foldedCloth({.faces = faces});
+        EXPECT_EQ(b.faces.size(), faces);
+        // Every node is used, every edge has one or two faces, one spring per edge, masses positive.
+        std::vector<int> used(b.positions.size(), 0);
+        for (const auto& f : b.faces)
+            for (std::uint32_t n : f) used.at(n) = 1;
+        EXPECT_EQ(std::count(used.begin(), used.end(), 0), 0) << faces;
+        const auto use = edgeUse(b);
+        for (const auto& [edge, count] : use) EXPECT_LE(count, 2) << faces;
+        EXPECT_EQ(b.springs.size(), use.size());
+        EXPECT_TRUE(std::all_of(b.masses.begin(), b.masses.end(), [](double m) { return m > 0; }));
+        EXPECT_TRUE(std::all_of(b.springs.begin(), b.springs.end(),
+                                [](const Spring& s) { return s.restLength > 0; }));
+        EXPECT_EQ(b.velocities.size(), b.positions.size());
+        EXPECT_EQ(b.pinned.size(), b.positions.size());
+    }
+}
+
+TEST(BenchkitFoldedCloth, DeterministicAndFoldedWithinTheThickness) {
+    const FoldedClothSpec spec{.faces = 27030, .thickness = 0.01};
+    const Body a = foldedCloth(spec), b = foldedCloth(spec);
+    EXPECT_EQ(a.positions, b.positions);
+    EXPECT_EQ(a.faces, b.faces);
+    EXPECT_EQ(foldedClothLayers(spec), 4);
+    // 4 layers 0.8 x thickness apart, all lifted alike by the crumpling (amplitude half a cell):
+    // the heights span 3 spacings plus twice the amplitude.
+    double lo = 1e9, hi = -1e9;
+    for (const glm::dvec3& p : a.positions) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
+    const double spacing = 0.8 * spec.thickness, amplitude = 0.5 * 2.0 * spec.thickness;
+    EXPECT_NEAR(hi - lo, 3 * spacing + 2 * amplitude, 0.25 * spacing);
+    // A short sheet gets fewer layers, each panel at least two cells long.
+    EXPECT_LT(foldedClothLayers({.faces = 20}), 4);
+    EXPECT_GE(foldedClothLayers({.faces = 20}), 1);
 }
 
 TEST(BenchkitSuite, MergePatchesApplyToTheScene) {
