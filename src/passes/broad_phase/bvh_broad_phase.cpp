@@ -52,11 +52,13 @@ BvhBroadPhase::BvhBroadPhase(const BroadPhaseContext& c)
       m_boxes("bvhBoxes", nodeCount(m_faceCount) * sizeof(gpu::GpuBox)),
       m_links("bvhLinks", nodeCount(m_faceCount) * 4 * sizeof(std::uint32_t)),
       // Zero: the refit's counters start (and end) at 0.
-      m_visits(gl::makeBuffer("bvhVisits", std::vector<std::uint32_t>(std::max<std::uint32_t>(1, m_faceCount) - 1))),
+      m_visits(gl::makeBuffer("bvhVisits",
+                              std::vector<std::uint32_t>(std::max<std::uint32_t>(1, m_faceCount) - 1))),
       m_resume("bvhResume", std::size_t{m_faceCount} * sizeof(std::uint32_t)), m_boundsProgram("bvh_bounds"),
       m_morton("bvh_morton"), m_hierarchy("bvh_hierarchy"), m_refit("bvh_refit"), m_traverse("bvh_traverse") {
-    if (m_visitsPerRound < 1 || m_visitsPerRound > 65535)
-        throw Error("collision: bvh visits_per_round must be in 1 ... 65535");
+    if (m_visitsPerRound < 1 || m_visitsPerRound > 65534)
+        throw Error("collision: bvh visits_per_round must be in 1 ... 65534 (llvmpipe ends a loop after "
+                    "65535 iterations)");
     for (const gl::ComputeProgram* p : {&m_boundsProgram, &m_morton, &m_hierarchy, &m_refit, &m_traverse})
         p->set("u_faceCount", m_faceCount);
     m_refit.set("u_halfThickness", c.halfThickness);
@@ -75,7 +77,9 @@ void BvhBroadPhase::addStages(StageChain& chain, AppendLists& lists) {
                }});
     chain.add({PassId::BvhRefit, {}, [this] { refit(); }});
     // A query that used up its rounds: twice the rounds, and the chain reruns the traversal.
-    chain.add({PassId::BvhTraverse, {GLC_LIST_CANDIDATES}, [this, &lists] { traverse(lists); },
+    chain.add({PassId::BvhTraverse,
+               {GLC_LIST_CANDIDATES},
+               [this, &lists] { traverse(lists); },
                [this, &lists] {
                    if (lists.bvhUnfinished() == 0) return false;
                    m_rounds *= 2;

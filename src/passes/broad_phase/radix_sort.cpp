@@ -24,14 +24,24 @@ std::size_t wordBytes(std::uint32_t words) {
 } // namespace
 
 RadixSort::RadixSort(std::uint32_t capacity)
-    : m_capacity(capacity),
-      m_keys{gl::Buffer("sortKeys", wordBytes(capacity)), gl::Buffer("sortKeysSwap", wordBytes(capacity))},
-      m_values{gl::Buffer("sortValues", wordBytes(capacity)), gl::Buffer("sortValuesSwap", wordBytes(capacity))},
+    : m_capacity(capacity), m_keys{gl::Buffer("sortKeys", wordBytes(capacity)),
+                                   gl::Buffer("sortKeysSwap", wordBytes(capacity))},
+      m_values{gl::Buffer("sortValues", wordBytes(capacity)),
+               gl::Buffer("sortValuesSwap", wordBytes(capacity))},
       m_blockCounts("sortBlockCounts", wordBytes(kDigits * blocksFor(capacity))), m_count("radix_count"),
       m_scan("radix_scan"), m_scatter("radix_scatter") {
     // radix_scan.comp: one invocation scans at most 65535 entries (llvmpipe's loop limit).
     if (std::uint64_t{kDigits} * blocksFor(capacity) > std::uint64_t{65535} * GLC_SCAN_GROUP)
         throw Error("radix sort: " + std::to_string(capacity) + " keys are more than it supports (2^28)");
+}
+
+void RadixSort::load(const std::vector<std::uint32_t>& keys, const std::vector<std::uint32_t>& values) {
+    if (keys.size() != values.size() || keys.size() > m_capacity)
+        throw Error("radix sort: " + std::to_string(keys.size()) + " keys and " +
+                    std::to_string(values.size()) + " values for a capacity of " +
+                    std::to_string(m_capacity));
+    m_keys[0].upload(0, wordBytes(static_cast<std::uint32_t>(keys.size())), keys.data());
+    m_values[0].upload(0, wordBytes(static_cast<std::uint32_t>(values.size())), values.data());
 }
 
 void RadixSort::bindForWriting() const {

@@ -23,6 +23,8 @@ class RadixSort {
     /// see bindForWriting) before sort().
     [[nodiscard]] const gl::Buffer& keys() const { return m_keys[0]; }
     [[nodiscard]] const gl::Buffer& values() const { return m_values[0]; }
+    /// Uploads pairs from the host (tests); throws when they exceed the capacity.
+    void load(const std::vector<std::uint32_t>& keys, const std::vector<std::uint32_t>& values);
     /// Binds keys()/values() as the output of the kernel that fills them.
     void bindForWriting() const;
     /// Binds keys()/values() as input (GLC_BIND_SORT_KEYS_IN / GLC_BIND_SORT_VALUES_IN), where
