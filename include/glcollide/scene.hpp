@@ -80,7 +80,7 @@ struct BvhSettings {
     int rebuildFrames = 1; ///< >= 1: frames between rebuilds with EveryNFrames
     /// Nodes one traversal invocation visits per dispatch before it saves its place and a further
     /// dispatch resumes it. Below 65,535 because llvmpipe ends a shader loop silently after that
-    /// many iterations; small values are for tests.
+    /// many iterations (at most 65534); small values are for tests.
     std::uint32_t visitsPerRound = 16384;
 };
 

@@ -184,6 +184,7 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
         config.betweenObjects = d.plan.betweenObjects;
         config.selfCollisions = d.plan.selfCollisions;
         config.settings = d.plan.collision;
+        config.substepsPerFrame = static_cast<std::uint32_t>(d.substeps.substeps);
         d.collision.emplace(config, d.model);
         d.contact.emplace();
         // Robust precision promises the oracle's answers; check that this device delivers them

@@ -60,6 +60,7 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const mode
     context.pairRules = pairRules(config);
     context.halfThickness = model::halfThicknessFloat(s.thickness);
     context.boxPairCapacity = config.boxPairCapacity;
+    context.substepsPerFrame = config.substepsPerFrame;
     m_broadPhase = createBroadPhase(context);
     m_broadPhase->addStages(m_chain, *m_lists);
     m_narrowPhase.addStages(m_chain, *m_lists);
@@ -79,6 +80,7 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
     bindRequired(buffers.faces, GLC_BIND_FACES, "CollisionDetection", "faces");
     m_tables.bind();
     m_broadPhase->bind();
+    m_broadPhase->prepare();
     // Also clears the contact response's counter: a new substep counts its contacts from zero.
     const std::uint32_t reruns = m_chain.run(*m_lists, timer);
     const AppendLists& l = *m_lists;
@@ -92,6 +94,10 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
     m_counts.boxPairGrowths = l.growths(GLC_LIST_BOX_PAIRS);
     m_counts.candidateGrowths = l.growths(GLC_LIST_CANDIDATES);
     m_counts.intersectionGrowths = l.growths(GLC_LIST_INTERSECTIONS);
+    const BroadPhaseStats broad = m_broadPhase->stats();
+    m_counts.bvhRebuilt = broad.rebuilt;
+    m_counts.bvhRounds = broad.rounds;
+    m_counts.bvhNodeVisits = l.bvhNodeVisits();
     return m_counts;
 }
 

@@ -37,6 +37,8 @@ struct CollisionConfig {
     /// Bytes one list may grow to; 0 = the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE. A list
     /// that must grow beyond it makes detect() throw instead of dropping pairs. Tests lower it.
     std::uint64_t listByteLimit = 0;
+    /// Substeps per frame, for the BVH's rebuild cadence in frames.
+    std::uint32_t substepsPerFrame = 1;
 };
 
 /// Exact sizes found by the last detect() (after any reruns).
@@ -49,6 +51,12 @@ struct CollisionCounts {
     std::uint32_t reruns = 0;         ///< chain reruns after a list overflowed and was grown
     /// Growths per list in this call.
     std::uint32_t boxPairGrowths = 0, candidateGrowths = 0, intersectionGrowths = 0;
+    /// BVH broad phase: the tree was rebuilt in this call (else only refit), the traversal's
+    /// dispatches per run, and the nodes whose boxes it tested (the tree-quality figure: a refit
+    /// tree that loosens costs more visits for the same candidates; modulo 2^32).
+    bool bvhRebuilt = false;
+    std::uint32_t bvhRounds = 0;
+    std::uint32_t bvhNodeVisits = 0;
 };
 
 /// The per-face and per-object tables of the collision kernels and the contact response.

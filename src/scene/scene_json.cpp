@@ -453,8 +453,8 @@ BvhSettings parseBvh(const Ctx& c, const json& j, const Ptr& p) {
         }
     }
     if (const json* v = find(j, "visits_per_round")) {
-        if (!v->is_number_integer() || v->get<long long>() < 1 || v->get<long long>() > 65535)
-            c.fail(p / "visits_per_round", "expected an integer in 1 ... 65535, got " + shown(*v));
+        if (!v->is_number_integer() || v->get<long long>() < 1 || v->get<long long>() > 65534)
+            c.fail(p / "visits_per_round", "expected an integer in 1 ... 65534, got " + shown(*v));
         s.visitsPerRound = static_cast<std::uint32_t>(v->get<long long>());
     }
     return s;

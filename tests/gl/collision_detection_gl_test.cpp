@@ -106,7 +106,8 @@ std::string modeName(const Mode& m) {
 }
 
 const Mode kModes[] = {{BroadPhase::Octree, 1}, {BroadPhase::Octree, 2}, {BroadPhase::Octree, 3},
-                       {BroadPhase::Masked, 1}, {BroadPhase::Masked, 2}, {BroadPhase::AllPairs, 2}};
+                       {BroadPhase::Masked, 1}, {BroadPhase::Masked, 2}, {BroadPhase::AllPairs, 2},
+                       {BroadPhase::Bvh, 2}};
 const std::uint32_t kFaceCounts[] = {1, GLC_WORKGROUP_SIZE - 1, GLC_WORKGROUP_SIZE + 1, 1009};
 const cpu::PairRules kRules[] = {{true, false}, {false, true}, {true, true}};
 

@@ -52,6 +52,16 @@ const std::map<std::string, GLint> kExpectedBindings = {
     // non-finite check of NodeUpdate (EngineOptions::checkFinite)
     {"ContactForcesBuf", GLC_BIND_CONTACT_FORCES},
     {"HealthBuf", GLC_BIND_HEALTH},
+    {"BvhBoxesBuf", GLC_BIND_BVH_BOXES},
+    {"BvhLinksBuf", GLC_BIND_BVH_LINKS},
+    {"BvhVisitsBuf", GLC_BIND_BVH_VISITS},
+    {"BvhResumeBuf", GLC_BIND_BVH_RESUME},
+    {"BvhBoundsBuf", GLC_BIND_BVH_BOUNDS},
+    {"SortKeysInBuf", GLC_BIND_SORT_KEYS_IN},
+    {"SortValuesInBuf", GLC_BIND_SORT_VALUES_IN},
+    {"SortKeysOutBuf", GLC_BIND_SORT_KEYS_OUT},
+    {"SortValuesOutBuf", GLC_BIND_SORT_VALUES_OUT},
+    {"SortBlockCountsBuf", GLC_BIND_SORT_BLOCK_COUNTS},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {
@@ -211,6 +221,9 @@ TEST(LayoutGl, WorkGroupSizesMatchTheSharedConstants) {
         {"paper_all_pairs_tri_tri", {GLC_FACE_PAIR_TILE, GLC_FACE_PAIR_TILE, 1}},
         {"paper_masked_tri_tri", {GLC_FACE_PAIR_TILE, GLC_FACE_PAIR_TILE, 1}},
         {"list_dispatch_args", {1, 1, 1}},
+        {"radix_count", {GLC_SORT_BLOCK, 1, 1}},
+        {"radix_scatter", {GLC_SORT_BLOCK, 1, 1}},
+        {"radix_scan", {GLC_SCAN_GROUP, 1, 1}},
     };
     std::size_t checked = 0;
     for (const gl::ComputeProgram& program : allPrograms()) {

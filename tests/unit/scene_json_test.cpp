@@ -326,8 +326,8 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"bvh": {"rebuild": 0}})", collide)),
                 HasSubstr("/collision/bvh/rebuild: expected \"substep\", \"frame\", \"never\" or a number of "
                           "frames 1 ... 1000000, got 0"));
-    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"bvh": {"visits_per_round": 65536}})", collide)),
-                HasSubstr("/collision/bvh/visits_per_round: expected an integer in 1 ... 65535, got 65536"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"bvh": {"visits_per_round": 65535}})", collide)),
+                HasSubstr("/collision/bvh/visits_per_round: expected an integer in 1 ... 65534, got 65535"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"bvh": {"depth": 3}})", collide)),
                 HasSubstr("/collision/bvh"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"octree_depth": 4})", collide)),

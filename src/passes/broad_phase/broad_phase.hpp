@@ -43,6 +43,14 @@ struct BroadPhaseContext {
     /// overflow one list at a time).
     std::uint32_t boxPairCapacity = 0;
     bool sweptBoxes = false; ///< CCD: bound each face over the substep's start and end positions
+    /// Substeps per frame, for cadences counted in frames (the BVH's rebuild).
+    std::uint32_t substepsPerFrame = 1;
+};
+
+/// What a broad phase did in the last detect(), beyond the list counts.
+struct BroadPhaseStats {
+    bool rebuilt = false;     ///< BVH: the tree was rebuilt (not only refit)
+    std::uint32_t rounds = 0; ///< BVH: traversal dispatches per run
 };
 
 class BroadPhase {
@@ -51,6 +59,9 @@ class BroadPhase {
 
     /// The passes its stages are timed under, in dispatch order.
     [[nodiscard]] virtual std::vector<PassId> passes() const = 0;
+    /// Called once per detect(), before the chain runs: per-substep decisions (the BVH's rebuild
+    /// cadence). Reruns of the chain within one detect() do not call it again.
+    virtual void prepare() {}
     /// Declares its own lists in `lists` and adds its stages to `chain`; they append the candidate
     /// face pairs (the contract above). Called once, after the candidate list is declared.
     virtual void addStages(StageChain& chain, AppendLists& lists) = 0;
@@ -58,6 +69,7 @@ class BroadPhase {
     virtual void bind() const = 0;
     /// Its own buffers, for Engine::allocatedBuffers().
     [[nodiscard]] virtual std::vector<const gl::Buffer*> buffers() const = 0;
+    [[nodiscard]] virtual BroadPhaseStats stats() const { return {}; }
 };
 
 } // namespace glcollide::passes

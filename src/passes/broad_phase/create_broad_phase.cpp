@@ -1,6 +1,7 @@
 #include "passes/broad_phase/create_broad_phase.hpp"
 
 #include "passes/broad_phase/all_pairs_broad_phase.hpp"
+#include "passes/broad_phase/bvh_broad_phase.hpp"
 #include "passes/broad_phase/masked_broad_phase.hpp"
 #include "passes/broad_phase/octree_broad_phase.hpp"
 
@@ -22,7 +23,7 @@ std::vector<PassId> broadPhasePasses(glcollide::BroadPhase kind) {
     case glcollide::BroadPhase::AllPairs:
         return passesOf<AllPairsBroadPhase>();
     case glcollide::BroadPhase::Bvh:
-        throw Error("collision: the bvh broad phase is being written (work in progress)");
+        return passesOf<BvhBroadPhase>();
     }
     throw Error("unknown broad phase");
 }
@@ -37,7 +38,7 @@ std::unique_ptr<BroadPhase> createBroadPhase(const BroadPhaseContext& context) {
     case glcollide::BroadPhase::AllPairs:
         return std::make_unique<AllPairsBroadPhase>(context);
     case glcollide::BroadPhase::Bvh:
-        throw Error("collision: the bvh broad phase is being written (work in progress)");
+        return std::make_unique<BvhBroadPhase>(context);
     }
     throw Error("unknown broad phase");
 }

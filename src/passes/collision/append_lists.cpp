@@ -56,6 +56,8 @@ void AppendLists::writeCounters() {
     // is written at once: one upload per reset, not one per field.
     gpu::GpuCollisionCounters c{};
     for (std::size_t i = 0; i < m_lists.size(); ++i) c.lists[i] = {m_lists[i].count, m_lists[i].capacity};
+    c.bvhUnfinished = m_stats.bvhUnfinished;
+    c.bvhNodeVisits = m_stats.bvhNodeVisits;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after earlier shader writes to the counters
     m_counters.upload(0, sizeof c, &c);
 }
@@ -74,6 +76,17 @@ void AppendLists::readCounters() {
     m_counters.download(0, sizeof c, &c);
     for (std::size_t i = 0; i < m_lists.size(); ++i) m_lists[i].count = c.lists[i].count;
     m_exactFallbacks = c.exactFallbackCount;
+    m_stats = c;
+}
+
+void AppendLists::resetTraversalStatistics() {
+    m_stats.bvhUnfinished = 0;
+    m_stats.bvhNodeVisits = 0;
+    constexpr std::uint32_t kZeros[2] = {0, 0};
+    static_assert(offsetof(gpu::GpuCollisionCounters, bvhNodeVisits) ==
+                  offsetof(gpu::GpuCollisionCounters, bvhUnfinished) + sizeof(std::uint32_t));
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after earlier shader writes to the counters
+    m_counters.upload(offsetof(gpu::GpuCollisionCounters, bvhUnfinished), sizeof kZeros, kZeros);
 }
 
 void AppendLists::grow(std::uint32_t list) {

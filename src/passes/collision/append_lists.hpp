@@ -47,6 +47,9 @@ class AppendLists {
     /// Times grow() ran on the list since the last resetGrowths().
     [[nodiscard]] std::uint32_t growths(std::uint32_t list) const { return m_lists.at(list).growths; }
     [[nodiscard]] std::uint32_t exactFallbacks() const { return m_exactFallbacks; }
+    /// BVH traversal statistics at the last readCounters() (GpuCollisionCounters).
+    [[nodiscard]] std::uint32_t bvhUnfinished() const { return m_stats.bvhUnfinished; }
+    [[nodiscard]] std::uint32_t bvhNodeVisits() const { return m_stats.bvhNodeVisits; }
     [[nodiscard]] const gl::Buffer& counters() const { return m_counters; }
 
     /// Binds the counters, the indirect arguments and every declared list to their bindings.
@@ -56,6 +59,9 @@ class AppendLists {
     /// chain), keeping the other counts, in one upload of the counter block.
     void resetCounts(const std::vector<std::uint32_t>& lists);
     void resetGrowths();
+    /// Zeroes the BVH traversal's statistics on the GPU (the traversal stage, each time it runs:
+    /// resetCounts keeps them, so a rerun of later stages alone does not lose them).
+    void resetTraversalStatistics();
     /// One download of every counter.
     void readCounters();
     /// Reallocates an overflowed list with room for its exact count (the next power of two when
@@ -84,6 +90,7 @@ class AppendLists {
     gl::Buffer m_counters, m_dispatchArgs;
     gl::ComputeProgram m_argsProgram;
     std::uint32_t m_exactFallbacks = 0;
+    gpu::GpuCollisionCounters m_stats{}; ///< the statistics fields at the last readCounters()
 };
 
 } // namespace glcollide::passes

@@ -34,16 +34,20 @@ std::uint32_t StageChain::run(AppendLists& lists, gl::GpuTimer* timer) const {
     // The one sync point of the chain (plus one per rerun).
     std::uint32_t reruns = 0;
     for (lists.readCounters();; lists.readCounters()) {
-        std::size_t overflowing = m_stages.size();
-        for (std::size_t s = 0; s < m_stages.size() && overflowing == m_stages.size(); ++s)
-            for (std::uint32_t list : m_stages[s].outputs)
-                if (lists.overflowed(list)) overflowing = s;
-        if (overflowing == m_stages.size()) return reruns;
-        for (std::uint32_t list : m_stages[overflowing].outputs)
+        std::size_t first = m_stages.size();
+        for (std::size_t s = 0; s < m_stages.size() && first == m_stages.size(); ++s) {
+            const Stage& stage = m_stages[s];
+            const bool overflowed = std::any_of(stage.outputs.begin(), stage.outputs.end(),
+                                                [&](std::uint32_t list) { return lists.overflowed(list); });
+            // retry() arranges more work when it answers true: ask it only when it decides.
+            if (overflowed || (stage.retry && stage.retry())) first = s;
+        }
+        if (first == m_stages.size()) return reruns;
+        for (std::uint32_t list : m_stages[first].outputs)
             if (lists.overflowed(list)) lists.grow(list);
-        lists.resetCounts(outputsFrom(overflowing));
+        lists.resetCounts(outputsFrom(first));
         lists.bind();
-        runFrom(overflowing, timer);
+        runFrom(first, timer);
         ++reruns;
     }
 }

@@ -3,7 +3,8 @@
 // lists (AppendLists) that later stages consume, sized on the GPU by indirect dispatch. After the
 // chain the counters are read once; when a list overflowed, the earliest stage that wrote an
 // overflowing list has its overflowed lists grown and the chain reruns from that stage (what it
-// and later stages wrote depended on the lost entries). Written once for every broad phase, the
+// and later stages wrote depended on the lost entries). A stage may also ask to rerun when it ran
+// out of its work budget (Stage::retry). Written once for every broad phase, the
 // narrow phase and the lists a BVH or CCD will add.
 
 #include "gl/gpu_timer.hpp"
@@ -12,14 +13,23 @@
 
 #include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace glcollide::passes {
 
 struct Stage {
+    Stage(PassId pass_, std::vector<std::uint32_t> outputs_, std::function<void()> run_,
+          std::function<bool()> retry_ = {})
+        : pass(pass_), outputs(std::move(outputs_)), run(std::move(run_)), retry(std::move(retry_)) {}
+
     PassId pass;                        ///< timer section and debug-group name (a pass may span stages)
     std::vector<std::uint32_t> outputs; ///< GLC_LIST_* it appends to
     std::function<void()> run;          ///< its dispatches; ends with the barriers its readers need
+    /// Asked after the chain's read-back, when no earlier stage must rerun: true when the stage
+    /// ran out of its work budget (the BVH traversal's rounds) and has arranged to do more; the
+    /// chain then reruns from it, as from an overflow. Empty: never.
+    std::function<bool()> retry;
 };
 
 class StageChain {
