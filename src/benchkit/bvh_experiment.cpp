@@ -204,6 +204,11 @@ Detection measureDetection(const Experiment& x, const Scene& scene, const SceneI
         r.set("candidate_pairs", counts.candidates);
         r.set("intersecting_pairs", counts.intersections);
         if (counts.boxPairs) r.set("box_pairs", counts.boxPairs);
+        if (isBvh(scene)) { // of the last timed detection
+            r.set("bvh_rebuilt_last", counts.bvhRebuilt ? 1 : 0);
+            r.set("bvh_traversal_rounds", counts.bvhRounds);
+            r.set("bvh_node_visits", counts.bvhNodeVisits);
+        }
         r.set("list_reruns_last", counts.reruns);
         r.set("broad_phase_bytes", static_cast<double>(detection.broadPhaseBytes()));
         r.set("broad_phase_bytes_per_face", static_cast<double>(detection.broadPhaseBytes()) / r.faces);

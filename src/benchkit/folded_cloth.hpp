@@ -24,7 +24,7 @@ namespace glcollide::benchkit {
 struct FoldedClothSpec {
     std::uint32_t faces = 2244;     ///< exact triangle count, >= 2
     double thickness = 0.01;        ///< m: the contact thickness the fold is made for
-    int layers = 4;                 ///< panels stacked by the fold (fewer when the sheet is too short)
+    int layers = 3;                 ///< panels stacked by the fold (fewer when the sheet is too short)
     double spacingFactor = 0.8;     ///< layer spacing / thickness: the layers are within contact distance
     double cellFactor = 2.0;        ///< grid cell / thickness
     double amplitudeFactor = 0.5;   ///< crumpling amplitude / cell

@@ -184,7 +184,7 @@ BvhSpec parseBvhSpec(const json& e, const Where& at, const std::vector<ConfigEnt
     b.octreeMaxFaces = static_cast<std::uint32_t>(intAt(e, at, "octree_max_faces", 0, 0, 1 << 26));
     b.slowRunSeconds = intAt(e, at, "slow_run_seconds", 0, 0, 86400);
     b.cpuCheckMaxFaces = static_cast<std::uint32_t>(intAt(e, at, "cpu_check_max_faces", 40000, 0, 1 << 26));
-    b.foldLayers = intAt(e, at, "fold_layers", 4, 1, 64);
+    b.foldLayers = intAt(e, at, "fold_layers", 3, 1, 64);
     if (e.contains("cloth_patch")) {
         if (!e.at("cloth_patch").is_object())
             (at / "cloth_patch").fail("expected an object (a JSON merge patch)");

@@ -56,8 +56,9 @@ struct BvhSpec {
     int slowRunSeconds =
         0; ///< a non-BVH config slower than this per detection: 1 sample, no larger sizes; 0: off
     std::uint32_t cpuCheckMaxFaces =
-        40000;          ///< candidates also checked against the CPU brute force up to here
-    int foldLayers = 4; ///< layers of the folded cloth
+        40000; ///< candidates also checked against the CPU brute force up to here
+    int foldLayers =
+        3; ///< layers of the folded cloth (3: ~15 candidates per face, 1M faces fit one 128 MiB list)
     std::string clothPatch =
         "{}"; ///< merge patch on the generated cloths' base scene (effects, thickness, dt)
     std::vector<std::string> engineConfigs; ///< configs also timed as Engine steps; empty: the bvh ones

@@ -51,10 +51,7 @@ for size in ["1,000", "2,244", "4,000"]:
         name = "bvh/folded cloth %s faces/%s/gpu_total" % (size, config)
         assert name in names, "missing " + name
 for b in bvh:
-    if b.get("error_occurred"):
-        # Until the BVH broad phase lands, its runs fail with the factory's message.
-        assert b["config"].startswith("bvh") and "work in progress" in b["error_message"], b["name"]
-        continue
+    assert not b.get("error_occurred"), b["name"] + ": " + b.get("error_message", "")
     if b.get("engine_step") == 1:
         assert b["gpu_ms_per_substep"] > 0, b["name"]
         continue
@@ -70,6 +67,8 @@ for b in bvh:
 summary = [s for s in doc["experiment_summaries"] if s["experiment"] == "bvh"][0]
 assert summary["metrics"]["candidates_equal_in_every_configuration"] == 1
 assert summary["metrics"]["bytes_per_face_target"] == 192
+assert summary["metrics"]["max_bytes_per_face/bvh"] <= 192
+assert summary["metrics"]["slope_detection/bvh"] is not None
 titles = [t["title"] for t in summary["tables"]]
 for want in ["Seed Tables 1-3 layout", "Cost exponent", "two tet spheres touching", "Memory", "Feature pairs"]:
     assert any(want in t for t in titles), "no table " + want
