@@ -483,18 +483,25 @@ std::string headlineTable(const RunContext& c, const std::vector<ExperimentResul
     }
     for (const ExperimentResult& r : results) {
         if (r.experiment.kind != ExperimentKind::Bvh) continue;
-        for (const Metric& m : r.summary)
-            if (m.key.rfind("slope_detection/", 0) == 0)
-                s << "| " << r.experiment.title << " | " << m.key.substr(16)
-                  << " | detection per substep grows as faces^" << num(m.value) << " | folded cloth |\n";
+        for (const Metric& m : r.summary) {
+            if (m.key.rfind("slope_detection/", 0) != 0) continue;
+            const std::string config = m.key.substr(16);
+            double largest = 0, ms = 0; // the largest scaling cloth this configuration ran on
+            for (const RunResult& run : r.runs)
+                if (run.config == config && run.failure.empty() && run.metric("in_scaling") == 1 &&
+                    run.faces > largest)
+                    largest = run.faces, ms = run.time;
+            s << "| " << r.experiment.title << " | " << config << " | detection per substep grows as faces^"
+              << num(m.value) << " | " << num(ms) << " ms per detection at " << num(largest)
+              << " faces (folded cloth) |\n";
+        }
     }
-    s << "\nTimes and errors in each experiment's units: ";
     std::string units;
     for (const ExperimentResult& r : results)
         if (accuracy(r) && r.experiment.kind != ExperimentKind::Bvh)
             units +=
                 (units.empty() ? "" : "; ") + r.experiment.name + ": " + r.timeLabel + ", " + r.errorLabel;
-    s << units << ".\n";
+    if (!units.empty()) s << "\nTimes and errors in each experiment's units: " << units << ".\n";
     return s.str();
 }
 
