@@ -41,7 +41,11 @@ nlohmann::json frameRecord(const Engine& engine) {
                                {"contacts", c.contacts},
                                {"undecided_pairs", c.undecidedPairs},
                                {"exact_fallbacks", c.exactFallbacks},
-                               {"list_growths", c.listGrowths}};
+                               {"list_growths", c.listGrowths},
+                               {"vertex_face_pairs", c.vertexFacePairs},
+                               {"edge_edge_pairs", c.edgeEdgePairs},
+                               {"vertex_face_pairs_without_ownership", c.vertexFacePairsWithoutOwnership},
+                               {"edge_edge_pairs_without_ownership", c.edgeEdgePairsWithoutOwnership}};
     }
     return record;
 }

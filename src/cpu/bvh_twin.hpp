@@ -31,12 +31,14 @@ std::vector<glm::uvec4> twinHierarchy(const std::vector<std::uint32_t>& sortedKe
 
 /// Every node's box: leaves the inflated face boxes (cpu::faceBox), internal nodes the union of
 /// their children.
-std::vector<FloatBox> twinRefit(const std::vector<glm::uvec4>& links, const std::vector<std::uint32_t>& faceIndices,
+std::vector<FloatBox> twinRefit(const std::vector<glm::uvec4>& links,
+                                const std::vector<std::uint32_t>& faceIndices,
                                 const std::vector<glm::vec3>& positions, float halfThickness);
 
 /// The traversal of bvh_traverse.comp: valid pairs whose leaf boxes overlap, (lower, higher)
 /// face, each once; `nodeVisits` (if not null) receives the nodes tested. Unsorted.
-std::vector<FacePair> twinBvhCandidates(const std::vector<glm::uvec4>& links, const std::vector<FloatBox>& boxes,
+std::vector<FacePair> twinBvhCandidates(const std::vector<glm::uvec4>& links,
+                                        const std::vector<FloatBox>& boxes,
                                         const std::vector<std::uint32_t>& faceIndices,
                                         const std::vector<std::uint32_t>& faceObject, const PairRules& rules,
                                         std::uint64_t* nodeVisits = nullptr);

@@ -9,7 +9,7 @@
 namespace glcollide::cpu {
 namespace {
 
-// contact_response.comp's ownsClosestFeature: the interior always counts, the edge opposite vertex
+// contact_vertex_face.comp's ownsClosestFeature: the interior always counts, the edge opposite vertex
 // k (w[k] = 0) with its ownership bit, vertex k (w[k] = 1) with its bit and only from the lower
 // node of the vertex-vertex pair.
 bool ownsClosestFeature(std::uint32_t p, const std::array<std::uint32_t, 3>& face, const glm::dvec3& w,
@@ -153,33 +153,50 @@ std::array<double, 2> closestSegmentParams(const glm::dvec3& p0, const glm::dvec
     return {s, t};
 }
 
+FeaturePairList featurePairs(const std::vector<std::uint32_t>& faceIndices,
+                             const std::vector<std::uint32_t>& faceOwned,
+                             const std::vector<IndexPair>& candidates) {
+    FeaturePairList out;
+    for (const auto& [a, b] : candidates) {
+        const std::uint32_t oa = faceOwned[a], ob = faceOwned[b];
+        for (std::uint32_t k = 0; k < 3; ++k) {
+            if (oa & (GLC_OWN_VERTEX0 << k)) out.vertexFace.push_back({faceIndices[3 * a + k], b});
+            if (ob & (GLC_OWN_VERTEX0 << k)) out.vertexFace.push_back({faceIndices[3 * b + k], a});
+        }
+        for (std::uint32_t e = 0; e < 3; ++e) {
+            if (!(oa & (GLC_OWN_EDGE01 << e))) continue;
+            for (std::uint32_t g = 0; g < 3; ++g)
+                if (ob & (GLC_OWN_EDGE01 << g)) out.edgeEdge.push_back({3 * a + e, 3 * b + g});
+        }
+    }
+    std::sort(out.vertexFace.begin(), out.vertexFace.end());
+    std::sort(out.edgeEdge.begin(), out.edgeEdge.end());
+    return out;
+}
+
 ContactResult contactForces(const ContactParams& params, const ContactInput& in,
-                            const std::vector<std::array<std::uint32_t, 2>>& candidates) {
+                            const FeaturePairList& pairs) {
     ContactResult out;
     out.forces.assign(in.positions->size(), glm::dvec3(0.0));
     out.contributions.assign(in.positions->size(), 0u);
     Solver solver{params, in, out};
+    const std::vector<std::uint32_t>& idx = *in.faceIndices;
     const auto face = [&](std::uint32_t f) {
-        const std::vector<std::uint32_t>& idx = *in.faceIndices;
         return std::array<std::uint32_t, 3>{idx[3 * f], idx[3 * f + 1], idx[3 * f + 2]};
     };
-    for (const auto& [a, b] : candidates) {
-        const auto fa = face(a), fb = face(b);
-        const std::uint32_t oa = (*in.faceOwned)[a], ob = (*in.faceOwned)[b];
-        const bool closedA = (*in.faceClosed)[a] != 0, closedB = (*in.faceClosed)[b] != 0;
-        for (std::uint32_t k = 0; k < 3; ++k) {
-            if (oa & (GLC_OWN_VERTEX0 << k)) solver.vertexFace(fa[k], fb, ob, closedB);
-            if (ob & (GLC_OWN_VERTEX0 << k)) solver.vertexFace(fb[k], fa, oa, closedA);
-        }
-        for (std::uint32_t e = 0; e < 3; ++e) {
-            if (!(oa & (GLC_OWN_EDGE01 << e))) continue;
-            for (std::uint32_t g = 0; g < 3; ++g) {
-                if (!(ob & (GLC_OWN_EDGE01 << g))) continue;
-                solver.edgeEdge(fa[e], fa[(e + 1) % 3], fb[g], fb[(g + 1) % 3]);
-            }
-        }
+    for (const auto& [node, f] : pairs.vertexFace)
+        solver.vertexFace(node, face(f), (*in.faceOwned)[f], (*in.faceClosed)[f] != 0);
+    for (const auto& [edgeA, edgeB] : pairs.edgeEdge) {
+        const auto a = model::faceEdge(idx, edgeA / 3, static_cast<int>(edgeA % 3));
+        const auto b = model::faceEdge(idx, edgeB / 3, static_cast<int>(edgeB % 3));
+        solver.edgeEdge(a[0], a[1], b[0], b[1]);
     }
     return out;
+}
+
+ContactResult contactForces(const ContactParams& params, const ContactInput& in,
+                            const std::vector<IndexPair>& candidates) {
+    return contactForces(params, in, featurePairs(*in.faceIndices, *in.faceOwned, candidates));
 }
 
 } // namespace glcollide::cpu

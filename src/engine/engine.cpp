@@ -237,10 +237,13 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
         c.undecidedPairs = counts.undecided;
         c.exactFallbacks = counts.exactFallbacks;
         c.listGrowths += counts.reruns;
+        c.vertexFacePairs = counts.vertexFacePairs;
+        c.edgeEdgePairs = counts.edgeEdgePairs;
+        c.vertexFacePairsWithoutOwnership = counts.vertexFacePairsWithoutOwnership;
+        c.edgeEdgePairsWithoutOwnership = counts.edgeEdgePairsWithoutOwnership;
         // detect() cleared the response's contact counter; it is read after the last substep.
         run(*contact,
-            passes::ContactInputs{&collision->candidates(), &collision->faceInfo(), &collision->objects(),
-                                  &collision->counters(), counts.candidates},
+            passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects()},
             plan.contact);
         if (lastOfFrame) {
             glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -346,6 +349,10 @@ CollisionStats Engine::detectCollisions() {
     c.undecidedPairs = counts.undecided;
     c.exactFallbacks = counts.exactFallbacks;
     c.listGrowths = counts.reruns;
+    c.vertexFacePairs = counts.vertexFacePairs;
+    c.edgeEdgePairs = counts.edgeEdgePairs;
+    c.vertexFacePairsWithoutOwnership = counts.vertexFacePairsWithoutOwnership;
+    c.edgeEdgePairsWithoutOwnership = counts.edgeEdgePairsWithoutOwnership;
     return c;
 }
 
