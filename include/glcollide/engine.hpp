@@ -83,6 +83,12 @@ struct CollisionStats {
     /// 9 edge-edge pairs per candidate pair.
     std::uint64_t vertexFacePairsWithoutOwnership = 0;
     std::uint64_t edgeEdgePairsWithoutOwnership = 0;
+    /// BVH broad phase: nodes whose box the traversal tested in the last substep (the tree's
+    /// quality: a refit tree that loosens tests more nodes for the same candidates), rebuilds
+    /// during the frame, and traversal dispatches per substep.
+    std::uint32_t bvhNodeVisits = 0;
+    std::uint32_t bvhRebuilds = 0;
+    std::uint32_t bvhRounds = 0;
 };
 
 /// The first non-finite state NodeUpdate produced (EngineOptions::checkFinite).

@@ -45,7 +45,10 @@ nlohmann::json frameRecord(const Engine& engine) {
                                {"vertex_face_pairs", c.vertexFacePairs},
                                {"edge_edge_pairs", c.edgeEdgePairs},
                                {"vertex_face_pairs_without_ownership", c.vertexFacePairsWithoutOwnership},
-                               {"edge_edge_pairs_without_ownership", c.edgeEdgePairsWithoutOwnership}};
+                               {"edge_edge_pairs_without_ownership", c.edgeEdgePairsWithoutOwnership},
+                               {"bvh_node_visits", c.bvhNodeVisits},
+                               {"bvh_rebuilds", c.bvhRebuilds},
+                               {"bvh_rounds", c.bvhRounds}};
     }
     return record;
 }
