@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <string_view>
 #include <optional>
 #include <string>
 #include <vector>
@@ -142,6 +143,14 @@ Scene loadScene(const std::filesystem::path& path);
 /// in error messages.
 Scene parseScene(const std::string& jsonText, const std::filesystem::path& baseDir,
                  const std::string& sourceName);
+
+/// The scene-format names of the broad phases: "octree", "masked", "all_pairs", "bvh".
+const char* broadPhaseName(BroadPhase kind);
+std::optional<BroadPhase> broadPhaseFromName(std::string_view name);
+
+/// Replaces the scene's broad phase by the one named (the CLI's --broad-phase). Throws
+/// glcollide::Error when the name is unknown or the scene has no collision effect.
+void overrideBroadPhase(Scene& scene, std::string_view name);
 
 /// The scene `glcollide run` simulates when given none: a cloth pinned at two corners.
 Scene defaultScene();

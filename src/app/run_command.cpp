@@ -134,6 +134,7 @@ int runCommand(const RunOptions& options) {
         if (*options.frames <= 0) throw Error("--frames must be positive");
         scene.time.frames = *options.frames;
     }
+    if (!options.broadPhase.empty()) overrideBroadPhase(scene, options.broadPhase);
     if (options.exportEvery <= 0) throw Error("--every must be positive");
     const MeshFormat format = parseMeshFormat(options.exportFormat);
     if (!options.exportDir.empty()) {
