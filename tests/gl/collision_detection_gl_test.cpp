@@ -414,6 +414,12 @@ TEST(CollisionDetectionGlCases, PassNamesAndAllocations) {
     EXPECT_TRUE(!has(all, "boxes") && !has(all, "boxMask") && has(all, "candidates") && has(all, "faceInfo"));
     EXPECT_TRUE(has(all, "vertexFacePairs") && has(all, "edgeEdgePairs"));
     EXPECT_GT(octree.allocatedBytes(), all.allocatedBytes());
+    passes::CollisionDetection bvh(configFor({BroadPhase::Bvh, 2}, {true, false}, TriTriPrecision::Robust),
+                                   soup.model);
+    EXPECT_EQ(bvh.passNames(),
+              (std::vector<std::string>{"BvhBuild", "BvhRefit", "BvhTraverse", "TriTri", "FeaturePairs"}));
+    EXPECT_TRUE(has(bvh, "bvhBoxes") && has(bvh, "bvhLinks") && has(bvh, "sortKeys") && !has(bvh, "boxes") &&
+                !has(bvh, "boxPairs"));
 }
 
 } // namespace
