@@ -1,10 +1,17 @@
 // The force law of the contact response (contact_vertex_face.comp, contact_edge_edge.comp;
-// docs/collisions.md): the thickness-based penalty of cloth/deformable contact codes.
-// Force per contact: clamp(k·depth − c·v_n, 0, cap) along the contact normal, opposite forces on
-// the other side spread by barycentric weights: momentum is conserved exactly up to rounding.
+// docs/collisions.md, docs/design/decisions/0019-cloth-response.md). A contact is four nodes with
+// signed weights a (side A: +, summing to 1; side B: −, summing to −1) and a unit normal u pointing
+// from B to A. Its force is f·u on side A and the opposite on side B, spread by the weights, so
+// momentum is conserved exactly up to rounding. f = min(penalty + inelastic, cap):
+// - penalty: clamp(k·depth − c·v_n, 0, cap), the thickness-based proximity force;
+// - inelastic (Bridson, Fedkiw, Anderson 2002, §7.1): when the pair approaches (v_n < 0), the
+//   impulse that cancels v_n within the substep, j = −v_n / Σ a_i² w_i (w: inverse masses),
+//   applied as the force j/dt, divided by the largest count of approaching contacts on any of
+//   the four nodes (counted by a first pass into .w of the force sums), so the Jacobi sum on a
+//   node is an average of the corrections, never more than the largest one.
 // Forces are summed per node with integer atomics in fixed point (u_forceScale units per N):
 // integer addition is associative, so the sum does not depend on thread order or on how the
-// contacts are split over dispatches. NodeUpdate adds and clears them.
+// contacts are split over dispatches. NodeUpdate adds and clears them (.w too).
 // Include after layout.glsl. Twin: src/cpu/contact_twin.cpp.
 #ifndef GLC_CONTACT_FORCE_GLSL
 #define GLC_CONTACT_FORCE_GLSL
@@ -18,6 +25,12 @@ uniform float u_stiffness;   // N/m
 uniform float u_damping;     // N·s/m
 uniform float u_forceCap;    // N per contact
 uniform float u_forceScale;  // fixed-point units per N
+uniform float u_substep;     // s: the substep length dt (0: penalty only, sides from the current positions)
+uniform uint u_countPass;    // 1: count approaching contacts per node into .w; 0: add the forces
+
+// Position at the start of the substep: symplectic Euler's last step was x += dt·v with this v
+// (up to rounding, and except for nodes the ground plane clamped), so x − dt·v is where it was.
+vec3 previousPosition(uint n) { return g_positions[n].xyz - u_substep * g_velocities[n].xyz; }
 
 void addForce(uint node, vec3 f) {
     ivec3 q = ivec3(round(f * u_forceScale));
@@ -30,6 +43,40 @@ void addForce(uint node, vec3 f) {
 // never pulling, never above the cap.
 float normalForce(float depth, float normalSpeed) {
     return clamp(u_stiffness * depth - u_damping * normalSpeed, 0.0, u_forceCap);
+}
+
+// The contact of nodes n with signed weights a along u at the given depth (see the top). In the
+// count pass it only counts; returns 1 when it added a force.
+uint respond(uvec4 n, vec4 a, vec3 u, float depth) {
+    vec3 vRel = a.x * g_velocities[n.x].xyz + a.y * g_velocities[n.y].xyz + a.z * g_velocities[n.z].xyz +
+                a.w * g_velocities[n.w].xyz;
+    float vn = dot(vRel, u);
+    float wSum = a.x * a.x * g_positions[n.x].w + a.y * a.y * g_positions[n.y].w +
+                 a.z * a.z * g_positions[n.z].w + a.w * a.w * g_positions[n.w].w;
+    bool approaching = u_substep > 0.0 && vn < 0.0 && wSum > 0.0;
+    if (u_countPass != 0u) {
+        if (approaching) {
+            atomicAdd(g_contactForces[n.x].w, 1);
+            atomicAdd(g_contactForces[n.y].w, 1);
+            atomicAdd(g_contactForces[n.z].w, 1);
+            atomicAdd(g_contactForces[n.w].w, 1);
+        }
+        return 0u;
+    }
+    float f = normalForce(depth, vn);
+    if (approaching) {
+        int count = max(max(g_contactForces[n.x].w, g_contactForces[n.y].w),
+                        max(g_contactForces[n.z].w, g_contactForces[n.w].w));
+        f += (-vn / wSum) / (u_substep * float(max(count, 1)));
+    }
+    f = min(f, u_forceCap);
+    if (!(f > 0.0)) return 0u;
+    vec3 F = f * u;
+    addForce(n.x, a.x * F);
+    addForce(n.y, a.y * F);
+    addForce(n.z, a.z * F);
+    addForce(n.w, a.w * F);
+    return 1u;
 }
 
 #endif

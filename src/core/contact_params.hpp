@@ -14,6 +14,11 @@ struct ContactParams {
     double damping = 0.0;    ///< N·s/m on the normal relative speed
     double forceCap = 0.0;   ///< N per contact: 4·k·h (twice the force at the deepest signed depth 2h)
     double forceScale = 1.0; ///< fixed-point units per N of the GPU's integer force sums
+    /// s: the substep length dt, set by the engine once it has chosen the substeps. It gives the
+    /// positions at the start of the substep (x − dt·v: the side a vertex must be kept on) and
+    /// the inelastic (velocity-level) part of the force. 0: penalty only, sides from the current
+    /// positions (decision 0019).
+    double substep = 0.0;
 };
 
 /// Contacts that may add to one node in one substep before its int32 fixed-point sum could
