@@ -2,13 +2,17 @@
 // docs/collisions.md, docs/design/decisions/0019-cloth-response.md). A contact is four nodes with
 // signed weights a (side A: +, summing to 1; side B: −, summing to −1) and a unit normal u pointing
 // from B to A. Its force is f·u on side A and the opposite on side B, spread by the weights, so
-// momentum is conserved exactly up to rounding. f = min(penalty + inelastic, cap):
-// - penalty: clamp(k·depth − c·v_n, 0, cap), the thickness-based proximity force;
-// - inelastic (Bridson, Fedkiw, Anderson 2002, §7.1): when the pair approaches (v_n < 0), the
-//   impulse that cancels v_n within the substep, j = −v_n / Σ a_i² w_i (w: inverse masses),
-//   applied as the force j/dt, divided by the largest count of approaching contacts on any of
-//   the four nodes (counted by a first pass into .w of the force sums), so the Jacobi sum on a
-//   node is an average of the corrections, never more than the largest one.
+// momentum is conserved exactly up to rounding. With the penalty response (or dt = 0) f is the
+// penalty clamp(k·depth − c·v_n, 0, cap). With the Bridson response it is Bridson, Fedkiw,
+// Anderson 2002, §7.1, as forces: a contact is acting when v_n < v_t = depth / max(10·dt, τ)
+// (the speed that restores the thickness in 10 substeps, or in the relaxation time τ); an acting
+// contact gets
+// - the inelastic impulse that cancels an approaching v_n < 0, and
+// - the penalty, but at most what raises v_n to v_t (no bounce off the stored penalty energy),
+// each a change Δv_n of the pair turned into the force Δv_n / (Σ a_i² w_i · dt) (w: inverse
+// masses) and divided by the largest count of acting contacts on any of its four nodes (counted
+// by a first pass into .w of the force sums), so the Jacobi sum on a node is at most the average
+// of its contacts' corrections, never more than the largest one. Capped at u_forceCap.
 // Forces are summed per node with integer atomics in fixed point (u_forceScale units per N):
 // integer addition is associative, so the sum does not depend on thread order or on how the
 // contacts are split over dispatches. NodeUpdate adds and clears them (.w too).
@@ -26,6 +30,8 @@ uniform float u_damping;     // N·s/m
 uniform float u_forceCap;    // N per contact
 uniform float u_forceScale;  // fixed-point units per N
 uniform float u_substep;     // s: the substep length dt (0: penalty only, sides from the current positions)
+uniform uint u_velocityResponse; // 1: Bridson's response (below); 0: the penalty alone
+uniform float u_relaxationTime;  // s: Bridson's target speed restores the thickness over at least this
 uniform uint u_countPass;    // 1: count approaching contacts per node into .w; 0: add the forces
 
 // Position at the start of the substep: symplectic Euler's last step was x += dt·v with this v
@@ -53,9 +59,14 @@ uint respond(uvec4 n, vec4 a, vec3 u, float depth) {
     float vn = dot(vRel, u);
     float wSum = a.x * a.x * g_positions[n.x].w + a.y * a.y * g_positions[n.y].w +
                  a.z * a.z * g_positions[n.z].w + a.w * a.w * g_positions[n.w].w;
-    bool approaching = u_substep > 0.0 && vn < 0.0 && wSum > 0.0;
+    // Bridson's target separating speed: the thickness restored over 10 substeps (his 0.1·d/dt),
+    // or over the relaxation time when that is longer (our substeps are short: 0.1·h/dt would let
+    // pairs leave the thickness at metres per second).
+    bool bridson = u_velocityResponse != 0u && u_substep > 0.0 && wSum > 0.0;
+    float target = bridson ? depth / max(10.0 * u_substep, u_relaxationTime) : 0.0;
+    bool acting = bridson && vn < target;
     if (u_countPass != 0u) {
-        if (approaching) {
+        if (acting) {
             atomicAdd(g_contactForces[n.x].w, 1);
             atomicAdd(g_contactForces[n.y].w, 1);
             atomicAdd(g_contactForces[n.z].w, 1);
@@ -64,10 +75,13 @@ uint respond(uvec4 n, vec4 a, vec3 u, float depth) {
         return 0u;
     }
     float f = normalForce(depth, vn);
-    if (approaching) {
+    if (bridson) {
+        if (!acting) return 0u; // separating at the target speed or faster: no push
         int count = max(max(g_contactForces[n.x].w, g_contactForces[n.y].w),
                         max(g_contactForces[n.z].w, g_contactForces[n.w].w));
-        f += (-vn / wSum) / (u_substep * float(max(count, 1)));
+        float perSpeed = 1.0 / (wSum * u_substep * float(max(count, 1))); // N per m/s of v_n changed
+        float vAfter = max(vn, 0.0);                                      // after the inelastic part
+        f = (vAfter - vn) * perSpeed + min(f, (target - vAfter) * perSpeed);
     }
     f = min(f, u_forceCap);
     if (!(f > 0.0)) return 0u;

@@ -19,6 +19,10 @@ struct ContactParams {
     /// the inelastic (velocity-level) part of the force. 0: penalty only, sides from the current
     /// positions (decision 0019).
     double substep = 0.0;
+    /// Bridson (decision 0019): approaching pairs are stopped by an inelastic impulse and the
+    /// penalty is limited to what separates them at depth / max(10·dt, relaxationTime).
+    bool velocityResponse = false;
+    double relaxationTime = 0.05; ///< s: the thickness is restored over at least this long
 };
 
 /// Contacts that may add to one node in one substep before its int32 fixed-point sum could
@@ -30,6 +34,7 @@ inline ContactParams contactParams(const CollisionSettings& s) {
     p.thickness = s.thickness;
     p.stiffness = s.stiffness;
     p.damping = s.damping;
+    p.velocityResponse = s.response == ContactResponse::Bridson;
     p.forceCap = 4.0 * s.stiffness * s.thickness;
     // Largest power of two with headroom·cap·scale ≤ 2^31 - 1: resolution cap·headroom/2^31
     // (~5e-7 of the cap), exact in float.

@@ -24,7 +24,7 @@ bool ownsClosestFeature(std::uint32_t p, const std::array<std::uint32_t, 3>& fac
     return true;
 }
 
-// The two passes of the response: Count counts the approaching contacts per node, Apply adds the
+// The two passes of the response: Count counts the active contacts per node, Apply adds the
 // forces (contact_force.glsl's u_countPass).
 enum class Pass { Count, Apply };
 
@@ -32,7 +32,7 @@ struct Solver {
     const ContactParams& p;
     const ContactInput& in;
     ContactResult& out;
-    std::vector<std::uint32_t>& approaching; // per node, from the count pass
+    std::vector<std::uint32_t>& approaching; // per node: active contacts, from the count pass
     Pass pass = Pass::Count;
 
     const glm::dvec3& x(std::uint32_t n) const { return (*in.positions)[n]; }
@@ -53,17 +53,22 @@ struct Solver {
             wSum += a[i] * a[i] * w(n[i]);
         }
         const double vn = glm::dot(vRel, u);
-        const bool approach = p.substep > 0.0 && vn < 0.0 && wSum > 0.0;
+        const bool bridson = p.velocityResponse && p.substep > 0.0 && wSum > 0.0;
+        const double target = bridson ? depth / std::max(10.0 * p.substep, p.relaxationTime) : 0.0;
+        const bool active = bridson && vn < target;
         if (pass == Pass::Count) {
-            if (approach)
+            if (active)
                 for (std::uint32_t node : n) ++approaching[node];
             return false;
         }
         double f = normalForce(depth, vn);
-        if (approach) {
+        if (bridson) {
+            if (!active) return false;
             std::uint32_t count = 1;
             for (std::uint32_t node : n) count = std::max(count, approaching[node]);
-            f += (-vn / wSum) / (p.substep * static_cast<double>(count));
+            const double perSpeed = 1.0 / (wSum * p.substep * static_cast<double>(count));
+            const double vAfter = std::max(vn, 0.0);
+            f = (vAfter - vn) * perSpeed + std::min(f, (target - vAfter) * perSpeed);
         }
         f = std::min(f, p.forceCap);
         if (!(f > 0.0)) return false;

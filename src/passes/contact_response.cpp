@@ -29,6 +29,8 @@ void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& 
         p->set("u_forceCap", static_cast<float>(params.forceCap));
         p->set("u_forceScale", static_cast<float>(params.forceScale));
         p->set("u_substep", static_cast<float>(params.substep));
+        p->set("u_velocityResponse", params.velocityResponse ? 1u : 0u);
+        p->set("u_relaxationTime", static_cast<float>(params.relaxationTime));
     }
     // Sized on the GPU from each list's count; each dispatch ends with a storage barrier. First
     // both kernels count the approaching contacts per node (every count complete before any
