@@ -10,7 +10,7 @@
 // - the inelastic impulse that cancels an approaching v_n < 0, and
 // - the penalty, but at most what raises v_n to v_t (no bounce off the stored penalty energy),
 // each a change Δv_n of the pair turned into the force Δv_n / (Σ a_i² w_i · dt) (w: inverse
-// masses) and divided by the largest count of acting contacts on any of its four nodes (counted
+// masses) and divided by the largest count of acting contacts on any of its moved nodes (counted
 // by a first pass into .w of the force sums), so the Jacobi sum on a node is at most the average
 // of its contacts' corrections, never more than the largest one. Capped at u_forceCap.
 // Forces are summed per node with integer atomics in fixed point (u_forceScale units per N):
@@ -57,8 +57,10 @@ uint respond(uvec4 n, vec4 a, vec3 u, float depth) {
     vec3 vRel = a.x * g_velocities[n.x].xyz + a.y * g_velocities[n.y].xyz + a.z * g_velocities[n.z].xyz +
                 a.w * g_velocities[n.w].xyz;
     float vn = dot(vRel, u);
-    float wSum = a.x * a.x * g_positions[n.x].w + a.y * a.y * g_positions[n.y].w +
-                 a.z * a.z * g_positions[n.z].w + a.w * a.w * g_positions[n.w].w;
+    // Each node's share a_i² w_i of the effective inverse mass; nodes with none (pinned, or weight
+    // 0) are not moved by the contact, so they neither count it nor limit it.
+    vec4 share = a * a * vec4(g_positions[n.x].w, g_positions[n.y].w, g_positions[n.z].w, g_positions[n.w].w);
+    float wSum = share.x + share.y + share.z + share.w;
     // Bridson's target separating speed: the thickness restored over 10 substeps (his 0.1·d/dt),
     // or over the relaxation time when that is longer (our substeps are short: 0.1·h/dt would let
     // pairs leave the thickness at metres per second).
@@ -67,18 +69,18 @@ uint respond(uvec4 n, vec4 a, vec3 u, float depth) {
     bool acting = bridson && vn < target;
     if (u_countPass != 0u) {
         if (acting) {
-            atomicAdd(g_contactForces[n.x].w, 1);
-            atomicAdd(g_contactForces[n.y].w, 1);
-            atomicAdd(g_contactForces[n.z].w, 1);
-            atomicAdd(g_contactForces[n.w].w, 1);
+            if (share.x > 0.0) atomicAdd(g_contactForces[n.x].w, 1);
+            if (share.y > 0.0) atomicAdd(g_contactForces[n.y].w, 1);
+            if (share.z > 0.0) atomicAdd(g_contactForces[n.z].w, 1);
+            if (share.w > 0.0) atomicAdd(g_contactForces[n.w].w, 1);
         }
         return 0u;
     }
     float f = normalForce(depth, vn);
     if (bridson) {
         if (!acting) return 0u; // separating at the target speed or faster: no push
-        int count = max(max(g_contactForces[n.x].w, g_contactForces[n.y].w),
-                        max(g_contactForces[n.z].w, g_contactForces[n.w].w));
+        int count = max(max(share.x > 0.0 ? g_contactForces[n.x].w : 0, share.y > 0.0 ? g_contactForces[n.y].w : 0),
+                        max(share.z > 0.0 ? g_contactForces[n.z].w : 0, share.w > 0.0 ? g_contactForces[n.w].w : 0));
         float perSpeed = 1.0 / (wSum * u_substep * float(max(count, 1))); // N per m/s of v_n changed
         float vAfter = max(vn, 0.0);                                      // after the inelastic part
         f = (vAfter - vn) * perSpeed + min(f, (target - vAfter) * perSpeed);

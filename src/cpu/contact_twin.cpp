@@ -47,10 +47,12 @@ struct Solver {
     bool respond(const std::array<std::uint32_t, 4>& n, const std::array<double, 4>& a, const glm::dvec3& u,
                  double depth) {
         glm::dvec3 vRel(0.0);
+        std::array<double, 4> share{};
         double wSum = 0.0;
         for (std::size_t i = 0; i < 4; ++i) {
             vRel += a[i] * v(n[i]);
-            wSum += a[i] * a[i] * w(n[i]);
+            share[i] = a[i] * a[i] * w(n[i]);
+            wSum += share[i];
         }
         const double vn = glm::dot(vRel, u);
         const bool bridson = p.velocityResponse && p.substep > 0.0 && wSum > 0.0;
@@ -58,14 +60,16 @@ struct Solver {
         const bool active = bridson && vn < target;
         if (pass == Pass::Count) {
             if (active)
-                for (std::uint32_t node : n) ++approaching[node];
+                for (std::size_t i = 0; i < 4; ++i)
+                    if (share[i] > 0.0) ++approaching[n[i]];
             return false;
         }
         double f = normalForce(depth, vn);
         if (bridson) {
             if (!active) return false;
             std::uint32_t count = 1;
-            for (std::uint32_t node : n) count = std::max(count, approaching[node]);
+            for (std::size_t i = 0; i < 4; ++i)
+                if (share[i] > 0.0) count = std::max(count, approaching[n[i]]);
             const double perSpeed = 1.0 / (wSum * p.substep * static_cast<double>(count));
             const double vAfter = std::max(vn, 0.0);
             f = (vAfter - vn) * perSpeed + std::min(f, (target - vAfter) * perSpeed);

@@ -469,7 +469,7 @@ TEST(ContactResponseGl, AVertexThatCameThroughAnOpenFaceIsPushedBack) {
     ContactParams params = testParams(0.1);
     const GpuResult still = runGpu(s, params); // dt = 0: sides from the current positions
     EXPECT_LT(still.forces[3].y, 0.0);
-    params.substep = 0.01; // 10 dt = 0.1 s > the relaxation time 0.05 s: Bridson's 0.1 depth / dt
+    params.substep = 0.01; // 10 dt = 0.1 s > the relaxation time 0.01 s: Bridson's 0.1 depth / dt
     params.velocityResponse = true;
     const GpuResult gpu = runGpu(s, params);
     const cpu::ContactResult cpu = runCpu(s, params);
@@ -511,7 +511,7 @@ TEST(ContactResponseGl, EdgesThatCrossedArePushedBackToTheirSides) {
     s.objectClosed = {0, 0};
     s.candidates = {{0, 1}};
     ContactParams params = testParams(0.1);
-    params.substep = 0.01; // 10 dt = 0.1 s > the relaxation time 0.05 s: Bridson's 0.1 depth / dt
+    params.substep = 0.01; // 10 dt = 0.1 s > the relaxation time 0.01 s: Bridson's 0.1 depth / dt
     params.velocityResponse = true;
     const GpuResult gpu = runGpu(s, params);
     const cpu::ContactResult cpu = runCpu(s, params);
