@@ -86,6 +86,12 @@ struct BvhSettings {
 };
 
 /// Precision of the triangle-triangle test (docs/collisions.md).
+/// How the contact response acts (docs/collisions.md, decision 0019).
+enum class ContactResponse : std::uint8_t {
+    Penalty, ///< penalty force k·(h − d) − c·v_n within the thickness (elastic: bodies bounce)
+    Bridson, ///< Bridson et al. 2002: inelastic stop of approaching pairs + limited penalty (cloth)
+};
+
 enum class TriTriPrecision : std::uint8_t {
     Fast,   ///< float with epsilons: may disagree with the exact answer near degenerate configurations
     Robust, ///< float filter with a certified error bound, exact fallback: always the exact answer
@@ -99,6 +105,7 @@ struct CollisionSettings {
     double thickness = 0.01;  ///< m, > 0: contact distance; boxes are inflated by half of it per side
     double stiffness = 1.0e4; ///< N/m, > 0: penalty stiffness per vertex-face or edge-edge contact
     double damping = 0.0;     ///< N·s/m, >= 0: damping of the normal relative velocity in a contact
+    ContactResponse response = ContactResponse::Penalty;
     std::uint32_t initialCapacity = 4096; ///< >= 1: first size of every pair list (grown on overflow)
     BvhSettings bvh;                      ///< used by BroadPhase::Bvh
 };

@@ -3,8 +3,8 @@
 // (indirect dispatch from its count; the pairs come from FeaturePairs, feature_pairs.comp; edge e
 // of a face runs from corner e to corner (e+1)%3): two edges closer than the thickness h are
 // pushed apart along the line of their closest points when both closest points are inside their
-// edges (an endpoint is a vertex: the vertex-face contacts have it; crossing edges, distance 0,
-// have no direction and are left to the vertex-face contacts too). Force law and fixed-point sums:
+// edges (an endpoint is a vertex: the vertex-face contacts have it); edges that crossed within
+// the substep are pushed back to their sides at its start. Force law and fixed-point sums:
 // common/contact_force.glsl. Twin: cpu::contactForces.
 #include "common/layout.glsl"
 #include "common/lists.glsl"
@@ -17,6 +17,8 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 
 layout(std430, binding = GLC_BIND_EDGE_EDGE_PAIRS) readonly buffer EdgeEdgePairsBuf { uvec2 g_edgeEdge[]; };
 
+// Edges that crossed within the substep (their closest-point offset points the other way than at
+// its start, from the previous positions x − dt·v) are pushed back, depth h + d (decision 0019).
 uint edgeEdge(uint p0, uint p1, uint q0, uint q1) {
     vec3 x0 = g_positions[p0].xyz, x1 = g_positions[p1].xyz;
     vec3 y0 = g_positions[q0].xyz, y1 = g_positions[q1].xyz;
@@ -24,18 +26,24 @@ uint edgeEdge(uint p0, uint p1, uint q0, uint q1) {
     if (!(st.x > 0.0 && st.x < 1.0 && st.y > 0.0 && st.y < 1.0)) return 0u;
     vec3 diff = mix(x0, x1, st.x) - mix(y0, y1, st.y);
     float d = length(diff);
-    if (!(d < u_thickness) || !(d > 0.0)) return 0u;
-    vec3 u = diff / d;
-    vec3 vRel = mix(g_velocities[p0].xyz, g_velocities[p1].xyz, st.x) -
-                mix(g_velocities[q0].xyz, g_velocities[q1].xyz, st.y);
-    float f = normalForce(u_thickness - d, dot(vRel, u));
-    if (f <= 0.0) return 0u;
-    vec3 F = f * u;
-    addForce(p0, (1.0 - st.x) * F);
-    addForce(p1, st.x * F);
-    addForce(q0, -(1.0 - st.y) * F);
-    addForce(q1, -st.y * F);
-    return 1u;
+    if (!(d < u_thickness)) return 0u;
+    vec3 diffPrev = mix(previousPosition(p0), previousPosition(p1), st.x) -
+                    mix(previousPosition(q0), previousPosition(q1), st.y);
+    vec3 u;
+    float depth;
+    if (d > 0.0 && dot(diffPrev, diff) >= 0.0) {
+        u = diff / d;
+        depth = u_thickness - d;
+    } else if (d > 0.0) { // crossed: back to the side of the start of the substep
+        u = -diff / d;
+        depth = u_thickness + d;
+    } else { // touching now (no direction): the direction they had
+        float dPrev = length(diffPrev);
+        if (!(dPrev > 0.0)) return 0u;
+        u = diffPrev / dPrev;
+        depth = u_thickness;
+    }
+    return respond(uvec4(p0, p1, q0, q1), vec4(1.0 - st.x, st.x, st.y - 1.0, -st.y), u, depth);
 }
 
 void main() {

@@ -1,9 +1,11 @@
 #version 430 core
 // ContactResponse, vertex-face — one invocation per entry (node p, face) of GLC_LIST_VERTEX_FACE
 // (indirect dispatch from its count; the pairs come from FeaturePairs, feature_pairs.comp): within
-// the thickness h, p is pushed away from its closest point on the face. For a face of a closed
-// object (outward normals) a vertex whose projection lies inside the face and that is at most h
-// below it is pushed out along the normal, so a shallow penetration is undone, not deepened.
+// the thickness h, p is pushed away from its closest point on the face. A vertex whose projection
+// lies inside the face and that is at most h on the wrong side of it is pushed back along the
+// normal, so a shallow penetration is undone, not deepened: the wrong side of a closed object's
+// face is below it (outward normals); of an open surface's face, the side the vertex was not on
+// at the start of the substep (decision 0019).
 // A vertex near an edge or a vertex of the other mesh is near every face around that feature:
 // the contact counts only for the face that owns the closest feature (GLC_OWN_* bits), and a
 // vertex-vertex contact only from its lower node, so a vertex meeting a vertex of valence 6 gets
@@ -39,6 +41,10 @@ bool ownsClosestFeature(uint p, uvec3 face, vec3 w, uint owned) {
 }
 
 // Vertex `p` against face (a, b, c) with ownership bits `faceOwned`. Returns 1 when a force was applied.
+// The vertex's side of the face: closed objects, the outside (outward normals); open surfaces
+// (cloth, which has no inside), the side it was on at the start of the substep, from the previous
+// positions x − dt·v (contact_force.glsl) — so a vertex that got through the sheet within the
+// substep is pushed back, not on through. With dt = 0 the side is the current one.
 uint vertexFace(uint p, uvec3 face, uint faceOwned, bool closed) {
     vec3 x = g_positions[p].xyz;
     vec3 xa = g_positions[face.x].xyz, xb = g_positions[face.y].xyz, xc = g_positions[face.z].xyz;
@@ -51,28 +57,34 @@ uint vertexFace(uint p, uvec3 face, uint faceOwned, bool closed) {
     vec3 diff = x - (w.x * xa + w.y * xb + w.z * xc);
     float d = length(diff);
     float s = dot(n, x - xa);
+    float side = 1.0;
+    if (!closed) {
+        vec3 pa = previousPosition(face.x);
+        float sPrev = dot(cross(previousPosition(face.y) - pa, previousPosition(face.z) - pa),
+                          previousPosition(p) - pa);
+        side = sPrev > 0.0 ? 1.0 : (sPrev < 0.0 ? -1.0 : sign(s));
+    }
+    // Signed distance on the vertex's side (< 0: on the wrong side); 0 when it was and is in the
+    // face's plane (no side to keep: only the distance rule below acts).
+    float sideDistance = side * s;
     bool inside = w.x > 0.0 && w.y > 0.0 && w.z > 0.0;
     vec3 u;
     float depth;
-    if (closed && inside && s < u_thickness && s > -u_thickness) {
-        u = n;
-        depth = u_thickness - s;
+    if (side != 0.0 && inside && sideDistance < u_thickness && sideDistance > -u_thickness) {
+        u = side * n;
+        depth = u_thickness - sideDistance;
     } else if (d < u_thickness && d > 0.0) {
-        u = diff / d;
-        depth = u_thickness - d;
+        if (closed || sideDistance >= 0.0) {
+            u = diff / d;
+            depth = u_thickness - d;
+        } else { // near an edge or corner of an open face, but across its plane: back across
+            u = side * n;
+            depth = u_thickness - sideDistance;
+        }
     } else {
         return 0u;
     }
-    vec3 vRel = g_velocities[p].xyz -
-                (w.x * g_velocities[face.x].xyz + w.y * g_velocities[face.y].xyz + w.z * g_velocities[face.z].xyz);
-    float f = normalForce(depth, dot(vRel, u));
-    if (f <= 0.0) return 0u;
-    vec3 F = f * u;
-    addForce(p, F);
-    addForce(face.x, -w.x * F);
-    addForce(face.y, -w.y * F);
-    addForce(face.z, -w.z * F);
-    return 1u;
+    return respond(uvec4(p, face), vec4(1.0, -w), u, depth);
 }
 
 void main() {

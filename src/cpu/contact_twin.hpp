@@ -21,12 +21,15 @@ struct ContactInput {
     const std::vector<std::uint32_t>* faceIndices = nullptr; ///< 3 per face
     const std::vector<std::uint32_t>* faceOwned = nullptr;   ///< GLC_OWN_* bits per face
     const std::vector<std::uint8_t>* faceClosed = nullptr;   ///< 1 when the face's object is closed
+    /// 1/kg per node, 0 for pinned nodes (the GPU's positions .w); nullptr: 1 for every node.
+    const std::vector<double>* inverseMasses = nullptr;
 };
 
 struct ContactResult {
     std::vector<glm::dvec3> forces;           ///< N, per node
     std::uint32_t contacts = 0;               ///< vertex-face and edge-edge contacts that produced a force
     std::vector<std::uint32_t> contributions; ///< per node: contacts that added to its force
+    std::vector<std::uint32_t> approaching;   ///< per node: active contacts, v_n < v_t (the GPU's .w counts)
 };
 
 using IndexPair = std::array<std::uint32_t, 2>;
@@ -44,10 +47,10 @@ FeaturePairList featurePairs(const std::vector<std::uint32_t>& faceIndices,
                              const std::vector<std::uint32_t>& faceOwned,
                              const std::vector<IndexPair>& candidates);
 
-/// Penalty contact forces of the feature pairs (the response's two kernels).
+/// Contact forces of the feature pairs (the response's two kernels, count pass then force pass).
 ContactResult contactForces(const ContactParams& params, const ContactInput& in,
                             const FeaturePairList& pairs);
-/// Penalty contact forces of the candidate face pairs: contactForces of their featurePairs.
+/// Contact forces of the candidate face pairs: contactForces of their featurePairs.
 ContactResult contactForces(const ContactParams& params, const ContactInput& in,
                             const std::vector<IndexPair>& candidates);
 

@@ -105,6 +105,7 @@ void Engine::Impl::chooseSubsteps() {
     }
     substeps.substepLength = dt / substeps.substeps;
     plan.nodeUpdateParams.h = substeps.substepLength;
+    plan.contact.substep = substeps.substepLength;
 }
 
 void Engine::Impl::allocate() {

@@ -28,10 +28,19 @@ void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& 
         p->set("u_damping", static_cast<float>(params.damping));
         p->set("u_forceCap", static_cast<float>(params.forceCap));
         p->set("u_forceScale", static_cast<float>(params.forceScale));
+        p->set("u_substep", static_cast<float>(params.substep));
+        p->set("u_velocityResponse", params.velocityResponse ? 1u : 0u);
+        p->set("u_relaxationTime", static_cast<float>(params.relaxationTime));
     }
-    // Sized on the GPU from each list's count; each dispatch ends with a storage barrier.
-    in.lists->dispatchOver(m_vertexFace, GLC_LIST_VERTEX_FACE, GLC_WORKGROUP_SIZE);
-    in.lists->dispatchOver(m_edgeEdge, GLC_LIST_EDGE_EDGE, GLC_WORKGROUP_SIZE);
+    // Sized on the GPU from each list's count; each dispatch ends with a storage barrier. First
+    // both kernels count the approaching contacts per node (every count complete before any
+    // force reads it), then both add their forces (decision 0019).
+    for (const std::uint32_t countPass : {1u, 0u}) {
+        m_vertexFace.set("u_countPass", countPass);
+        m_edgeEdge.set("u_countPass", countPass);
+        in.lists->dispatchOver(m_vertexFace, GLC_LIST_VERTEX_FACE, GLC_WORKGROUP_SIZE);
+        in.lists->dispatchOver(m_edgeEdge, GLC_LIST_EDGE_EDGE, GLC_WORKGROUP_SIZE);
+    }
 }
 
 } // namespace glcollide::passes

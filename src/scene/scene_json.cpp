@@ -464,7 +464,7 @@ BvhSettings parseBvh(const Ctx& c, const json& j, const Ptr& p) {
 
 CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p,
-                {"broad_phase", "octree_depth", "precision", "thickness", "stiffness", "damping",
+                {"broad_phase", "octree_depth", "precision", "response", "thickness", "stiffness", "damping",
                  "initial_capacity", "bvh"});
     CollisionSettings s;
     if (const json* v = find(j, "broad_phase")) {
@@ -488,6 +488,15 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
             s.precision = TriTriPrecision::Robust;
         else
             c.fail(p / "precision", "unknown precision " + shown(*v) + "; expected \"fast\" or \"robust\"");
+    }
+    if (const json* v = find(j, "response")) {
+        const std::string name = string(c, *v, p / "response");
+        if (name == "penalty")
+            s.response = ContactResponse::Penalty;
+        else if (name == "bridson")
+            s.response = ContactResponse::Bridson;
+        else
+            c.fail(p / "response", "unknown response " + shown(*v) + "; expected \"penalty\" or \"bridson\"");
     }
     if (const json* v = find(j, "thickness")) {
         s.thickness = number(c, *v, p / "thickness", "a positive number of metres");

@@ -449,6 +449,90 @@ TEST(ContactResponseGl, AVertexNearAnEdgeOfTwoFacesGetsOneContact) {
     EXPECT_LT(force, params.stiffness * params.thickness); // one contact's force at most
 }
 
+// The response with a substep length (decision 0019): sides from the previous positions x − dt·v
+// and the inelastic part. Per-component GPU-twin tolerance: the per-contribution bound of
+// MatchesTheTwinOnRandomTriangleSoups (2^-16 of the cap for the float evaluation, whose inelastic
+// term adds a few roundings of relative 2^-24 to a force below the cap; 0.5/forceScale for the
+// fixed point) times the node's contributions.
+double twinTolerance(const ContactParams& params, std::uint32_t contributions) {
+    return std::max(1u, contributions) * (params.forceCap / 65536.0 + 0.5 / params.forceScale);
+}
+
+// A vertex 0.02 below an open face, moving down at 3 m/s: 0.03 m in a substep of 0.01 s, so at
+// its start it was 0.01 above. It went through within the substep: it is pushed back up (the
+// unsigned rule of dt = 0 pushes it on down), by the impulse that stops it plus the penalty for
+// depth h + 0.02 (limited), and the face gets the opposite force.
+TEST(ContactResponseGl, AVertexThatCameThroughAnOpenFaceIsPushedBack) {
+    const double below = static_cast<float>(0.02);
+    Soup s = probeAboveFace(-below, false);
+    for (std::size_t k = 3; k < 6; ++k) s.velocities[k] = {0.0, -3.0, 0.0};
+    ContactParams params = testParams(0.1);
+    const GpuResult still = runGpu(s, params); // dt = 0: sides from the current positions
+    EXPECT_LT(still.forces[3].y, 0.0);
+    params.substep = 0.01; // 10 dt = 0.1 s > the relaxation time 0.01 s: Bridson's 0.1 depth / dt
+    params.velocityResponse = true;
+    const GpuResult gpu = runGpu(s, params);
+    const cpu::ContactResult cpu = runCpu(s, params);
+    EXPECT_EQ(gpu.contacts, 1u);
+    EXPECT_EQ(cpu.contacts, 1u);
+    EXPECT_EQ(cpu.approaching[3], 1u);
+    const glm::dvec3 w =
+        cpu::closestOnTriangle(s.positions[3], s.positions[0], s.positions[1], s.positions[2]);
+    const double wSum = 1.0 + glm::dot(w, w); // inverse masses 1
+    // Bridson as forces (contact_force.glsl): the impulse cancelling v_n = -3 plus the penalty
+    // for depth h + 0.02, at most what gives the target speed 0.1 depth / dt; one active contact.
+    const double depth = params.thickness + below, perSpeed = 1.0 / (wSum * params.substep);
+    const double want = std::min(3.0 * perSpeed + std::min(params.stiffness * depth + params.damping * 3.0,
+                                                           0.1 * depth / params.substep * perSpeed),
+                                 params.forceCap);
+    EXPECT_NEAR(cpu.forces[3].y, want, want * 1e-12); // double arithmetic
+    for (std::size_t n = 0; n < 6; ++n)
+        for (int k = 0; k < 3; ++k)
+            EXPECT_NEAR(gpu.forces[n][k], cpu.forces[n][k], twinTolerance(params, cpu.contributions[n]))
+                << "node " << n << " component " << k;
+    EXPECT_GT(gpu.forces[3].y, 0.0);
+    EXPECT_LT(gpu.forces[0].y + gpu.forces[1].y + gpu.forces[2].y, 0.0);
+    // The same vertex at rest there came from below: it is kept below (pushed down).
+    s.velocities.assign(6, glm::dvec3(0.0));
+    EXPECT_LT(runGpu(s, params).forces[3].y, 0.0);
+}
+
+// Two edges that crossed within the substep: edge 0 of face A along x at y = 0 (A stands in the
+// plane z = 0, above it), edge 0 of face B along z at y = −0.02 moving down at 3 m/s, so 0.01
+// above A's edge at the start. B is pushed back up, A down, by the same force; both match the twin.
+TEST(ContactResponseGl, EdgesThatCrossedArePushedBackToTheirSides) {
+    Soup s;
+    s.positions = {{-1, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.1, -0.02, -1}, {0.1, -0.02, 1}, {0.1, -2, 0}};
+    for (glm::dvec3& p : s.positions) p = glm::dvec3(glm::vec3(p));
+    s.velocities = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, -3, 0}, {0, -3, 0}, {0, -3, 0}};
+    s.faces = {0, 1, 2, 3, 4, 5};
+    s.owned = {kOwnAll, kOwnAll};
+    s.faceObject = {0, 1};
+    s.objectClosed = {0, 0};
+    s.candidates = {{0, 1}};
+    ContactParams params = testParams(0.1);
+    params.substep = 0.01; // 10 dt = 0.1 s > the relaxation time 0.01 s: Bridson's 0.1 depth / dt
+    params.velocityResponse = true;
+    const GpuResult gpu = runGpu(s, params);
+    const cpu::ContactResult cpu = runCpu(s, params);
+    EXPECT_EQ(gpu.contacts, 1u);
+    EXPECT_EQ(cpu.contacts, 1u);
+    for (std::size_t n = 0; n < 6; ++n)
+        for (int k = 0; k < 3; ++k)
+            EXPECT_NEAR(gpu.forces[n][k], cpu.forces[n][k], twinTolerance(params, cpu.contributions[n]))
+                << "node " << n << " component " << k;
+    EXPECT_GT(gpu.forces[3].y + gpu.forces[4].y, 0.0);
+    EXPECT_LT(gpu.forces[0].y + gpu.forces[1].y, 0.0);
+    // The stopping impulse plus the limited penalty for depth h + 0.02 (as in the vertex test),
+    // weights (0.45, 0.55) and (0.5, 0.5). Tolerance 1e-5 relative: 0.02 and 0.1 are rounded to
+    // float in the positions (relative 2^-24 each), and the closest-point parameters follow.
+    const double wSum = 0.55 * 0.55 + 0.45 * 0.45 + 0.5 * 0.5 + 0.5 * 0.5, depth = 0.12;
+    const double perSpeed = 1.0 / (wSum * params.substep);
+    const double want = 3.0 * perSpeed + std::min(params.stiffness * depth + params.damping * 3.0,
+                                                  0.1 * depth / params.substep * perSpeed);
+    EXPECT_NEAR(cpu.forces[3].y + cpu.forces[4].y, std::min(want, params.forceCap), 1e-5 * want);
+}
+
 // No candidates: empty lists, zero-group dispatches, no force.
 TEST(ContactResponseGl, NoCandidatesNoPairsNoForce) {
     Soup s = probeAboveFace(0.04, false);
