@@ -46,8 +46,8 @@ class Karras {
 
 std::uint32_t mortonCode(const glm::vec3& centroid, const glm::vec3& lo, const glm::vec3& hi) {
     const glm::vec3 extent = hi - lo;
-    glm::vec3 scale;
-    for (int a = 0; a < 3; ++a) scale[a] = extent[a] > 0.0f ? 1024.0f / extent[a] : 0.0f;
+    const float largest = std::max(std::max(extent.x, extent.y), extent.z);
+    const float scale = largest > 0.0f ? 1024.0f / largest : 0.0f;
     const glm::vec3 t = glm::clamp((centroid - lo) * scale, glm::vec3(0.0f), glm::vec3(1023.0f));
     const glm::uvec3 q(t);
     return (spreadBits(q.x) << 2u) | (spreadBits(q.y) << 1u) | spreadBits(q.z);

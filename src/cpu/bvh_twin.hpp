@@ -18,7 +18,8 @@ namespace glcollide::cpu {
 
 inline constexpr std::uint32_t kBvhNone = 0xFFFFFFFFu;
 
-/// The 30-bit Morton code of `centroid` within the bounds [lo, hi] (bvh_morton.comp).
+/// The 30-bit Morton code of `centroid` on a grid of 1024^3 cubes over the bounds [lo, hi]: every
+/// axis scaled by the largest extent (bvh_morton.comp).
 std::uint32_t mortonCode(const glm::vec3& centroid, const glm::vec3& lo, const glm::vec3& hi);
 
 /// The centre of face f's vertex box (bvh_centroid.glsl).

@@ -174,6 +174,10 @@ TEST(BvhTwin, MortonCodeInterleavesTenBitsPerAxis) {
     EXPECT_EQ(mortonCode({1023.5f, 1023.5f, 1023.5f}, lo, hi), (1u << 30) - 1);
     EXPECT_EQ(mortonCode({2000.0f, -5.0f, 1024.0f}, lo, hi), 0x24924924u | 0x09249249u); // clamped x and z
     EXPECT_EQ(mortonCode({7.0f, 7.0f, 7.0f}, glm::vec3(7.0f), glm::vec3(7.0f)), 0u);     // flat bounds
+    // A cube grid over the largest extent: a thin axis gets few cells, not 1024.
+    const glm::vec3 thinHi(1024.0f, 2.0f, 1024.0f);
+    EXPECT_EQ(mortonCode({0.5f, 1.5f, 0.5f}, lo, thinHi), 2u);
+    EXPECT_EQ(mortonCode({0.5f, 1.99f, 0.5f}, lo, thinHi), 2u);
 }
 
 } // namespace
