@@ -17,7 +17,7 @@ enum class Effect : std::uint8_t {
     Wind,           ///< linear aerodynamic drag of faces in a constant wind (NodeForce)
     Ground,         ///< a horizontal ground plane with restitution and friction (NodeUpdate)
     Collisions,     ///< contacts between objects (not implemented yet: rejected with an Error)
-    SelfCollisions, ///< contacts within an object (not implemented yet: rejected with an Error)
+    SelfCollisions, ///< contacts within an object: faces that share no node
 };
 
 inline constexpr Effect kAllEffects[] = {Effect::Gravity,       Effect::Springs, Effect::Damping,

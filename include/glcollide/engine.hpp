@@ -75,6 +75,20 @@ struct CollisionStats {
     std::uint32_t exactFallbacks =
         0;                         ///< robust: predicates the exact pass evaluated in integers, last substep
     std::uint32_t listGrowths = 0; ///< pair lists grown (and passes rerun) during the frame
+    /// Feature pairs of the Representative-Triangle expansion (each owned vertex against the other
+    /// face, each owned edge against each owned edge of the other face), last substep.
+    std::uint32_t vertexFacePairs = 0;
+    std::uint32_t edgeEdgePairs = 0;
+    /// What a face-pair expansion without ownership would test, last substep: 6 vertex-face and
+    /// 9 edge-edge pairs per candidate pair.
+    std::uint64_t vertexFacePairsWithoutOwnership = 0;
+    std::uint64_t edgeEdgePairsWithoutOwnership = 0;
+    /// BVH broad phase: nodes whose box the traversal tested in the last substep (the tree's
+    /// quality: a refit tree that loosens tests more nodes for the same candidates), rebuilds
+    /// during the frame, and traversal dispatches per substep.
+    std::uint32_t bvhNodeVisits = 0;
+    std::uint32_t bvhRebuilds = 0;
+    std::uint32_t bvhRounds = 0;
 };
 
 /// The first non-finite state NodeUpdate produced (EngineOptions::checkFinite).
@@ -123,7 +137,7 @@ struct EnergyReport {
 /// GL state contract (README "GL state contract"): every call that issues GL commands (the
 /// constructor, step(), detectCollisions(), the read*() functions, energy(), the destructor and
 /// move assignment) leaves the host's state as it found it: the current program, the generic and
-/// indexed (0..24, with start and size) GL_SHADER_STORAGE_BUFFER bindings, GL_DISPATCH_INDIRECT_BUFFER,
+/// indexed (0..37, with start and size) GL_SHADER_STORAGE_BUFFER bindings, GL_DISPATCH_INDIRECT_BUFFER,
 /// GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER and GL_QUERY_BUFFER are saved and restored; vertex
 /// arrays, GL_ARRAY_BUFFER, GL_ELEMENT_ARRAY_BUFFER, framebuffers, textures and capabilities are
 /// never touched; no query is left active (timing uses glQueryCounter). Exceptions: a pending GL

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <string_view>
 #include <optional>
 #include <string>
 #include <vector>
@@ -85,6 +86,12 @@ struct BvhSettings {
 };
 
 /// Precision of the triangle-triangle test (docs/collisions.md).
+/// How the contact response acts (docs/collisions.md, decision 0019).
+enum class ContactResponse : std::uint8_t {
+    Penalty, ///< penalty force k·(h − d) − c·v_n within the thickness (elastic: bodies bounce)
+    Bridson, ///< Bridson et al. 2002: inelastic stop of approaching pairs + limited penalty (cloth)
+};
+
 enum class TriTriPrecision : std::uint8_t {
     Fast,   ///< float with epsilons: may disagree with the exact answer near degenerate configurations
     Robust, ///< float filter with a certified error bound, exact fallback: always the exact answer
@@ -98,6 +105,7 @@ struct CollisionSettings {
     double thickness = 0.01;  ///< m, > 0: contact distance; boxes are inflated by half of it per side
     double stiffness = 1.0e4; ///< N/m, > 0: penalty stiffness per vertex-face or edge-edge contact
     double damping = 0.0;     ///< N·s/m, >= 0: damping of the normal relative velocity in a contact
+    ContactResponse response = ContactResponse::Penalty;
     std::uint32_t initialCapacity = 4096; ///< >= 1: first size of every pair list (grown on overflow)
     BvhSettings bvh;                      ///< used by BroadPhase::Bvh
 };
@@ -142,6 +150,14 @@ Scene loadScene(const std::filesystem::path& path);
 /// in error messages.
 Scene parseScene(const std::string& jsonText, const std::filesystem::path& baseDir,
                  const std::string& sourceName);
+
+/// The scene-format names of the broad phases: "octree", "masked", "all_pairs", "bvh".
+const char* broadPhaseName(BroadPhase kind);
+std::optional<BroadPhase> broadPhaseFromName(std::string_view name);
+
+/// Replaces the scene's broad phase by the one named (the CLI's --broad-phase). Throws
+/// glcollide::Error when the name is unknown or the scene has no collision effect.
+void overrideBroadPhase(Scene& scene, std::string_view name);
 
 /// The scene `glcollide run` simulates when given none: a cloth pinned at two corners.
 Scene defaultScene();

@@ -8,3 +8,8 @@ layout(std430, binding = GLC_BIND_COLLISION_COUNTERS) coherent buffer CollisionC
 
 // Entries of list `list` that were stored (the count may exceed the capacity on overflow).
 uint storedCount(uint list) { return min(g_counters.lists[list].count, g_counters.lists[list].capacity); }
+
+// Reserves `n` consecutive slots of list `list` with one atomic and returns the first; the caller
+// stores item j at slot + j only if slot + j < g_counters.lists[list].capacity (the count stays
+// exact, as with GLC_APPEND).
+uint glcReserve(uint list, uint n) { return atomicAdd(g_counters.lists[list].count, n); }

@@ -1,9 +1,12 @@
 #version 430 core
-// BvhBuild, step 2: the 30-bit Morton code of each face's centroid (10 bits per axis over the
-// centroid bounds, x in the highest bit of each triple) as the sort key, the face index as its
-// value. Equal codes keep their index order (the sort is stable) and the hierarchy breaks their
-// ties by index (Karras 2012). A flat axis (zero extent) contributes 0 bits. CPU twin:
-// cpu::mortonCode.
+// BvhBuild, step 2: the 30-bit Morton code of each face's centroid as the sort key (10 bits per
+// axis, x in the highest bit of each triple), the face index as its value. The grid is a cube
+// over the centroid bounds: every axis is scaled by the largest extent, so a thin axis (a folded
+// cloth's layers) does not get as many top-level splits as the wide ones. Scaling each axis to
+// its own extent made the tree split layers that overlap near the root: 2.9x the traversal's node
+// visits on a 3-layer folded cloth of 1M faces (CPU twin, docs/design/decisions/0017). Equal codes
+// keep their index order (the sort is stable) and the hierarchy breaks their ties by index
+// (Karras 2012). CPU twin: cpu::mortonCode.
 #include "common/layout.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
@@ -36,8 +39,8 @@ void main() {
     vec3 lo = vec3(orderedFloat(g_bounds[0].x), orderedFloat(g_bounds[0].y), orderedFloat(g_bounds[0].z));
     vec3 hi = vec3(orderedFloat(g_bounds[1].x), orderedFloat(g_bounds[1].y), orderedFloat(g_bounds[1].z));
     vec3 extent = hi - lo;
-    vec3 scale = vec3(extent.x > 0.0 ? 1024.0 / extent.x : 0.0, extent.y > 0.0 ? 1024.0 / extent.y : 0.0,
-                      extent.z > 0.0 ? 1024.0 / extent.z : 0.0);
+    float largest = max(max(extent.x, extent.y), extent.z);
+    float scale = largest > 0.0 ? 1024.0 / largest : 0.0;
     // clamp: a centroid rounded past the bounds, or a non-finite one, still gets a valid code.
     uvec3 q = uvec3(clamp((faceCentroid(f) - lo) * scale, vec3(0.0), vec3(1023.0)));
     g_keys[f] = (spreadBits(q.x) << 2u) | (spreadBits(q.y) << 1u) | spreadBits(q.z);

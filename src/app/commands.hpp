@@ -12,6 +12,7 @@ namespace glcollide::app {
 struct RunOptions {
     std::string scenePath;     ///< empty: the built-in default scene
     std::optional<int> frames; ///< overrides the scene's /time/frames
+    std::string broadPhase;    ///< overrides the scene's /collision/broad_phase; empty: keep
     std::string exportDir;     ///< empty: no export
     int exportEvery = 1;
     std::string exportFormat = "obj";
@@ -56,6 +57,7 @@ int benchCommand(const BenchOptions& options);
 struct RenderOptions {
     std::string scenePath;        ///< empty: the built-in default scene
     std::optional<int> frames;    ///< frames to simulate; overrides the scene's /time/frames
+    std::string broadPhase;       ///< overrides the scene's /collision/broad_phase; empty: keep
     int every = 10;               ///< write frame 0 and every K-th frame
     std::string size = "800x600"; ///< WIDTHxHEIGHT in pixels
     int samples = 4;              ///< multisampling (0 or 1: none)

@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
         "run", "Simulate a scene headless (the built-in default scene when none is given)");
     runCmd->add_option("scene", run.scenePath, "Scene file (JSON, see docs/scene-format.md)");
     runCmd->add_option("--frames", run.frames, "Frames to simulate (default: the scene's /time/frames)");
+    runCmd->add_option("--broad-phase", run.broadPhase,
+                       "Override the scene's broad phase: octree, masked, all_pairs or bvh");
     runCmd->add_option("--export", run.exportDir, "Write each exported frame's meshes into this folder");
     runCmd->add_option("--every", run.exportEvery, "Export every K-th frame (with --export)")->default_val(1);
     runCmd->add_option("--format", run.exportFormat, "Export format: obj or ply")->default_val("obj");
@@ -78,6 +80,8 @@ int main(int argc, char** argv) {
     renderCmd->add_option("scene", render.scenePath, "Scene file (JSON; an optional /camera sets the view)");
     renderCmd->add_option("--frames", render.frames,
                           "Frames to simulate (default: the scene's /time/frames)");
+    renderCmd->add_option("--broad-phase", render.broadPhase,
+                          "Override the scene's broad phase: octree, masked, all_pairs or bvh");
     renderCmd->add_option("--every", render.every, "Write every K-th frame")->default_val(10);
     renderCmd->add_option("--size", render.size, "Image size WIDTHxHEIGHT in pixels")->default_val("800x600");
     renderCmd->add_option("--samples", render.samples, "Multisampling samples per pixel (0: none)")

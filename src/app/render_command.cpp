@@ -44,6 +44,7 @@ int renderCommand(const RenderOptions& options) {
     if (options.every <= 0) throw Error("--every must be positive");
     if (options.samples < 0) throw Error("--samples must be >= 0");
     Scene scene = options.scenePath.empty() ? defaultScene() : loadScene(options.scenePath);
+    if (!options.broadPhase.empty()) overrideBroadPhase(scene, options.broadPhase);
     if (options.frames) {
         if (*options.frames <= 0) throw Error("--frames must be positive");
         scene.time.frames = *options.frames;

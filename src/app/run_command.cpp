@@ -41,7 +41,14 @@ nlohmann::json frameRecord(const Engine& engine) {
                                {"contacts", c.contacts},
                                {"undecided_pairs", c.undecidedPairs},
                                {"exact_fallbacks", c.exactFallbacks},
-                               {"list_growths", c.listGrowths}};
+                               {"list_growths", c.listGrowths},
+                               {"vertex_face_pairs", c.vertexFacePairs},
+                               {"edge_edge_pairs", c.edgeEdgePairs},
+                               {"vertex_face_pairs_without_ownership", c.vertexFacePairsWithoutOwnership},
+                               {"edge_edge_pairs_without_ownership", c.edgeEdgePairsWithoutOwnership},
+                               {"bvh_node_visits", c.bvhNodeVisits},
+                               {"bvh_rebuilds", c.bvhRebuilds},
+                               {"bvh_rounds", c.bvhRounds}};
     }
     return record;
 }
@@ -127,6 +134,7 @@ int runCommand(const RunOptions& options) {
         if (*options.frames <= 0) throw Error("--frames must be positive");
         scene.time.frames = *options.frames;
     }
+    if (!options.broadPhase.empty()) overrideBroadPhase(scene, options.broadPhase);
     if (options.exportEvery <= 0) throw Error("--every must be positive");
     const MeshFormat format = parseMeshFormat(options.exportFormat);
     if (!options.exportDir.empty()) {

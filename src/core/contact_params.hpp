@@ -14,6 +14,16 @@ struct ContactParams {
     double damping = 0.0;    ///< N·s/m on the normal relative speed
     double forceCap = 0.0;   ///< N per contact: 4·k·h (twice the force at the deepest signed depth 2h)
     double forceScale = 1.0; ///< fixed-point units per N of the GPU's integer force sums
+    /// s: the substep length dt, set by the engine once it has chosen the substeps. It gives the
+    /// positions at the start of the substep (x − dt·v: the side a vertex must be kept on) and
+    /// the inelastic (velocity-level) part of the force. 0: penalty only, sides from the current
+    /// positions (decision 0019).
+    double substep = 0.0;
+    /// Bridson (decision 0019): approaching pairs are stopped by an inelastic impulse and the
+    /// penalty is limited to what separates them at depth / max(10·dt, relaxationTime).
+    bool velocityResponse = false;
+    double relaxationTime = 0.01; ///< s: the thickness is restored over at least this long (0.05 let cloth
+                                  ///< sink into a pinned sphere)
 };
 
 /// Contacts that may add to one node in one substep before its int32 fixed-point sum could
@@ -25,6 +35,7 @@ inline ContactParams contactParams(const CollisionSettings& s) {
     p.thickness = s.thickness;
     p.stiffness = s.stiffness;
     p.damping = s.damping;
+    p.velocityResponse = s.response == ContactResponse::Bridson;
     p.forceCap = 4.0 * s.stiffness * s.thickness;
     // Largest power of two with headroom·cap·scale ≤ 2^31 - 1: resolution cap·headroom/2^31
     // (~5e-7 of the cap), exact in float.

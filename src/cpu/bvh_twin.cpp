@@ -19,7 +19,8 @@ std::uint32_t spreadBits(std::uint32_t v) {
 
 class Karras {
   public:
-    explicit Karras(const std::vector<std::uint32_t>& keys) : m_keys(keys), m_n(static_cast<int>(keys.size())) {}
+    explicit Karras(const std::vector<std::uint32_t>& keys)
+        : m_keys(keys), m_n(static_cast<int>(keys.size())) {}
 
     int delta(int i, int j) const {
         if (j < 0 || j >= m_n) return -1;
@@ -45,8 +46,8 @@ class Karras {
 
 std::uint32_t mortonCode(const glm::vec3& centroid, const glm::vec3& lo, const glm::vec3& hi) {
     const glm::vec3 extent = hi - lo;
-    glm::vec3 scale;
-    for (int a = 0; a < 3; ++a) scale[a] = extent[a] > 0.0f ? 1024.0f / extent[a] : 0.0f;
+    const float largest = std::max(std::max(extent.x, extent.y), extent.z);
+    const float scale = largest > 0.0f ? 1024.0f / largest : 0.0f;
     const glm::vec3 t = glm::clamp((centroid - lo) * scale, glm::vec3(0.0f), glm::vec3(1023.0f));
     const glm::uvec3 q(t);
     return (spreadBits(q.x) << 2u) | (spreadBits(q.y) << 1u) | spreadBits(q.z);
@@ -103,12 +104,14 @@ std::vector<glm::uvec4> twinHierarchy(const std::vector<std::uint32_t>& sortedKe
     return links;
 }
 
-std::vector<FloatBox> twinRefit(const std::vector<glm::uvec4>& links, const std::vector<std::uint32_t>& faceIndices,
+std::vector<FloatBox> twinRefit(const std::vector<glm::uvec4>& links,
+                                const std::vector<std::uint32_t>& faceIndices,
                                 const std::vector<glm::vec3>& positions, float halfThickness) {
     std::vector<FloatBox> boxes(links.size());
     if (links.empty()) return boxes;
     const std::size_t n = (links.size() + 1) / 2;
-    for (std::size_t i = n - 1; i < links.size(); ++i) boxes[i] = faceBox(faceIndices, positions, links[i].x, halfThickness);
+    for (std::size_t i = n - 1; i < links.size(); ++i)
+        boxes[i] = faceBox(faceIndices, positions, links[i].x, halfThickness);
     // Children before parents: a post-order walk from the root.
     std::vector<std::pair<std::uint32_t, bool>> stack = {{0u, false}};
     while (!stack.empty()) {
@@ -127,7 +130,8 @@ std::vector<FloatBox> twinRefit(const std::vector<glm::uvec4>& links, const std:
     return boxes;
 }
 
-std::vector<FacePair> twinBvhCandidates(const std::vector<glm::uvec4>& links, const std::vector<FloatBox>& boxes,
+std::vector<FacePair> twinBvhCandidates(const std::vector<glm::uvec4>& links,
+                                        const std::vector<FloatBox>& boxes,
                                         const std::vector<std::uint32_t>& faceIndices,
                                         const std::vector<std::uint32_t>& faceObject, const PairRules& rules,
                                         std::uint64_t* nodeVisits) {

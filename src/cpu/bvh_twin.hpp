@@ -18,7 +18,8 @@ namespace glcollide::cpu {
 
 inline constexpr std::uint32_t kBvhNone = 0xFFFFFFFFu;
 
-/// The 30-bit Morton code of `centroid` within the bounds [lo, hi] (bvh_morton.comp).
+/// The 30-bit Morton code of `centroid` on a grid of 1024^3 cubes over the bounds [lo, hi]: every
+/// axis scaled by the largest extent (bvh_morton.comp).
 std::uint32_t mortonCode(const glm::vec3& centroid, const glm::vec3& lo, const glm::vec3& hi);
 
 /// The centre of face f's vertex box (bvh_centroid.glsl).
@@ -31,12 +32,14 @@ std::vector<glm::uvec4> twinHierarchy(const std::vector<std::uint32_t>& sortedKe
 
 /// Every node's box: leaves the inflated face boxes (cpu::faceBox), internal nodes the union of
 /// their children.
-std::vector<FloatBox> twinRefit(const std::vector<glm::uvec4>& links, const std::vector<std::uint32_t>& faceIndices,
+std::vector<FloatBox> twinRefit(const std::vector<glm::uvec4>& links,
+                                const std::vector<std::uint32_t>& faceIndices,
                                 const std::vector<glm::vec3>& positions, float halfThickness);
 
 /// The traversal of bvh_traverse.comp: valid pairs whose leaf boxes overlap, (lower, higher)
 /// face, each once; `nodeVisits` (if not null) receives the nodes tested. Unsorted.
-std::vector<FacePair> twinBvhCandidates(const std::vector<glm::uvec4>& links, const std::vector<FloatBox>& boxes,
+std::vector<FacePair> twinBvhCandidates(const std::vector<glm::uvec4>& links,
+                                        const std::vector<FloatBox>& boxes,
                                         const std::vector<std::uint32_t>& faceIndices,
                                         const std::vector<std::uint32_t>& faceObject, const PairRules& rules,
                                         std::uint64_t* nodeVisits = nullptr);

@@ -9,7 +9,7 @@
 namespace glcollide::cpu {
 namespace {
 
-// contact_response.comp's ownsClosestFeature: the interior always counts, the edge opposite vertex
+// contact_vertex_face.comp's ownsClosestFeature: the interior always counts, the edge opposite vertex
 // k (w[k] = 0) with its ownership bit, vertex k (w[k] = 1) with its bit and only from the lower
 // node of the vertex-vertex pair.
 bool ownsClosestFeature(std::uint32_t p, const std::array<std::uint32_t, 3>& face, const glm::dvec3& w,
@@ -24,15 +24,65 @@ bool ownsClosestFeature(std::uint32_t p, const std::array<std::uint32_t, 3>& fac
     return true;
 }
 
+// The two passes of the response: Count counts the active contacts per node, Apply adds the
+// forces (contact_force.glsl's u_countPass).
+enum class Pass { Count, Apply };
+
 struct Solver {
     const ContactParams& p;
     const ContactInput& in;
     ContactResult& out;
+    std::vector<std::uint32_t>& approaching; // per node: active contacts, from the count pass
+    Pass pass = Pass::Count;
 
     const glm::dvec3& x(std::uint32_t n) const { return (*in.positions)[n]; }
     const glm::dvec3& v(std::uint32_t n) const { return (*in.velocities)[n]; }
+    double w(std::uint32_t n) const { return in.inverseMasses ? (*in.inverseMasses)[n] : 1.0; }
+    glm::dvec3 previous(std::uint32_t n) const { return x(n) - p.substep * v(n); }
     double normalForce(double depth, double normalSpeed) const {
         return std::clamp(p.stiffness * depth - p.damping * normalSpeed, 0.0, p.forceCap);
+    }
+
+    // contact_force.glsl's respond.
+    bool respond(const std::array<std::uint32_t, 4>& n, const std::array<double, 4>& a, const glm::dvec3& u,
+                 double depth) {
+        glm::dvec3 vRel(0.0);
+        std::array<double, 4> share{};
+        double wSum = 0.0;
+        for (std::size_t i = 0; i < 4; ++i) {
+            vRel += a[i] * v(n[i]);
+            share[i] = a[i] * a[i] * w(n[i]);
+            wSum += share[i];
+        }
+        const double vn = glm::dot(vRel, u);
+        const bool bridson = p.velocityResponse && p.substep > 0.0 && wSum > 0.0;
+        const double target = bridson ? depth / std::max(10.0 * p.substep, p.relaxationTime) : 0.0;
+        const bool active = bridson && vn < target;
+        if (pass == Pass::Count) {
+            if (active)
+                for (std::size_t i = 0; i < 4; ++i)
+                    if (share[i] > 0.0) ++approaching[n[i]];
+            return false;
+        }
+        double f = normalForce(depth, vn);
+        if (bridson) {
+            if (!active) return false;
+            std::uint32_t count = 1;
+            for (std::size_t i = 0; i < 4; ++i)
+                if (share[i] > 0.0) count = std::max(count, approaching[n[i]]);
+            const double perSpeed = 1.0 / (wSum * p.substep * static_cast<double>(count));
+            const double vAfter = std::max(vn, 0.0);
+            f = (vAfter - vn) * perSpeed + std::min(f, (target - vAfter) * perSpeed);
+        }
+        f = std::min(f, p.forceCap);
+        if (!(f > 0.0)) return false;
+        const glm::dvec3 F = f * u;
+        for (std::size_t i = 0; i < 4; ++i) {
+            out.forces[n[i]] += a[i] * F;
+            ++out.contributions[n[i]];
+        }
+        ++out.contacts;
+        return true;
     }
 
     void vertexFace(std::uint32_t node, const std::array<std::uint32_t, 3>& f, std::uint32_t faceOwned,
@@ -42,33 +92,36 @@ struct Solver {
         const double area2 = glm::length(n);
         if (!(area2 > 0.0)) return;
         n /= area2;
-        const glm::dvec3 w = closestOnTriangle(xp, xa, xb, xc);
-        if (!ownsClosestFeature(node, f, w, faceOwned)) return;
-        const glm::dvec3 diff = xp - (w.x * xa + w.y * xb + w.z * xc);
+        const glm::dvec3 wts = closestOnTriangle(xp, xa, xb, xc);
+        if (!ownsClosestFeature(node, f, wts, faceOwned)) return;
+        const glm::dvec3 diff = xp - (wts.x * xa + wts.y * xb + wts.z * xc);
         const double d = glm::length(diff), s = glm::dot(n, xp - xa), h = p.thickness;
-        const bool inside = w.x > 0.0 && w.y > 0.0 && w.z > 0.0;
+        double side = 1.0;
+        if (!closed) {
+            const glm::dvec3 pa = previous(f[0]);
+            const double sPrev =
+                glm::dot(glm::cross(previous(f[1]) - pa, previous(f[2]) - pa), previous(node) - pa);
+            side = sPrev > 0.0 ? 1.0 : (sPrev < 0.0 ? -1.0 : (s > 0.0 ? 1.0 : (s < 0.0 ? -1.0 : 0.0)));
+        }
+        const double sideDistance = side * s;
+        const bool inside = wts.x > 0.0 && wts.y > 0.0 && wts.z > 0.0;
         glm::dvec3 u;
         double depth = 0.0;
-        if (closed && inside && s < h && s > -h) {
-            u = n;
-            depth = h - s;
+        if (side != 0.0 && inside && sideDistance < h && sideDistance > -h) {
+            u = side * n;
+            depth = h - sideDistance;
         } else if (d < h && d > 0.0) {
-            u = diff / d;
-            depth = h - d;
+            if (closed || sideDistance >= 0.0) {
+                u = diff / d;
+                depth = h - d;
+            } else {
+                u = side * n;
+                depth = h - sideDistance;
+            }
         } else {
             return;
         }
-        const glm::dvec3 vRel = v(node) - (w.x * v(f[0]) + w.y * v(f[1]) + w.z * v(f[2]));
-        const double fn = normalForce(depth, glm::dot(vRel, u));
-        if (fn <= 0.0) return;
-        const glm::dvec3 F = fn * u;
-        out.forces[node] += F;
-        ++out.contributions[node];
-        for (int k = 0; k < 3; ++k) {
-            out.forces[f[static_cast<std::size_t>(k)]] -= w[k] * F;
-            ++out.contributions[f[static_cast<std::size_t>(k)]];
-        }
-        ++out.contacts;
+        respond({node, f[0], f[1], f[2]}, {1.0, -wts.x, -wts.y, -wts.z}, u, depth);
     }
 
     void edgeEdge(std::uint32_t p0, std::uint32_t p1, std::uint32_t q0, std::uint32_t q1) {
@@ -76,18 +129,24 @@ struct Solver {
         if (!(s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0)) return; // an endpoint: a vertex-face contact
         const glm::dvec3 diff = (x(p0) + s * (x(p1) - x(p0))) - (x(q0) + t * (x(q1) - x(q0)));
         const double d = glm::length(diff);
-        if (!(d < p.thickness) || !(d > 0.0)) return;
-        const glm::dvec3 u = diff / d;
-        const glm::dvec3 vRel = (v(p0) + s * (v(p1) - v(p0))) - (v(q0) + t * (v(q1) - v(q0)));
-        const double fn = normalForce(p.thickness - d, glm::dot(vRel, u));
-        if (fn <= 0.0) return;
-        const glm::dvec3 F = fn * u;
-        out.forces[p0] += (1.0 - s) * F;
-        out.forces[p1] += s * F;
-        out.forces[q0] -= (1.0 - t) * F;
-        out.forces[q1] -= t * F;
-        for (std::uint32_t n : {p0, p1, q0, q1}) ++out.contributions[n];
-        ++out.contacts;
+        if (!(d < p.thickness)) return;
+        const glm::dvec3 diffPrev = (previous(p0) + s * (previous(p1) - previous(p0))) -
+                                    (previous(q0) + t * (previous(q1) - previous(q0)));
+        glm::dvec3 u;
+        double depth = 0.0;
+        if (d > 0.0 && glm::dot(diffPrev, diff) >= 0.0) {
+            u = diff / d;
+            depth = p.thickness - d;
+        } else if (d > 0.0) {
+            u = -diff / d;
+            depth = p.thickness + d;
+        } else {
+            const double dPrev = glm::length(diffPrev);
+            if (!(dPrev > 0.0)) return;
+            u = diffPrev / dPrev;
+            depth = p.thickness;
+        }
+        respond({p0, p1, q0, q1}, {1.0 - s, s, t - 1.0, -t}, u, depth);
     }
 };
 
@@ -153,33 +212,54 @@ std::array<double, 2> closestSegmentParams(const glm::dvec3& p0, const glm::dvec
     return {s, t};
 }
 
-ContactResult contactForces(const ContactParams& params, const ContactInput& in,
-                            const std::vector<std::array<std::uint32_t, 2>>& candidates) {
-    ContactResult out;
-    out.forces.assign(in.positions->size(), glm::dvec3(0.0));
-    out.contributions.assign(in.positions->size(), 0u);
-    Solver solver{params, in, out};
-    const auto face = [&](std::uint32_t f) {
-        const std::vector<std::uint32_t>& idx = *in.faceIndices;
-        return std::array<std::uint32_t, 3>{idx[3 * f], idx[3 * f + 1], idx[3 * f + 2]};
-    };
+FeaturePairList featurePairs(const std::vector<std::uint32_t>& faceIndices,
+                             const std::vector<std::uint32_t>& faceOwned,
+                             const std::vector<IndexPair>& candidates) {
+    FeaturePairList out;
     for (const auto& [a, b] : candidates) {
-        const auto fa = face(a), fb = face(b);
-        const std::uint32_t oa = (*in.faceOwned)[a], ob = (*in.faceOwned)[b];
-        const bool closedA = (*in.faceClosed)[a] != 0, closedB = (*in.faceClosed)[b] != 0;
+        const std::uint32_t oa = faceOwned[a], ob = faceOwned[b];
         for (std::uint32_t k = 0; k < 3; ++k) {
-            if (oa & (GLC_OWN_VERTEX0 << k)) solver.vertexFace(fa[k], fb, ob, closedB);
-            if (ob & (GLC_OWN_VERTEX0 << k)) solver.vertexFace(fb[k], fa, oa, closedA);
+            if (oa & (GLC_OWN_VERTEX0 << k)) out.vertexFace.push_back({faceIndices[3 * a + k], b});
+            if (ob & (GLC_OWN_VERTEX0 << k)) out.vertexFace.push_back({faceIndices[3 * b + k], a});
         }
         for (std::uint32_t e = 0; e < 3; ++e) {
             if (!(oa & (GLC_OWN_EDGE01 << e))) continue;
-            for (std::uint32_t g = 0; g < 3; ++g) {
-                if (!(ob & (GLC_OWN_EDGE01 << g))) continue;
-                solver.edgeEdge(fa[e], fa[(e + 1) % 3], fb[g], fb[(g + 1) % 3]);
-            }
+            for (std::uint32_t g = 0; g < 3; ++g)
+                if (ob & (GLC_OWN_EDGE01 << g)) out.edgeEdge.push_back({3 * a + e, 3 * b + g});
+        }
+    }
+    std::sort(out.vertexFace.begin(), out.vertexFace.end());
+    std::sort(out.edgeEdge.begin(), out.edgeEdge.end());
+    return out;
+}
+
+ContactResult contactForces(const ContactParams& params, const ContactInput& in,
+                            const FeaturePairList& pairs) {
+    ContactResult out;
+    out.forces.assign(in.positions->size(), glm::dvec3(0.0));
+    out.contributions.assign(in.positions->size(), 0u);
+    out.approaching.assign(in.positions->size(), 0u);
+    Solver solver{params, in, out, out.approaching};
+    const std::vector<std::uint32_t>& idx = *in.faceIndices;
+    const auto face = [&](std::uint32_t f) {
+        return std::array<std::uint32_t, 3>{idx[3 * f], idx[3 * f + 1], idx[3 * f + 2]};
+    };
+    for (const Pass pass : {Pass::Count, Pass::Apply}) { // every count before any force
+        solver.pass = pass;
+        for (const auto& [node, f] : pairs.vertexFace)
+            solver.vertexFace(node, face(f), (*in.faceOwned)[f], (*in.faceClosed)[f] != 0);
+        for (const auto& [edgeA, edgeB] : pairs.edgeEdge) {
+            const auto a = model::faceEdge(idx, edgeA / 3, static_cast<int>(edgeA % 3));
+            const auto b = model::faceEdge(idx, edgeB / 3, static_cast<int>(edgeB % 3));
+            solver.edgeEdge(a[0], a[1], b[0], b[1]);
         }
     }
     return out;
+}
+
+ContactResult contactForces(const ContactParams& params, const ContactInput& in,
+                            const std::vector<IndexPair>& candidates) {
+    return contactForces(params, in, featurePairs(*in.faceIndices, *in.faceOwned, candidates));
 }
 
 } // namespace glcollide::cpu

@@ -1,7 +1,9 @@
 #pragma once
-// CPU twin of the ContactResponse pass (shaders/passes/contact_response.comp) in double
-// precision: the same contact rules, case by case, on the same inputs. Forces are not quantised
-// (the GPU's fixed-point sums differ from these by at most 0.5/forceScale per contribution).
+// CPU twins of the FeaturePairs expansion (shaders/passes/feature_pairs.comp: Representative
+// Triangles, docs/design/decisions/0018-representative-triangles.md) and of the ContactResponse
+// pass (shaders/passes/contact_vertex_face.comp, contact_edge_edge.comp) in double precision: the
+// same contact rules, case by case, on the same inputs. Forces are not quantised (the GPU's
+// fixed-point sums differ from these by at most 0.5/forceScale per contribution).
 
 #include "core/contact_params.hpp"
 
@@ -19,17 +21,38 @@ struct ContactInput {
     const std::vector<std::uint32_t>* faceIndices = nullptr; ///< 3 per face
     const std::vector<std::uint32_t>* faceOwned = nullptr;   ///< GLC_OWN_* bits per face
     const std::vector<std::uint8_t>* faceClosed = nullptr;   ///< 1 when the face's object is closed
+    /// 1/kg per node, 0 for pinned nodes (the GPU's positions .w); nullptr: 1 for every node.
+    const std::vector<double>* inverseMasses = nullptr;
 };
 
 struct ContactResult {
     std::vector<glm::dvec3> forces;           ///< N, per node
     std::uint32_t contacts = 0;               ///< vertex-face and edge-edge contacts that produced a force
     std::vector<std::uint32_t> contributions; ///< per node: contacts that added to its force
+    std::vector<std::uint32_t> approaching;   ///< per node: active contacts, v_n < v_t (the GPU's .w counts)
 };
 
-/// Penalty contact forces of the candidate face pairs.
+using IndexPair = std::array<std::uint32_t, 2>;
+
+/// The feature pairs of a list of face pairs, each sorted.
+struct FeaturePairList {
+    std::vector<IndexPair> vertexFace; ///< (node, face): a vertex owned by one face against the other
+    std::vector<IndexPair> edgeEdge; ///< (3*fa+e, 3*fb+g): owned edges of fa and fb; edge e: corner e to e+1
+};
+
+/// The Representative-Triangle expansion of `candidates` (face pairs (fa, fb)): every vertex that
+/// fa owns (GLC_OWN_VERTEX* of faceOwned) against fb and every vertex fb owns against fa; every
+/// edge fa owns against every edge fb owns, as (3*fa+e, 3*fb+g).
+FeaturePairList featurePairs(const std::vector<std::uint32_t>& faceIndices,
+                             const std::vector<std::uint32_t>& faceOwned,
+                             const std::vector<IndexPair>& candidates);
+
+/// Contact forces of the feature pairs (the response's two kernels, count pass then force pass).
 ContactResult contactForces(const ContactParams& params, const ContactInput& in,
-                            const std::vector<std::array<std::uint32_t, 2>>& candidates);
+                            const FeaturePairList& pairs);
+/// Contact forces of the candidate face pairs: contactForces of their featurePairs.
+ContactResult contactForces(const ContactParams& params, const ContactInput& in,
+                            const std::vector<IndexPair>& candidates);
 
 /// Barycentric weights of the point of triangle abc closest to p (Ericson §5.1.5).
 glm::dvec3 closestOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,

@@ -105,6 +105,7 @@ void Engine::Impl::chooseSubsteps() {
     }
     substeps.substepLength = dt / substeps.substeps;
     plan.nodeUpdateParams.h = substeps.substepLength;
+    plan.contact.substep = substeps.substepLength;
 }
 
 void Engine::Impl::allocate() {
@@ -223,6 +224,27 @@ Engine& Engine::operator=(Engine&& other) noexcept {
     return *this;
 }
 
+namespace {
+/// Folds one substep's collision counts into the frame's statistics: most are the last
+/// substep's, the maximum, growths and rebuilds accumulate (the frame resets them).
+void addSubstepCounts(const passes::CollisionCounts& counts, CollisionStats& c) {
+    c.boxPairs = counts.boxPairs;
+    c.candidatePairs = counts.candidates;
+    c.intersectingPairs = counts.intersections;
+    c.maxIntersectingPairs = std::max(c.maxIntersectingPairs, counts.intersections);
+    c.undecidedPairs = counts.undecided;
+    c.exactFallbacks = counts.exactFallbacks;
+    c.listGrowths += counts.reruns;
+    c.vertexFacePairs = counts.vertexFacePairs;
+    c.edgeEdgePairs = counts.edgeEdgePairs;
+    c.vertexFacePairsWithoutOwnership = counts.vertexFacePairsWithoutOwnership;
+    c.edgeEdgePairsWithoutOwnership = counts.edgeEdgePairsWithoutOwnership;
+    c.bvhNodeVisits = counts.bvhNodeVisits;
+    c.bvhRebuilds += counts.bvhRebuilt ? 1u : 0u;
+    c.bvhRounds = counts.bvhRounds;
+}
+} // namespace
+
 void Engine::Impl::substep(int index, bool lastOfFrame) {
     if (nodeForce) run(*nodeForce, plan.nodeForceParams);
     if (springUpdate) run(*springUpdate);
@@ -230,17 +252,10 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
         const passes::CollisionCounts counts =
             collision->detect(buffers, options.gpuTiming ? &timer : nullptr);
         CollisionStats& c = stats.collision;
-        c.boxPairs = counts.boxPairs;
-        c.candidatePairs = counts.candidates;
-        c.intersectingPairs = counts.intersections;
-        c.maxIntersectingPairs = std::max(c.maxIntersectingPairs, counts.intersections);
-        c.undecidedPairs = counts.undecided;
-        c.exactFallbacks = counts.exactFallbacks;
-        c.listGrowths += counts.reruns;
+        addSubstepCounts(counts, c);
         // detect() cleared the response's contact counter; it is read after the last substep.
         run(*contact,
-            passes::ContactInputs{&collision->candidates(), &collision->faceInfo(), &collision->objects(),
-                                  &collision->counters(), counts.candidates},
+            passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects()},
             plan.contact);
         if (lastOfFrame) {
             glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -338,14 +353,7 @@ CollisionStats Engine::detectCollisions() {
     const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Compute, m_impl->glFeatures);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); // as in step(): host shader writes are seen
     const gl::DebugGroup group("glcollide::Engine::detectCollisions");
-    const passes::CollisionCounts counts = m_impl->collision->detect(m_impl->buffers, nullptr);
-    c.boxPairs = counts.boxPairs;
-    c.candidatePairs = counts.candidates;
-    c.intersectingPairs = counts.intersections;
-    c.maxIntersectingPairs = counts.intersections;
-    c.undecidedPairs = counts.undecided;
-    c.exactFallbacks = counts.exactFallbacks;
-    c.listGrowths = counts.reruns;
+    addSubstepCounts(m_impl->collision->detect(m_impl->buffers, nullptr), c);
     return c;
 }
 

@@ -12,9 +12,11 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
     if (nodeForce) p.push_back(PassId::NodeForce);
     if (springUpdate) p.push_back(PassId::SpringUpdate);
     if (collisions) {
-        // The broad phase's passes come from its factory entry; TriTri tests its candidates.
+        // The broad phase's passes come from its factory entry; TriTri tests its candidates;
+        // FeaturePairs expands them into the feature pairs ContactResponse reads.
         for (PassId id : passes::broadPhasePasses(collision.broadPhase)) p.push_back(id);
         p.push_back(PassId::TriTri);
+        p.push_back(PassId::FeaturePairs);
         p.push_back(PassId::ContactResponse);
     }
     if (nodeUpdate) p.push_back(PassId::NodeUpdate);

@@ -6,7 +6,7 @@
 
 namespace glcollide::gl {
 
-static_assert(GLC_BIND_UNDECIDED + 1 == kStorageBindingCount,
+static_assert(GLC_BIND_EDGE_EDGE_PAIRS + 1 == kStorageBindingCount,
               "kStorageBindingCount must cover every binding of shaders/common/layout.glsl");
 
 namespace {

@@ -9,8 +9,8 @@
 namespace glcollide::gl {
 
 /// Indexed GL_SHADER_STORAGE_BUFFER binding points glcollide's shaders use: 0 ...
-/// GLC_BIND_UNDECIDED in shaders/common/layout.glsl (checked in host_state.cpp).
-inline constexpr std::uint32_t kStorageBindingCount = 26;
+/// GLC_BIND_EDGE_EDGE_PAIRS in shaders/common/layout.glsl (checked in host_state.cpp).
+inline constexpr std::uint32_t kStorageBindingCount = 38;
 
 /// Saves, on construction, the context state that glcollide's GL calls can change, and restores
 /// it on destruction (also when an exception unwinds through it):

@@ -64,6 +64,10 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const mode
     m_broadPhase = createBroadPhase(context);
     m_broadPhase->addStages(m_chain, *m_lists);
     m_narrowPhase.addStages(m_chain, *m_lists);
+    // After the narrow phase: an overflow of the feature-pair lists (up to 15 per candidate, the
+    // likeliest to overflow) reruns only the expansion (decision 0018).
+    m_featurePairs.addStages(m_chain, *m_lists, initial(config.vertexFaceCapacity),
+                             initial(config.edgeEdgeCapacity));
 }
 
 std::vector<std::string> CollisionDetection::passNames() const {
@@ -98,6 +102,12 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
     m_counts.bvhRebuilt = broad.rebuilt;
     m_counts.bvhRounds = broad.rounds;
     m_counts.bvhNodeVisits = l.bvhNodeVisits();
+    m_counts.vertexFacePairs = l.count(GLC_LIST_VERTEX_FACE);
+    m_counts.edgeEdgePairs = l.count(GLC_LIST_EDGE_EDGE);
+    m_counts.vertexFaceGrowths = l.growths(GLC_LIST_VERTEX_FACE);
+    m_counts.edgeEdgeGrowths = l.growths(GLC_LIST_EDGE_EDGE);
+    m_counts.vertexFacePairsWithoutOwnership = 6 * std::uint64_t{m_counts.candidates};
+    m_counts.edgeEdgePairsWithoutOwnership = 9 * std::uint64_t{m_counts.candidates};
     return m_counts;
 }
 
@@ -117,6 +127,14 @@ std::vector<std::array<std::uint32_t, 2>> CollisionDetection::readCandidates() c
 
 std::vector<std::array<std::uint32_t, 2>> CollisionDetection::readIntersections() const {
     return readPairs(intersections(), m_lists->storedCount(GLC_LIST_INTERSECTIONS));
+}
+
+std::vector<std::array<std::uint32_t, 2>> CollisionDetection::readVertexFacePairs() const {
+    return readPairs(m_lists->storage(GLC_LIST_VERTEX_FACE), m_lists->storedCount(GLC_LIST_VERTEX_FACE));
+}
+
+std::vector<std::array<std::uint32_t, 2>> CollisionDetection::readEdgeEdgePairs() const {
+    return readPairs(m_lists->storage(GLC_LIST_EDGE_EDGE), m_lists->storedCount(GLC_LIST_EDGE_EDGE));
 }
 
 const gl::Buffer& CollisionDetection::broadPhaseBuffer(const std::string& label) const {

@@ -2,8 +2,10 @@
 // Collision detection for one substep: a broad phase (any kind behind the BroadPhase interface,
 // made by createBroadPhase) appends candidate face pairs, the narrow phase (TriTri) tests them,
 // both as stages of one chain over append lists that never drop data (docs/broad-phase.md,
-// docs/narrow-phase.md). Every kind yields the same candidate set (valid face pairs whose
-// inflated face boxes overlap) and, with robust precision, the same intersection set.
+// docs/narrow-phase.md); the last stage, FeaturePairs, expands the candidates into the
+// vertex-face and edge-edge feature pairs the contact response reads (Representative Triangles,
+// docs/design/decisions/0018-representative-triangles.md). Every kind yields the same candidate set (valid
+// face pairs whose inflated face boxes overlap) and, with robust precision, the same intersection set.
 //
 // It also uploads the per-face and per-object tables (CollisionTables) the kernels and the
 // contact response read.
@@ -14,6 +16,7 @@
 #include "gl/handles.hpp"
 #include "passes/broad_phase/broad_phase.hpp"
 #include "passes/collision/append_lists.hpp"
+#include "passes/collision/feature_pairs.hpp"
 #include "passes/collision/narrow_phase.hpp"
 #include "passes/collision/stage_chain.hpp"
 #include "passes/device_buffers.hpp"
@@ -34,6 +37,7 @@ struct CollisionConfig {
     CollisionSettings settings;
     /// First size of one list; 0 = settings.initialCapacity. Lets a test overflow one list at a time.
     std::uint32_t boxPairCapacity = 0, candidateCapacity = 0, intersectionCapacity = 0;
+    std::uint32_t vertexFaceCapacity = 0, edgeEdgeCapacity = 0;
     /// Bytes one list may grow to; 0 = the device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE. A list
     /// that must grow beyond it makes detect() throw instead of dropping pairs. Tests lower it.
     std::uint64_t listByteLimit = 0;
@@ -57,6 +61,12 @@ struct CollisionCounts {
     bool bvhRebuilt = false;
     std::uint32_t bvhRounds = 0;
     std::uint32_t bvhNodeVisits = 0;
+    /// Feature pairs the Representative-Triangle expansion produced: (vertex, face) and (edge, edge).
+    std::uint32_t vertexFacePairs = 0, edgeEdgePairs = 0;
+    std::uint32_t vertexFaceGrowths = 0, edgeEdgeGrowths = 0;
+    /// What a face-pair expansion without ownership would test: 6 vertex-face and 9 edge-edge
+    /// pairs per candidate.
+    std::uint64_t vertexFacePairsWithoutOwnership = 0, edgeEdgePairsWithoutOwnership = 0;
 };
 
 /// The per-face and per-object tables of the collision kernels and the contact response.
@@ -77,7 +87,7 @@ class CollisionDetection {
     CollisionDetection(const CollisionDetection&) = delete; // the chain's stages point into it
     CollisionDetection& operator=(const CollisionDetection&) = delete;
 
-    /// The passes of its stages in dispatch order: the broad phase's, then TriTri.
+    /// The passes of its stages in dispatch order: the broad phase's, TriTri, FeaturePairs.
     [[nodiscard]] std::vector<PassId> passes() const { return m_chain.passes(); }
     [[nodiscard]] std::vector<std::string> passNames() const;
 
@@ -92,6 +102,8 @@ class CollisionDetection {
     [[nodiscard]] const gl::Buffer& candidates() const { return m_lists->storage(GLC_LIST_CANDIDATES); }
     /// uvec2 face pairs (lower, higher); the first lastCounts().intersections are valid.
     [[nodiscard]] const gl::Buffer& intersections() const { return m_lists->storage(GLC_LIST_INTERSECTIONS); }
+    /// Every list and the counters: the contact response dispatches over the feature-pair lists.
+    [[nodiscard]] const AppendLists& lists() const { return *m_lists; }
     [[nodiscard]] const CollisionTables& tables() const { return m_tables; }
     [[nodiscard]] const gl::Buffer& faceInfo() const { return m_tables.faceInfo; }
     [[nodiscard]] const gl::Buffer& objects() const { return m_tables.objects; }
@@ -106,6 +118,9 @@ class CollisionDetection {
     /// Read-backs for tests and tools, sorted.
     [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> readCandidates() const;
     [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> readIntersections() const;
+    /// (node, face) pairs and (3*face+edge, 3*face+edge) pairs of the expansion.
+    [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> readVertexFacePairs() const;
+    [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> readEdgeEdgePairs() const;
 
     /// Bytes of the broad phase's own buffers (its tree, sort buffers, traversal state; the
     /// lists aside).
@@ -122,6 +137,7 @@ class CollisionDetection {
     std::unique_ptr<AppendLists> m_lists;
     std::unique_ptr<BroadPhase> m_broadPhase;
     NarrowPhase m_narrowPhase;
+    FeaturePairs m_featurePairs;
     StageChain m_chain;
     CollisionCounts m_counts;
 };

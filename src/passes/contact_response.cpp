@@ -4,11 +4,10 @@
 
 #include <glcollide/error.hpp>
 
-#include <epoxy/gl.h>
-
 namespace glcollide::passes {
 
-ContactResponsePass::ContactResponsePass() : m_program("contact_response") {}
+ContactResponsePass::ContactResponsePass()
+    : m_vertexFace("contact_vertex_face"), m_edgeEdge("contact_edge_edge") {}
 
 void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& in,
                                    const ContactParams& params) const {
@@ -16,22 +15,32 @@ void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& 
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
     bindRequired(b.faces, GLC_BIND_FACES, kName, "faces");
     bindRequired(b.contactForces, GLC_BIND_CONTACT_FORCES, kName, "contactForces");
-    if (!in.candidates || !in.faceInfo || !in.objects || !in.counters)
+    if (!in.lists || !in.faceInfo || !in.objects)
         throw Error(std::string(kName) + ": collision buffers missing");
-    bindRequired(*in.candidates, GLC_BIND_FACE_PAIRS, kName, "candidates");
+    if (!in.lists->declared(GLC_LIST_VERTEX_FACE) || !in.lists->declared(GLC_LIST_EDGE_EDGE))
+        throw Error(std::string(kName) + ": the vertex-face and edge-edge lists are not declared");
     bindRequired(*in.faceInfo, GLC_BIND_FACE_INFO, kName, "faceInfo");
     bindRequired(*in.objects, GLC_BIND_OBJECTS, kName, "objects");
-    bindRequired(*in.counters, GLC_BIND_COLLISION_COUNTERS, kName, "counters");
-    if (in.candidateCount == 0) return;
-    m_program.use();
-    m_program.set("u_candidateCount", in.candidateCount);
-    m_program.set("u_thickness", static_cast<float>(params.thickness));
-    m_program.set("u_stiffness", static_cast<float>(params.stiffness));
-    m_program.set("u_damping", static_cast<float>(params.damping));
-    m_program.set("u_forceCap", static_cast<float>(params.forceCap));
-    m_program.set("u_forceScale", static_cast<float>(params.forceScale));
-    m_program.dispatch1D(in.candidateCount, GLC_WORKGROUP_SIZE);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    in.lists->bind(); // the counters, the dispatch arguments and every list
+    for (const gl::ComputeProgram* p : {&m_vertexFace, &m_edgeEdge}) {
+        p->set("u_thickness", static_cast<float>(params.thickness));
+        p->set("u_stiffness", static_cast<float>(params.stiffness));
+        p->set("u_damping", static_cast<float>(params.damping));
+        p->set("u_forceCap", static_cast<float>(params.forceCap));
+        p->set("u_forceScale", static_cast<float>(params.forceScale));
+        p->set("u_substep", static_cast<float>(params.substep));
+        p->set("u_velocityResponse", params.velocityResponse ? 1u : 0u);
+        p->set("u_relaxationTime", static_cast<float>(params.relaxationTime));
+    }
+    // Sized on the GPU from each list's count; each dispatch ends with a storage barrier. First
+    // both kernels count the approaching contacts per node (every count complete before any
+    // force reads it), then both add their forces (decision 0019).
+    for (const std::uint32_t countPass : {1u, 0u}) {
+        m_vertexFace.set("u_countPass", countPass);
+        m_edgeEdge.set("u_countPass", countPass);
+        in.lists->dispatchOver(m_vertexFace, GLC_LIST_VERTEX_FACE, GLC_WORKGROUP_SIZE);
+        in.lists->dispatchOver(m_edgeEdge, GLC_LIST_EDGE_EDGE, GLC_WORKGROUP_SIZE);
+    }
 }
 
 } // namespace glcollide::passes

@@ -1,10 +1,13 @@
 #pragma once
-// ContactResponse: penalty forces for the broad phase's candidate face pairs
-// (shaders/passes/contact_response.comp, docs/collisions.md), summed per node in fixed point
-// into DeviceBuffers::contactForces, which NodeUpdate adds and clears.
+// ContactResponse: penalty forces for the feature pairs of the Representative-Triangle expansion
+// (FeaturePairs: GLC_LIST_VERTEX_FACE and GLC_LIST_EDGE_EDGE; docs/collisions.md), summed per node
+// in fixed point into DeviceBuffers::contactForces, which NodeUpdate adds and clears. Two kernels,
+// each dispatched indirectly over its list (shaders/passes/contact_vertex_face.comp,
+// contact_edge_edge.comp): no count is read back to the host.
 
 #include "core/contact_params.hpp"
 #include "gl/program.hpp"
+#include "passes/collision/append_lists.hpp"
 #include "passes/device_buffers.hpp"
 #include "passes/pass_id.hpp"
 
@@ -12,11 +15,11 @@ namespace glcollide::passes {
 
 /// The collision buffers the response reads (owned by the collision detection).
 struct ContactInputs {
-    const gl::Buffer* candidates = nullptr; ///< uvec2 face pairs
-    const gl::Buffer* faceInfo = nullptr;   ///< GpuFaceInfo per face
-    const gl::Buffer* objects = nullptr;    ///< GpuObject per object
-    const gl::Buffer* counters = nullptr;   ///< GpuCollisionCounters (contactCount is added to)
-    std::uint32_t candidateCount = 0;
+    /// The vertex-face and edge-edge lists (declared), their counts and the counter block, whose
+    /// contactCount the response adds to.
+    const AppendLists* lists = nullptr;
+    const gl::Buffer* faceInfo = nullptr; ///< GpuFaceInfo per face
+    const gl::Buffer* objects = nullptr;  ///< GpuObject per object
 };
 
 class ContactResponsePass {
@@ -28,7 +31,7 @@ class ContactResponsePass {
                   const ContactParams& params) const;
 
   private:
-    gl::ComputeProgram m_program;
+    gl::ComputeProgram m_vertexFace, m_edgeEdge;
 };
 
 } // namespace glcollide::passes

@@ -433,6 +433,8 @@ Body parseObject(const Ctx& c, const json& j, const Ptr& p, const EffectSet& eff
     return body;
 }
 
+constexpr const char* kBroadPhaseNames = "\"octree\", \"masked\", \"all_pairs\" or \"bvh\"";
+
 BvhSettings parseBvh(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p, {"rebuild", "visits_per_round"});
     BvhSettings s;
@@ -462,22 +464,14 @@ BvhSettings parseBvh(const Ctx& c, const json& j, const Ptr& p) {
 
 CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p,
-                {"broad_phase", "octree_depth", "precision", "thickness", "stiffness", "damping",
+                {"broad_phase", "octree_depth", "precision", "response", "thickness", "stiffness", "damping",
                  "initial_capacity", "bvh"});
     CollisionSettings s;
     if (const json* v = find(j, "broad_phase")) {
-        const std::string name = string(c, *v, p / "broad_phase");
-        if (name == "octree")
-            s.broadPhase = BroadPhase::Octree;
-        else if (name == "masked")
-            s.broadPhase = BroadPhase::Masked;
-        else if (name == "all_pairs")
-            s.broadPhase = BroadPhase::AllPairs;
-        else if (name == "bvh")
-            s.broadPhase = BroadPhase::Bvh;
-        else
-            c.fail(p / "broad_phase", "unknown broad phase " + shown(*v) +
-                                          "; expected \"octree\", \"masked\", \"all_pairs\" or \"bvh\"");
+        const std::optional<BroadPhase> kind = broadPhaseFromName(string(c, *v, p / "broad_phase"));
+        if (!kind)
+            c.fail(p / "broad_phase", "unknown broad phase " + shown(*v) + "; expected " + kBroadPhaseNames);
+        s.broadPhase = *kind;
     }
     if (const json* v = find(j, "bvh")) s.bvh = parseBvh(c, *v, p / "bvh");
     if (const json* v = find(j, "octree_depth")) {
@@ -494,6 +488,15 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
             s.precision = TriTriPrecision::Robust;
         else
             c.fail(p / "precision", "unknown precision " + shown(*v) + "; expected \"fast\" or \"robust\"");
+    }
+    if (const json* v = find(j, "response")) {
+        const std::string name = string(c, *v, p / "response");
+        if (name == "penalty")
+            s.response = ContactResponse::Penalty;
+        else if (name == "bridson")
+            s.response = ContactResponse::Bridson;
+        else
+            c.fail(p / "response", "unknown response " + shown(*v) + "; expected \"penalty\" or \"bridson\"");
     }
     if (const json* v = find(j, "thickness")) {
         s.thickness = number(c, *v, p / "thickness", "a positive number of metres");
@@ -695,6 +698,37 @@ Scene loadScene(const std::filesystem::path& path) {
 
 Scene defaultScene() {
     return parseScene(kDefaultScene, {}, "default scene");
+}
+
+const char* broadPhaseName(BroadPhase kind) {
+    switch (kind) {
+    case BroadPhase::Octree:
+        return "octree";
+    case BroadPhase::Masked:
+        return "masked";
+    case BroadPhase::AllPairs:
+        return "all_pairs";
+    case BroadPhase::Bvh:
+        return "bvh";
+    }
+    return "?";
+}
+
+std::optional<BroadPhase> broadPhaseFromName(std::string_view name) {
+    for (BroadPhase kind : {BroadPhase::Octree, BroadPhase::Masked, BroadPhase::AllPairs, BroadPhase::Bvh})
+        if (name == broadPhaseName(kind)) return kind;
+    return std::nullopt;
+}
+
+void overrideBroadPhase(Scene& scene, std::string_view name) {
+    const std::optional<BroadPhase> kind = broadPhaseFromName(name);
+    if (!kind)
+        throw Error("--broad-phase: unknown broad phase \"" + std::string(name) + "\"; expected " +
+                    kBroadPhaseNames);
+    if (!scene.effects.has(Effect::Collisions) && !scene.effects.has(Effect::SelfCollisions))
+        throw Error("--broad-phase: scene '" + scene.name +
+                    "' lists neither 'collisions' nor 'self_collisions'");
+    scene.collision.broadPhase = *kind;
 }
 
 } // namespace glcollide

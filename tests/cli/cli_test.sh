@@ -27,6 +27,25 @@ check "tet scene exits 0" test $? -eq 0
 check "PLY header" grep -q "^element face" "$work/ply/frame_000002.ply"
 check "ground scene pipeline" grep -q "pipeline (per substep): NodeForce SpringUpdate NodeUpdate" "$work/out2.txt"
 
+# --broad-phase: two colliding spheres under the octree and the BVH find the same candidate and
+# intersecting pairs in every frame (both exact: the same float face boxes).
+for bp in octree bvh; do
+  "$bin" run "$src/tests/data/scene/colliding_spheres.json" --frames 4 --broad-phase $bp --stats "$work/bp_$bp.json" --quiet >"$work/bp_$bp.txt" 2>&1
+  check "--broad-phase $bp exits 0" test $? -eq 0
+  grep -o '"\(candidate\|max_intersecting\)_pairs": *[0-9]*' "$work/bp_$bp.json" >"$work/bp_$bp.counts"
+done
+check "bvh pipeline printed" grep -q "pipeline (per substep): .*BvhBuild BvhRefit BvhTraverse TriTri" "$work/bp_bvh.txt"
+check "bvh stats has node visits" grep -q '"bvh_node_visits"' "$work/bp_bvh.json"
+check "octree and bvh counts equal" cmp -s "$work/bp_octree.counts" "$work/bp_bvh.counts"
+check "counts for 4 frames" test "$(wc -l <"$work/bp_bvh.counts")" -eq 8
+check "the spheres have candidates" grep -q '"candidate_pairs": *[1-9]' "$work/bp_bvh.counts"
+"$bin" run --frames 1 --broad-phase bvh --quiet >"$work/bp_none.txt" 2>&1
+check "--broad-phase without collisions exits 1" test $? -eq 1
+check "--broad-phase without collisions says why" grep -q "lists neither 'collisions' nor 'self_collisions'" "$work/bp_none.txt"
+"$bin" run "$src/scenes/two_tet_bodies.json" --frames 1 --broad-phase kd --quiet >"$work/bp_bad.txt" 2>&1
+check "unknown --broad-phase exits 1" test $? -eq 1
+check "unknown --broad-phase names the choices" grep -q 'unknown broad phase "kd"; expected "octree", "masked", "all_pairs" or "bvh"' "$work/bp_bad.txt"
+
 # Progress goes to stderr when not quiet.
 "$bin" run --frames 3 >/dev/null 2>"$work/progress.txt"
 check "progress on stderr" grep -q "100%" "$work/progress.txt"

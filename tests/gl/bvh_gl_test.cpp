@@ -97,7 +97,8 @@ void finish(Scene& s) {
     m.inverseMasses.assign(m.positions.size(), 1.0);
     s.faceObject.assign(m.faceCount(), 0);
     for (std::uint32_t o = 0; o < m.objects.size(); ++o)
-        for (std::uint32_t f = 0; f < m.objects[o].faceCount; ++f) s.faceObject[m.objects[o].firstFace + f] = o;
+        for (std::uint32_t f = 0; f < m.objects[o].faceCount; ++f)
+            s.faceObject[m.objects[o].firstFace + f] = o;
     if (s.current.empty())
         for (const glm::dvec3& p : m.positions) s.current.emplace_back(p);
 }
@@ -144,8 +145,10 @@ Scene foldedCloth(std::uint32_t cells, std::uint32_t layers, double spacing) {
     const auto node = [&](std::uint32_t i, std::uint32_t j) { return i * (cells + 1) + j; };
     for (std::uint32_t i = 0; i < cells; ++i)
         for (std::uint32_t j = 0; j < cells; ++j) {
-            s.model.faceIndices.insert(s.model.faceIndices.end(), {node(i, j), node(i, j + 1), node(i + 1, j + 1)});
-            s.model.faceIndices.insert(s.model.faceIndices.end(), {node(i, j), node(i + 1, j + 1), node(i + 1, j)});
+            s.model.faceIndices.insert(s.model.faceIndices.end(),
+                                       {node(i, j), node(i, j + 1), node(i + 1, j + 1)});
+            s.model.faceIndices.insert(s.model.faceIndices.end(),
+                                       {node(i, j), node(i + 1, j + 1), node(i + 1, j)});
         }
     model::ObjectRange r;
     r.nodeCount = static_cast<std::uint32_t>(s.model.positions.size());
@@ -172,7 +175,8 @@ void setPositions(passes::DeviceBuffers& b, const std::vector<glm::vec3>& curren
     b.positions.upload(0, p.size() * sizeof(glm::vec4), p.data());
 }
 
-passes::CollisionConfig bvhConfig(const cpu::PairRules& rules, BvhRebuild rebuild = BvhRebuild::EverySubstep) {
+passes::CollisionConfig bvhConfig(const cpu::PairRules& rules,
+                                  BvhRebuild rebuild = BvhRebuild::EverySubstep) {
     passes::CollisionConfig c;
     c.betweenObjects = rules.betweenObjects;
     c.selfCollisions = rules.selfCollisions;
@@ -227,7 +231,8 @@ TEST(BvhGl, TreeKeysAndBoxesMatchTheTwin) {
         EXPECT_TRUE(std::is_sorted(t.keys.begin(), t.keys.end())) << what;
         std::vector<std::uint32_t> sortedFaces = t.faces;
         std::sort(sortedFaces.begin(), sortedFaces.end());
-        for (std::uint32_t f = 0; f < faces; ++f) ASSERT_EQ(sortedFaces[f], f) << what << ": not a permutation";
+        for (std::uint32_t f = 0; f < faces; ++f)
+            ASSERT_EQ(sortedFaces[f], f) << what << ": not a permutation";
         // The hierarchy is integer arithmetic on the keys: exactly the twin's.
         EXPECT_EQ(t.links, cpu::twinHierarchy(t.keys, t.faces)) << what;
         expectBoxesEqualTwinRefit(t, s, s.current, what);
@@ -246,10 +251,12 @@ TEST(BvhGl, TreeKeysAndBoxesMatchTheTwin) {
         };
         std::size_t exact = 0;
         for (std::uint32_t i = 0; i < faces; ++i) {
-            const std::uint32_t want = cpu::mortonCode(cpu::faceCentroid(s.model.faceIndices, s.current, t.faces[i]), lo, hi);
+            const std::uint32_t want =
+                cpu::mortonCode(cpu::faceCentroid(s.model.faceIndices, s.current, t.faces[i]), lo, hi);
             exact += want == t.keys[i] ? 1 : 0;
             for (int axis = 0; axis < 3; ++axis)
-                EXPECT_LE(std::abs(cell(want, axis) - cell(t.keys[i], axis)), 1) << what << " face " << t.faces[i];
+                EXPECT_LE(std::abs(cell(want, axis) - cell(t.keys[i], axis)), 1)
+                    << what << " face " << t.faces[i];
         }
         RecordProperty("morton_exact_" + std::to_string(faces), static_cast<int>(exact));
     }
@@ -379,7 +386,8 @@ TEST(BvhGl, FoldedClothCandidatesEqualTheBruteForceAndTheOctree) {
 TEST(BvhGl, MemoryPerFaceStaysWithinTheBudget) {
     const Scene s = foldedCloth(100, 4, 0.6 * kThickness);
     passes::CollisionDetection bvh(bvhConfig({false, true}), s.model);
-    const double perFace = static_cast<double>(bvh.broadPhaseBytes()) / static_cast<double>(s.model.faceCount());
+    const double perFace =
+        static_cast<double>(bvh.broadPhaseBytes()) / static_cast<double>(s.model.faceCount());
     RecordProperty("bytes_per_face", std::to_string(perFace));
     EXPECT_LE(perFace, 192.0); // the budget: tree, sort buffers and traversal state
 }

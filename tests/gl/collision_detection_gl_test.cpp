@@ -9,6 +9,8 @@
 
 #include "core/gpu_layout.hpp"
 #include "cpu/collision_twin.hpp"
+#include "cpu/contact_twin.hpp"
+#include "model/features.hpp"
 #include "model/flat_model.hpp"
 #include "model/octree_layout.hpp"
 #include "passes/collision_detection.hpp"
@@ -160,6 +162,15 @@ TEST_P(CollisionDetectionGl, CandidatesAndIntersectionsMatchTheTwin) {
     EXPECT_EQ(detection.readCandidates(), e.candidates);
     EXPECT_EQ(counts.intersections, e.intersections.size());
     EXPECT_EQ(detection.readIntersections(), e.intersections) << "robust TriTri vs the exact oracle";
+    // The Representative-Triangle expansion of those candidates equals the twin's.
+    const cpu::FeaturePairList features =
+        cpu::featurePairs(soup.model.faceIndices, detection.layout().faceOwned, e.candidates);
+    EXPECT_EQ(counts.vertexFacePairs, features.vertexFace.size());
+    EXPECT_EQ(counts.edgeEdgePairs, features.edgeEdge.size());
+    EXPECT_EQ(detection.readVertexFacePairs(), features.vertexFace);
+    EXPECT_EQ(detection.readEdgeEdgePairs(), features.edgeEdge);
+    EXPECT_EQ(counts.vertexFacePairsWithoutOwnership, 6 * e.candidates.size());
+    EXPECT_EQ(counts.edgeEdgePairsWithoutOwnership, 9 * e.candidates.size());
     EXPECT_EQ(counts.reruns, 0u); // 2^16 entries hold every list of these soups (growth: CapacityOne...)
     if (faces == 1009) {
         // The soup is dense enough that every rule finds work.
@@ -263,6 +274,10 @@ TEST(CollisionDetectionGlCases, CapacityOneGrowsAndFindsTheSameSets) {
         EXPECT_EQ(a.intersections, b.intersections) << modeName(mode);
         EXPECT_EQ(large.readCandidates(), small.readCandidates()) << modeName(mode);
         EXPECT_EQ(large.readIntersections(), small.readIntersections()) << modeName(mode);
+        EXPECT_GT(b.vertexFaceGrowths, 0u) << modeName(mode);
+        EXPECT_GT(b.edgeEdgeGrowths, 0u) << modeName(mode);
+        EXPECT_EQ(large.readVertexFacePairs(), small.readVertexFacePairs()) << modeName(mode);
+        EXPECT_EQ(large.readEdgeEdgePairs(), small.readEdgeEdgePairs()) << modeName(mode);
         // Once grown, the lists hold everything: the next call needs no rerun.
         EXPECT_EQ(small.detect(buffers, nullptr).reruns, 0u) << modeName(mode);
         EXPECT_EQ(small.readCandidates(), large.readCandidates()) << modeName(mode);
@@ -277,23 +292,32 @@ TEST(CollisionDetectionGlCases, EachListOverflowingAloneGrowsAndFindsTheSameSets
     const cpu::PairRules rules{true, true};
     const Expected& want = expected(soup, 1009, rules);
     ASSERT_GT(want.intersections.size(), 1u); // every list has more than one entry to lose
-    enum class List { BoxPairs, Candidates, Intersections };
+    const cpu::FeaturePairList wantFeatures = cpu::featurePairs(
+        soup.model.faceIndices, model::ownedFeatures(soup.model.faceIndices), want.candidates);
+    enum class List { BoxPairs, Candidates, Intersections, VertexFace, EdgeEdge };
     for (const Mode& mode : kModes) {
-        for (const List list : {List::BoxPairs, List::Candidates, List::Intersections}) {
+        for (const List list :
+             {List::BoxPairs, List::Candidates, List::Intersections, List::VertexFace, List::EdgeEdge}) {
             if (list == List::BoxPairs && mode.broadPhase != BroadPhase::Octree) continue; // no such list
             passes::CollisionConfig config = configFor(mode, rules, TriTriPrecision::Robust, 1u << 20);
             config.boxPairCapacity = list == List::BoxPairs ? 1u : 0u;
             config.candidateCapacity = list == List::Candidates ? 1u : 0u;
             config.intersectionCapacity = list == List::Intersections ? 1u : 0u;
+            config.vertexFaceCapacity = list == List::VertexFace ? 1u : 0u;
+            config.edgeEdgeCapacity = list == List::EdgeEdge ? 1u : 0u;
             passes::CollisionDetection detection(config, soup.model);
             const passes::CollisionCounts counts = detection.detect(buffers, nullptr);
             const std::string what = modeName(mode) + " list " + std::to_string(static_cast<int>(list));
             EXPECT_EQ(counts.boxPairGrowths, list == List::BoxPairs ? 1u : 0u) << what;
             EXPECT_EQ(counts.candidateGrowths, list == List::Candidates ? 1u : 0u) << what;
             EXPECT_EQ(counts.intersectionGrowths, list == List::Intersections ? 1u : 0u) << what;
+            EXPECT_EQ(counts.vertexFaceGrowths, list == List::VertexFace ? 1u : 0u) << what;
+            EXPECT_EQ(counts.edgeEdgeGrowths, list == List::EdgeEdge ? 1u : 0u) << what;
             EXPECT_EQ(counts.reruns, 1u) << what;
             EXPECT_EQ(detection.readCandidates(), want.candidates) << what;
             EXPECT_EQ(detection.readIntersections(), want.intersections) << what;
+            EXPECT_EQ(detection.readVertexFacePairs(), wantFeatures.vertexFace) << what;
+            EXPECT_EQ(detection.readEdgeEdgePairs(), wantFeatures.edgeEdge) << what;
         }
     }
 }
@@ -374,10 +398,13 @@ TEST(CollisionDetectionGlCases, PassNamesAndAllocations) {
         configFor({BroadPhase::Masked, 2}, {true, false}, TriTriPrecision::Robust), soup.model);
     passes::CollisionDetection all(
         configFor({BroadPhase::AllPairs, 2}, {true, false}, TriTriPrecision::Robust), soup.model);
-    EXPECT_EQ(octree.passNames(), (std::vector<std::string>{"BBUpdate", "BBCollision", "TriTri"}));
-    EXPECT_EQ(masked.passNames(), (std::vector<std::string>{"BBUpdate", "BBCollision", "TriTri"}));
-    EXPECT_EQ(all.passNames(), (std::vector<std::string>{
-                                   "BBCollision", "TriTri"})); // its face-pair stage is timed as BBCollision
+    EXPECT_EQ(octree.passNames(),
+              (std::vector<std::string>{"BBUpdate", "BBCollision", "TriTri", "FeaturePairs"}));
+    EXPECT_EQ(masked.passNames(),
+              (std::vector<std::string>{"BBUpdate", "BBCollision", "TriTri", "FeaturePairs"}));
+    EXPECT_EQ(all.passNames(),
+              (std::vector<std::string>{"BBCollision", "TriTri",
+                                        "FeaturePairs"})); // its face-pair stage is timed as BBCollision
     auto has = [](const passes::CollisionDetection& d, const std::string& label) {
         const auto labels = d.allocatedLabels();
         return std::find(labels.begin(), labels.end(), label) != labels.end();
@@ -385,7 +412,14 @@ TEST(CollisionDetectionGlCases, PassNamesAndAllocations) {
     EXPECT_TRUE(has(octree, "boxPairs") && has(octree, "boxes") && !has(octree, "boxMask"));
     EXPECT_TRUE(has(masked, "boxMask") && has(masked, "boxes") && !has(masked, "boxPairs"));
     EXPECT_TRUE(!has(all, "boxes") && !has(all, "boxMask") && has(all, "candidates") && has(all, "faceInfo"));
+    EXPECT_TRUE(has(all, "vertexFacePairs") && has(all, "edgeEdgePairs"));
     EXPECT_GT(octree.allocatedBytes(), all.allocatedBytes());
+    passes::CollisionDetection bvh(configFor({BroadPhase::Bvh, 2}, {true, false}, TriTriPrecision::Robust),
+                                   soup.model);
+    EXPECT_EQ(bvh.passNames(),
+              (std::vector<std::string>{"BvhBuild", "BvhRefit", "BvhTraverse", "TriTri", "FeaturePairs"}));
+    EXPECT_TRUE(has(bvh, "bvhBoxes") && has(bvh, "bvhLinks") && has(bvh, "sortKeys") && !has(bvh, "boxes") &&
+                !has(bvh, "boxPairs"));
 }
 
 } // namespace

@@ -1,17 +1,26 @@
-// ContactResponse against its double-precision twin (src/cpu/contact_twin.cpp) and against
+// FeaturePairs (the Representative-Triangle expansion) and ContactResponse against their twins
+// (src/cpu/contact_twin.cpp: the expansion exactly, the forces in double precision) and against
 // hand-computed forces. The GPU gets float positions; the twin the same floats widened to double.
+// The candidates are given, as a broad phase would leave them in their list; the GPU expands them
+// (a stage chain of the one FeaturePairs stage) and the response reads the two feature-pair lists.
 
 #include "core/gpu_layout.hpp"
 #include "cpu/contact_twin.hpp"
+#include "model/features.hpp"
+#include "passes/collision/feature_pairs.hpp"
 #include "passes/contact_response.hpp"
 
 #include <gtest/gtest.h>
+
+#include <epoxy/gl.h>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <random>
 
@@ -41,10 +50,29 @@ template <typename T> gl::Buffer upload(const char* label, const std::vector<T>&
 
 struct GpuResult {
     std::vector<glm::dvec3> forces;
+    std::vector<glm::ivec4> fixedPoint; // the sums as the GPU left them
     std::uint32_t contacts = 0;
+    cpu::FeaturePairList pairs; // the expansion's lists, sorted
+    std::uint32_t reruns = 0;   // stage-chain reruns (a feature-pair list overflowed)
 };
 
-GpuResult runGpu(const Soup& s, const ContactParams& params) {
+// Writes `bytes` at `offset` of a buffer the test only holds by const reference (the list storage
+// and the counters belong to AppendLists).
+void poke(const gl::Buffer& buffer, std::size_t offset, std::size_t bytes, const void* data) {
+    glBindBuffer(GL_COPY_WRITE_BUFFER, buffer.name());
+    glBufferSubData(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
+                    data);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+}
+
+std::vector<std::array<std::uint32_t, 2>> readList(const passes::AppendLists& lists, std::uint32_t list) {
+    std::vector<std::array<std::uint32_t, 2>> pairs(lists.storedCount(list));
+    lists.storage(list).download(0, pairs.size() * sizeof pairs[0], pairs.data());
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+}
+
+GpuResult runGpu(const Soup& s, const ContactParams& params, std::uint32_t listCapacity = 1u << 16) {
     passes::DeviceBuffers b;
     b.nodeCount = static_cast<std::uint32_t>(s.positions.size());
     b.faceCount = static_cast<std::uint32_t>(s.faces.size() / 3);
@@ -58,23 +86,45 @@ GpuResult runGpu(const Soup& s, const ContactParams& params) {
     for (std::uint8_t closed : s.objectClosed) objects.push_back({0, 0, 0, 0, 0, 0, 0, closed});
     std::vector<glm::uvec2> pairs;
     for (const auto& [a, c] : s.candidates) pairs.emplace_back(a, c);
-    if (pairs.empty()) pairs.emplace_back(0u, 0u); // a zero-size buffer cannot be bound
-    const gl::Buffer candidates = upload("candidates", pairs), faceInfo = upload("faceInfo", info),
-                     objectBuffer = upload("objects", objects),
-                     counters = upload("counters", std::vector<gpu::GpuCollisionCounters>(1));
-    passes::ContactResponsePass pass;
-    pass.dispatch(
-        b,
-        {&candidates, &faceInfo, &objectBuffer, &counters, static_cast<std::uint32_t>(s.candidates.size())},
-        params);
-    std::vector<glm::ivec4> raw(s.positions.size());
-    b.contactForces.download(0, raw.size() * sizeof(glm::ivec4), raw.data());
-    gpu::GpuCollisionCounters c{};
-    counters.download(0, sizeof c, &c);
+    const gl::Buffer faceInfo = upload("faceInfo", info), objectBuffer = upload("objects", objects);
+    // The candidate list as a broad phase leaves it: its entries and its count.
+    passes::AppendLists lists(0);
+    const auto count = static_cast<std::uint32_t>(pairs.size());
+    lists.declare(GLC_LIST_CANDIDATES,
+                  {"candidates", "pairs", sizeof(glm::uvec2), GLC_BIND_FACE_PAIRS, std::max(count, 1u)});
+    passes::StageChain chain;
+    passes::FeaturePairs expansion;
+    expansion.addStages(chain, lists, listCapacity, listCapacity);
+    if (count != 0)
+        poke(lists.storage(GLC_LIST_CANDIDATES), 0, pairs.size() * sizeof(glm::uvec2), pairs.data());
+    poke(lists.counters(),
+         offsetof(gpu::GpuCollisionCounters, lists) + GLC_LIST_CANDIDATES * sizeof(gpu::GpuListCounter) +
+             offsetof(gpu::GpuListCounter, count),
+         sizeof count, &count);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    lists.readCounters(); // the host's copy of the candidate count, kept by the chain's resets
+    b.faces.bindStorage(GLC_BIND_FACES);
+    faceInfo.bindStorage(GLC_BIND_FACE_INFO);
     GpuResult r;
-    for (const glm::ivec4& q : raw) r.forces.push_back(glm::dvec3(q.x, q.y, q.z) / params.forceScale);
+    EXPECT_EQ(lists.count(GLC_LIST_CANDIDATES), count);
+    r.reruns = chain.run(lists, nullptr);
+    passes::ContactResponsePass pass;
+    pass.dispatch(b, {&lists, &faceInfo, &objectBuffer}, params);
+    r.fixedPoint.resize(s.positions.size());
+    b.contactForces.download(0, r.fixedPoint.size() * sizeof(glm::ivec4), r.fixedPoint.data());
+    gpu::GpuCollisionCounters c{};
+    lists.counters().download(0, sizeof c, &c);
+    for (const glm::ivec4& q : r.fixedPoint)
+        r.forces.push_back(glm::dvec3(q.x, q.y, q.z) / params.forceScale);
     r.contacts = c.contactCount;
+    r.pairs = {readList(lists, GLC_LIST_VERTEX_FACE), readList(lists, GLC_LIST_EDGE_EDGE)};
+    EXPECT_EQ(c.lists[GLC_LIST_VERTEX_FACE].count, r.pairs.vertexFace.size());
+    EXPECT_EQ(c.lists[GLC_LIST_EDGE_EDGE].count, r.pairs.edgeEdge.size());
     return r;
+}
+
+cpu::FeaturePairList cpuPairs(const Soup& s) {
+    return cpu::featurePairs(s.faces, s.owned, s.candidates);
 }
 
 cpu::ContactResult runCpu(const Soup& s, const ContactParams& params) {
@@ -130,12 +180,67 @@ Soup randomSoup(std::uint32_t faceCount, std::uint32_t seed) {
     return s;
 }
 
+// Two objects, each a random-walk triangle strip (face k uses nodes k, k+1, k+2 of its object) in
+// a box small enough for many contacts: neighbouring faces share vertices and edges, so ownership
+// (model::ownedFeatures, as the engine assigns it) leaves most faces only some of their features.
+Soup stripSoup(std::uint32_t faceCount, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> start(0.0f, 0.15f), step(-0.04f, 0.04f), speed(-0.2f, 0.2f);
+    Soup s;
+    for (std::uint32_t o = 0; o < 2; ++o) {
+        const auto first = static_cast<std::uint32_t>(s.positions.size());
+        const std::uint32_t faces = faceCount / 2 + (o == 1 ? faceCount % 2 : 0u);
+        glm::vec3 p(start(rng), start(rng), start(rng));
+        for (std::uint32_t k = 0; k < faces + 2; ++k) {
+            p += glm::vec3(step(rng), step(rng), step(rng));
+            // Reflected back into the box (not clamped: no faces in the box's planes).
+            for (int c = 0; c < 3; ++c) p[c] = p[c] < 0.0f ? -p[c] : (p[c] > 0.15f ? 0.3f - p[c] : p[c]);
+            s.positions.emplace_back(p);
+            s.velocities.emplace_back(glm::vec3(speed(rng), speed(rng), speed(rng)));
+        }
+        for (std::uint32_t k = 0; k < faces; ++k) {
+            s.faces.insert(s.faces.end(), {first + k, first + k + 1, first + k + 2});
+            s.faceObject.push_back(o);
+        }
+    }
+    s.owned = model::ownedFeatures(s.faces);
+    s.objectClosed = {0, 0};
+    const auto faces = static_cast<std::uint32_t>(s.owned.size());
+    for (std::uint32_t a = 0; a < faces; ++a)
+        for (std::uint32_t b = a + 1; b < faces; ++b)
+            if (s.faceObject[a] != s.faceObject[b]) s.candidates.push_back({a, b});
+    return s;
+}
+
+// Forces against the twin: per node, each contribution within the float evaluation bound below.
+void expectForcesMatchTheTwin(const Soup& soup, const ContactParams& params, const GpuResult& gpu,
+                              const cpu::ContactResult& cpu, const std::string& what) {
+    for (std::size_t n = 0; n < soup.positions.size(); ++n) {
+        // Per contribution: float evaluation of closest points, normals and the force, a few
+        // tens of u (u = 2^-24) of the force cap, times an allowance of 8 for the
+        // conditioning of the closest-point parameters: 2^-16 of the cap (measured on
+        // llvmpipe: 2.4e-7 of the cap, 64x below), plus the fixed-point rounding of
+        // 0.5/scale per component. A rule difference or a 0.1 % stiffness error is far above.
+        const double tolerance =
+            std::max(1u, cpu.contributions[n]) * (params.forceCap / 65536.0 + 0.5 / params.forceScale);
+        for (int k = 0; k < 3; ++k)
+            ASSERT_NEAR(gpu.forces[n][k], cpu.forces[n][k], tolerance) << what << " node " << n;
+    }
+}
+
 TEST(ContactResponseGl, MatchesTheTwinOnRandomTriangleSoups) {
     for (std::uint32_t faces : {2u, 40u, 129u}) {
         const Soup soup = randomSoup(faces, 7u + faces);
         const ContactParams params = testParams(0.03);
         const GpuResult gpu = runGpu(soup, params);
         const cpu::ContactResult cpu = runCpu(soup, params);
+        // Isolated triangles own every feature: 6 vertex-face and 9 edge-edge pairs per candidate.
+        const cpu::FeaturePairList want = cpuPairs(soup);
+        EXPECT_EQ(want.vertexFace.size(), 6 * soup.candidates.size());
+        EXPECT_EQ(want.edgeEdge.size(), 9 * soup.candidates.size());
+        EXPECT_EQ(gpu.pairs.vertexFace, want.vertexFace) << "faces " << faces;
+        EXPECT_EQ(gpu.pairs.edgeEdge, want.edgeEdge) << "faces " << faces;
+        EXPECT_EQ(gpu.reruns, 0u);
         if (faces >= 40) {
             EXPECT_GT(cpu.contacts, faces) << "the soup should be dense in contacts";
         }
@@ -151,24 +256,59 @@ TEST(ContactResponseGl, MatchesTheTwinOnRandomTriangleSoups) {
                                             (std::max(1u, cpu.contributions[n]) * params.forceCap));
         std::printf("faces %u: contacts gpu %u cpu %u, worst error per contribution %.3g of the cap\n", faces,
                     gpu.contacts, cpu.contacts, worst);
-        for (std::size_t n = 0; n < soup.positions.size(); ++n) {
-            // Per contribution: float evaluation of closest points, normals and the force, a few
-            // tens of u (u = 2^-24) of the force cap, times an allowance of 8 for the
-            // conditioning of the closest-point parameters: 2^-16 of the cap (measured on
-            // llvmpipe: 2.4e-7 of the cap, 64x below), plus the fixed-point rounding of
-            // 0.5/scale per component. A rule difference or a 0.1 % stiffness error is far above.
-            const double tolerance =
-                std::max(1u, cpu.contributions[n]) * (params.forceCap / 65536.0 + 0.5 / params.forceScale);
-            for (int k = 0; k < 3; ++k)
-                ASSERT_NEAR(gpu.forces[n][k], cpu.forces[n][k], tolerance)
-                    << "faces " << faces << " node " << n;
-            total += gpu.forces[n];
-        }
+        expectForcesMatchTheTwin(soup, params, gpu, cpu, "faces " + std::to_string(faces));
+        for (std::size_t n = 0; n < soup.positions.size(); ++n) total += gpu.forces[n];
         // Momentum: every contact applies opposite forces; only the fixed-point rounding
         // (0.5/scale per add, 4 adds per contact per component) may remain.
         const double roundoff = 4.0 * 0.5 / params.forceScale * std::max(1u, gpu.contacts);
         for (int k = 0; k < 3; ++k) EXPECT_NEAR(total[k], 0.0, roundoff);
     }
+}
+
+// Strips share vertices and edges: the expansion emits only owned features, each feature pair
+// once (no duplicate in the sorted lists), equal to the twin's, and far fewer than 6 + 9 per
+// candidate; the forces match the twin's.
+TEST(ContactResponseGl, StripsExpandOnlyOwnedFeaturesOnceAndMatchTheTwin) {
+    const Soup soup = stripSoup(301, 11);
+    const ContactParams params = testParams(0.02);
+    const GpuResult gpu = runGpu(soup, params, 1u << 20);
+    const cpu::ContactResult cpu = runCpu(soup, params);
+    const cpu::FeaturePairList want = cpuPairs(soup);
+    EXPECT_EQ(gpu.reruns, 0u);
+    EXPECT_EQ(gpu.pairs.vertexFace, want.vertexFace);
+    EXPECT_EQ(gpu.pairs.edgeEdge, want.edgeEdge);
+    EXPECT_EQ(std::adjacent_find(want.vertexFace.begin(), want.vertexFace.end()), want.vertexFace.end());
+    EXPECT_EQ(std::adjacent_find(want.edgeEdge.begin(), want.edgeEdge.end()), want.edgeEdge.end());
+    // A strip face owns one new vertex and two new edges (the first face all three of each):
+    // about 2 vertex-face and 4 edge-edge pairs per candidate instead of 6 and 9.
+    EXPECT_LT(want.vertexFace.size(), 3 * soup.candidates.size());
+    EXPECT_LT(want.edgeEdge.size(), 5 * soup.candidates.size());
+    EXPECT_GT(cpu.contacts, 50u) << "the strips should be dense in contacts";
+    EXPECT_NEAR(static_cast<double>(gpu.contacts), static_cast<double>(cpu.contacts),
+                2.0 + 0.002 * cpu.contacts);
+    expectForcesMatchTheTwin(soup, params, gpu, cpu, "strips");
+    std::printf("strips: %zu candidates, %zu vertex-face and %zu edge-edge pairs (without ownership %zu and "
+                "%zu), contacts %u\n",
+                soup.candidates.size(), want.vertexFace.size(), want.edgeEdge.size(),
+                6 * soup.candidates.size(), 9 * soup.candidates.size(), gpu.contacts);
+}
+
+// Room for one pair in each feature-pair list: both overflow, grow and the expansion reruns
+// (once: the chain grows every overflowing list of the stage together); the lists and the
+// fixed-point sums are identical to a run with room for everything (integer sums do not depend
+// on the order the rerun appends in).
+TEST(ContactResponseGl, CapacityOneFeatureListsGrowAndGiveIdenticalForces) {
+    const Soup soup = stripSoup(301, 11);
+    const ContactParams params = testParams(0.02);
+    const GpuResult large = runGpu(soup, params, 1u << 20);
+    const GpuResult tiny = runGpu(soup, params, 1);
+    EXPECT_EQ(large.reruns, 0u);
+    EXPECT_EQ(tiny.reruns, 1u);
+    EXPECT_EQ(tiny.pairs.vertexFace, large.pairs.vertexFace);
+    EXPECT_EQ(tiny.pairs.edgeEdge, large.pairs.edgeEdge);
+    EXPECT_EQ(tiny.fixedPoint, large.fixedPoint);
+    EXPECT_EQ(tiny.contacts, large.contacts);
+    EXPECT_GT(large.contacts, 0u);
 }
 
 // One unit triangle in the plane y = 0 (normal +y, CCW seen from +y) and a second, tiny
@@ -307,6 +447,101 @@ TEST(ContactResponseGl, AVertexNearAnEdgeOfTwoFacesGetsOneContact) {
     EXPECT_NEAR(force, glm::length(cpu.forces[7]),
                 std::sqrt(3.0) * (params.forceCap / 65536.0 + 0.5 / params.forceScale));
     EXPECT_LT(force, params.stiffness * params.thickness); // one contact's force at most
+}
+
+// The response with a substep length (decision 0019): sides from the previous positions x − dt·v
+// and the inelastic part. Per-component GPU-twin tolerance: the per-contribution bound of
+// MatchesTheTwinOnRandomTriangleSoups (2^-16 of the cap for the float evaluation, whose inelastic
+// term adds a few roundings of relative 2^-24 to a force below the cap; 0.5/forceScale for the
+// fixed point) times the node's contributions.
+double twinTolerance(const ContactParams& params, std::uint32_t contributions) {
+    return std::max(1u, contributions) * (params.forceCap / 65536.0 + 0.5 / params.forceScale);
+}
+
+// A vertex 0.02 below an open face, moving down at 3 m/s: 0.03 m in a substep of 0.01 s, so at
+// its start it was 0.01 above. It went through within the substep: it is pushed back up (the
+// unsigned rule of dt = 0 pushes it on down), by the impulse that stops it plus the penalty for
+// depth h + 0.02 (limited), and the face gets the opposite force.
+TEST(ContactResponseGl, AVertexThatCameThroughAnOpenFaceIsPushedBack) {
+    const double below = static_cast<float>(0.02);
+    Soup s = probeAboveFace(-below, false);
+    for (std::size_t k = 3; k < 6; ++k) s.velocities[k] = {0.0, -3.0, 0.0};
+    ContactParams params = testParams(0.1);
+    const GpuResult still = runGpu(s, params); // dt = 0: sides from the current positions
+    EXPECT_LT(still.forces[3].y, 0.0);
+    params.substep = 0.01; // 10 dt = 0.1 s > the relaxation time 0.01 s: Bridson's 0.1 depth / dt
+    params.velocityResponse = true;
+    const GpuResult gpu = runGpu(s, params);
+    const cpu::ContactResult cpu = runCpu(s, params);
+    EXPECT_EQ(gpu.contacts, 1u);
+    EXPECT_EQ(cpu.contacts, 1u);
+    EXPECT_EQ(cpu.approaching[3], 1u);
+    const glm::dvec3 w =
+        cpu::closestOnTriangle(s.positions[3], s.positions[0], s.positions[1], s.positions[2]);
+    const double wSum = 1.0 + glm::dot(w, w); // inverse masses 1
+    // Bridson as forces (contact_force.glsl): the impulse cancelling v_n = -3 plus the penalty
+    // for depth h + 0.02, at most what gives the target speed 0.1 depth / dt; one active contact.
+    const double depth = params.thickness + below, perSpeed = 1.0 / (wSum * params.substep);
+    const double want = std::min(3.0 * perSpeed + std::min(params.stiffness * depth + params.damping * 3.0,
+                                                           0.1 * depth / params.substep * perSpeed),
+                                 params.forceCap);
+    EXPECT_NEAR(cpu.forces[3].y, want, want * 1e-12); // double arithmetic
+    for (std::size_t n = 0; n < 6; ++n)
+        for (int k = 0; k < 3; ++k)
+            EXPECT_NEAR(gpu.forces[n][k], cpu.forces[n][k], twinTolerance(params, cpu.contributions[n]))
+                << "node " << n << " component " << k;
+    EXPECT_GT(gpu.forces[3].y, 0.0);
+    EXPECT_LT(gpu.forces[0].y + gpu.forces[1].y + gpu.forces[2].y, 0.0);
+    // The same vertex at rest there came from below: it is kept below (pushed down).
+    s.velocities.assign(6, glm::dvec3(0.0));
+    EXPECT_LT(runGpu(s, params).forces[3].y, 0.0);
+}
+
+// Two edges that crossed within the substep: edge 0 of face A along x at y = 0 (A stands in the
+// plane z = 0, above it), edge 0 of face B along z at y = −0.02 moving down at 3 m/s, so 0.01
+// above A's edge at the start. B is pushed back up, A down, by the same force; both match the twin.
+TEST(ContactResponseGl, EdgesThatCrossedArePushedBackToTheirSides) {
+    Soup s;
+    s.positions = {{-1, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.1, -0.02, -1}, {0.1, -0.02, 1}, {0.1, -2, 0}};
+    for (glm::dvec3& p : s.positions) p = glm::dvec3(glm::vec3(p));
+    s.velocities = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, -3, 0}, {0, -3, 0}, {0, -3, 0}};
+    s.faces = {0, 1, 2, 3, 4, 5};
+    s.owned = {kOwnAll, kOwnAll};
+    s.faceObject = {0, 1};
+    s.objectClosed = {0, 0};
+    s.candidates = {{0, 1}};
+    ContactParams params = testParams(0.1);
+    params.substep = 0.01; // 10 dt = 0.1 s > the relaxation time 0.01 s: Bridson's 0.1 depth / dt
+    params.velocityResponse = true;
+    const GpuResult gpu = runGpu(s, params);
+    const cpu::ContactResult cpu = runCpu(s, params);
+    EXPECT_EQ(gpu.contacts, 1u);
+    EXPECT_EQ(cpu.contacts, 1u);
+    for (std::size_t n = 0; n < 6; ++n)
+        for (int k = 0; k < 3; ++k)
+            EXPECT_NEAR(gpu.forces[n][k], cpu.forces[n][k], twinTolerance(params, cpu.contributions[n]))
+                << "node " << n << " component " << k;
+    EXPECT_GT(gpu.forces[3].y + gpu.forces[4].y, 0.0);
+    EXPECT_LT(gpu.forces[0].y + gpu.forces[1].y, 0.0);
+    // The stopping impulse plus the limited penalty for depth h + 0.02 (as in the vertex test),
+    // weights (0.45, 0.55) and (0.5, 0.5). Tolerance 1e-5 relative: 0.02 and 0.1 are rounded to
+    // float in the positions (relative 2^-24 each), and the closest-point parameters follow.
+    const double wSum = 0.55 * 0.55 + 0.45 * 0.45 + 0.5 * 0.5 + 0.5 * 0.5, depth = 0.12;
+    const double perSpeed = 1.0 / (wSum * params.substep);
+    const double want = 3.0 * perSpeed + std::min(params.stiffness * depth + params.damping * 3.0,
+                                                  0.1 * depth / params.substep * perSpeed);
+    EXPECT_NEAR(cpu.forces[3].y + cpu.forces[4].y, std::min(want, params.forceCap), 1e-5 * want);
+}
+
+// No candidates: empty lists, zero-group dispatches, no force.
+TEST(ContactResponseGl, NoCandidatesNoPairsNoForce) {
+    Soup s = probeAboveFace(0.04, false);
+    s.candidates.clear();
+    const GpuResult gpu = runGpu(s, testParams(0.1));
+    EXPECT_TRUE(gpu.pairs.vertexFace.empty());
+    EXPECT_TRUE(gpu.pairs.edgeEdge.empty());
+    EXPECT_EQ(gpu.contacts, 0u);
+    for (const glm::ivec4& q : gpu.fixedPoint) EXPECT_EQ(q, glm::ivec4(0));
 }
 
 } // namespace

@@ -83,22 +83,24 @@ TEST(EngineGl, EveryShippedSceneComposesAndSteps) {
 
 TEST(EngineGl, CollisionEffectsAddTheirPassesAndBuffers) {
     // Robust precision (the default) adds the undecided list of the exact pass.
-    const Names collisionBuffers = {"faceInfo",      "objects",           "boxes",       "boxFaceOffsets",
-                                    "boxFaceList",   "boxPairs",          "candidates",  "undecided",
-                                    "intersections", "collisionCounters", "dispatchArgs"};
+    const Names collisionBuffers = {"faceInfo",      "objects",         "boxes",         "boxFaceOffsets",
+                                    "boxFaceList",   "boxPairs",        "candidates",    "undecided",
+                                    "intersections", "vertexFacePairs", "edgeEdgePairs", "collisionCounters",
+                                    "dispatchArgs"};
     Engine engine(sceneWith(R"(["collisions", "springs"])"));
-    EXPECT_EQ(engine.pipeline(),
-              (Names{"SpringUpdate", "BBUpdate", "BBCollision", "TriTri", "ContactResponse", "NodeUpdate"}));
+    EXPECT_EQ(engine.pipeline(), (Names{"SpringUpdate", "BBUpdate", "BBCollision", "TriTri", "FeaturePairs",
+                                        "ContactResponse", "NodeUpdate"}));
     Names buffers = {"positions",         "velocities",     "faces",         "forces", "springs",
                      "nodeSpringOffsets", "nodeSpringList", "contactForces", "health"};
     buffers.insert(buffers.end(), collisionBuffers.begin(), collisionBuffers.end());
     EXPECT_EQ(engine.allocatedBuffers(), buffers);
     engine.step();
     EXPECT_TRUE(engine.lastStep().collisions);
-    EXPECT_EQ(engine.lastStep().passes.size(), 6u);
+    EXPECT_EQ(engine.lastStep().passes.size(), 7u);
     // All pairs needs no leaf boxes (no BBUpdate); its face-pair stage is timed as BBCollision.
     Engine allPairs(sceneWith(R"(["self_collisions"])", R"("collision": {"broad_phase": "all_pairs"},)"));
-    EXPECT_EQ(allPairs.pipeline(), (Names{"BBCollision", "TriTri", "ContactResponse", "NodeUpdate"}));
+    EXPECT_EQ(allPairs.pipeline(),
+              (Names{"BBCollision", "TriTri", "FeaturePairs", "ContactResponse", "NodeUpdate"}));
     allPairs.step();
 }
 

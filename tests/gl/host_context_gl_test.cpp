@@ -28,7 +28,7 @@
 namespace glcollide {
 namespace {
 
-constexpr GLuint kBindings = gl::kStorageBindingCount; // 0..25, as in layout.glsl
+constexpr GLuint kBindings = gl::kStorageBindingCount; // 0..37, as in layout.glsl
 
 // Two icospheres (320 faces each, radius 0.3 m) overlapping by 2 cm, so every collision stage has
 // work: box pairs, candidates, intersecting pairs and contacts. Every effect that adds a pass or

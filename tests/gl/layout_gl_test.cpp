@@ -45,6 +45,9 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"CollisionCountersBuf", GLC_BIND_COLLISION_COUNTERS},
     {"DispatchArgsBuf", GLC_BIND_DISPATCH_ARGS},
     {"UndecidedBuf", GLC_BIND_UNDECIDED},
+    // Representative-Triangle feature pairs (src/passes/collision/feature_pairs.cpp)
+    {"VertexFacePairsBuf", GLC_BIND_VERTEX_FACE_PAIRS},
+    {"EdgeEdgePairsBuf", GLC_BIND_EDGE_EDGE_PAIRS},
     // tri-tri queries (src/passes/tri_tri_query_pass.cpp)
     {"QueryTrianglesBuf", GLC_BIND_QUERY_TRIANGLES},
     {"QueryResultsBuf", GLC_BIND_QUERY_RESULTS},

@@ -32,9 +32,9 @@ std::vector<std::uint32_t> sortedRandomKeys(std::uint32_t n, std::uint32_t disti
 }
 
 struct Walk {
-    std::vector<std::uint32_t> preorder;      // nodes in depth-first order, left first
-    std::vector<std::uint32_t> first, last;   // sorted leaf range per node
-    std::vector<int> reached;                 // times each node was reached from the root
+    std::vector<std::uint32_t> preorder;    // nodes in depth-first order, left first
+    std::vector<std::uint32_t> first, last; // sorted leaf range per node
+    std::vector<int> reached;               // times each node was reached from the root
 };
 
 Walk walk(const std::vector<glm::uvec4>& links) {
@@ -155,7 +155,8 @@ TEST(BvhTwin, BoxesAreUnionsAndCandidatesEqualTheBruteForce) {
             EXPECT_EQ(boxes[node].lo, glm::min(a.lo, b.lo));
             EXPECT_EQ(boxes[node].hi, glm::max(a.hi, b.hi));
         }
-        for (const PairRules rules : {PairRules{true, false}, PairRules{false, true}, PairRules{true, true}}) {
+        for (const PairRules rules :
+             {PairRules{true, false}, PairRules{false, true}, PairRules{true, true}}) {
             std::vector<FacePair> got = twinBvhCandidates(links, boxes, s.faceIndices, s.faceObject, rules);
             std::sort(got.begin(), got.end());
             EXPECT_EQ(std::adjacent_find(got.begin(), got.end()), got.end()) << n << ": a pair found twice";
@@ -172,7 +173,11 @@ TEST(BvhTwin, MortonCodeInterleavesTenBitsPerAxis) {
     EXPECT_EQ(mortonCode({0.5f, 0.5f, 1.5f}, lo, hi), 1u);
     EXPECT_EQ(mortonCode({1023.5f, 1023.5f, 1023.5f}, lo, hi), (1u << 30) - 1);
     EXPECT_EQ(mortonCode({2000.0f, -5.0f, 1024.0f}, lo, hi), 0x24924924u | 0x09249249u); // clamped x and z
-    EXPECT_EQ(mortonCode({7.0f, 7.0f, 7.0f}, glm::vec3(7.0f), glm::vec3(7.0f)), 0u); // flat bounds
+    EXPECT_EQ(mortonCode({7.0f, 7.0f, 7.0f}, glm::vec3(7.0f), glm::vec3(7.0f)), 0u);     // flat bounds
+    // A cube grid over the largest extent: a thin axis gets few cells, not 1024.
+    const glm::vec3 thinHi(1024.0f, 2.0f, 1024.0f);
+    EXPECT_EQ(mortonCode({0.5f, 1.5f, 0.5f}, lo, thinHi), 2u);
+    EXPECT_EQ(mortonCode({0.5f, 1.99f, 0.5f}, lo, thinHi), 2u);
 }
 
 } // namespace

@@ -62,7 +62,7 @@ TEST(PipelinePlan, CollisionEffectsAddTheBroadPhaseNarrowPhaseAndResponse) {
     EXPECT_TRUE(plan.betweenObjects);
     EXPECT_FALSE(plan.selfCollisions);
     EXPECT_EQ(plan.passes(), (std::vector<std::string>{"NodeForce", "BBUpdate", "BBCollision", "TriTri",
-                                                       "ContactResponse", "NodeUpdate"}));
+                                                       "FeaturePairs", "ContactResponse", "NodeUpdate"}));
     EXPECT_EQ(plan.buffers(),
               (std::vector<std::string>{"positions", "velocities", "faces", "forces", "contactForces"}));
     EXPECT_TRUE(plan.nodeUpdateParams.contacts);
@@ -71,8 +71,8 @@ TEST(PipelinePlan, CollisionEffectsAddTheBroadPhaseNarrowPhaseAndResponse) {
     plan = engine::planPipeline(scene);
     EXPECT_TRUE(plan.selfCollisions);
     // All pairs: one broad-phase stage (every face pair's boxes), timed as BBCollision.
-    EXPECT_EQ(plan.passes(),
-              (std::vector<std::string>{"BBCollision", "TriTri", "ContactResponse", "NodeUpdate"}));
+    EXPECT_EQ(plan.passes(), (std::vector<std::string>{"BBCollision", "TriTri", "FeaturePairs",
+                                                       "ContactResponse", "NodeUpdate"}));
     scene.bodies[0].faces.clear(); // nothing to collide: no collision passes
     EXPECT_EQ(engine::planPipeline(scene).passes(), std::vector<std::string>{"NodeUpdate"});
 }

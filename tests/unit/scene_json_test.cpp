@@ -257,12 +257,18 @@ TEST(SceneJson, SettingsAndEffects) {
     EXPECT_EQ(s.collision.broadPhase, BroadPhase::Octree) << "documented default";
     EXPECT_EQ(s.collision.octreeDepth, 2);
     EXPECT_EQ(s.collision.precision, TriTriPrecision::Robust);
+    EXPECT_EQ(s.collision.response, ContactResponse::Penalty) << "documented default";
     const Scene c = parse(scene(kCloth, R"("collision": {"broad_phase": "masked", "octree_depth": 3,
-        "precision": "fast", "thickness": 0.002, "stiffness": 500, "damping": 0.1, "initial_capacity": 1})",
+        "precision": "fast", "response": "bridson", "thickness": 0.002, "stiffness": 500, "damping": 0.1, "initial_capacity": 1})",
                                 R"(["springs", "self_collisions"])"));
     EXPECT_EQ(c.collision.broadPhase, BroadPhase::Masked);
     EXPECT_EQ(c.collision.octreeDepth, 3);
     EXPECT_EQ(c.collision.precision, TriTriPrecision::Fast);
+    EXPECT_EQ(c.collision.response, ContactResponse::Bridson);
+    EXPECT_THAT(
+        errorOf(
+            scene(kCloth, R"("collision": {"response": "impulse"})", R"(["springs", "self_collisions"])")),
+        HasSubstr("/collision/response: unknown response \"impulse\"; expected \"penalty\" or \"bridson\""));
     EXPECT_EQ(c.collision.thickness, 0.002);
     EXPECT_EQ(c.collision.stiffness, 500.0);
     EXPECT_EQ(c.collision.damping, 0.1);
