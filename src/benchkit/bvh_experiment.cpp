@@ -210,6 +210,12 @@ Detection measureDetection(const Experiment& x, const Scene& scene, const SceneI
             r.set("bvh_node_visits", counts.bvhNodeVisits);
         }
         r.set("list_reruns_last", counts.reruns);
+        // The Representative-Triangle expansion (FeaturePairs stage) of the last detection.
+        r.set("vf_pairs_gpu", counts.vertexFacePairs);
+        r.set("ee_pairs_gpu", counts.edgeEdgePairs);
+        r.set("feature_pairs_gpu", double(counts.vertexFacePairs) + counts.edgeEdgePairs);
+        r.set("feature_pairs_without_ownership_gpu",
+              double(counts.vertexFacePairsWithoutOwnership + counts.edgeEdgePairsWithoutOwnership));
         r.set("broad_phase_bytes", static_cast<double>(detection.broadPhaseBytes()));
         r.set("broad_phase_bytes_per_face", static_cast<double>(detection.broadPhaseBytes()) / r.faces);
         r.set("octree_depth", isBvh(scene) ? 0 : scene.collision.octreeDepth);
@@ -219,19 +225,27 @@ Detection measureDetection(const Experiment& x, const Scene& scene, const SceneI
         r.failure = e.what();
         return d;
     }
-    // Broad phase = every pass but the narrow phase; per pass medians as named metrics.
-    double broad = 0.0;
-    for (std::size_t p = 0; p < r.passNames.size(); ++p)
-        if (r.passNames[p] != passes::passName(PassId::TriTri)) broad += r.passMs[p].median;
+    // Broad phase = the broad phase's passes; detection = broad phase + TriTri (the feature-pair
+    // expansion that follows is timed on its own); per pass medians as named metrics.
+    double broad = 0.0, narrow = 0.0, features = 0.0;
+    for (std::size_t p = 0; p < r.passNames.size(); ++p) {
+        if (r.passNames[p] == passes::passName(PassId::TriTri))
+            narrow += r.passMs[p].median;
+        else if (r.passNames[p] == passes::passName(PassId::FeaturePairs))
+            features += r.passMs[p].median;
+        else
+            broad += r.passMs[p].median;
+    }
     r.set("broad_phase_ms", broad);
-    r.set("detection_ms", r.gpuMs.median);
+    r.set("detection_ms", broad + narrow);
+    r.set("feature_pairs_ms", features);
     const std::pair<PassId, const char*> named[] = {
         {PassId::BvhBuild, "build_ms"},          {PassId::BvhRefit, "refit_ms"},
         {PassId::BvhTraverse, "traverse_ms"},    {PassId::BBUpdate, "bbupdate_ms"},
         {PassId::BBCollision, "bbcollision_ms"}, {PassId::TriTri, "tritri_ms"}};
     for (const auto& [id, key] : named)
         if (const double v = passMedian(r, id); !std::isnan(v)) r.set(key, v);
-    r.time = r.gpuMs.median;
+    r.time = broad + narrow;
     return d;
 }
 
@@ -274,15 +288,18 @@ RunResult measureEngine(const Experiment& x, const Scene& scene, const SceneInpu
         r.failure = e.what();
         return r;
     }
-    double detection = 0.0;
-    for (std::size_t p = 0; p < r.passNames.size(); ++p)
+    double detection = 0.0, features = 0.0;
+    for (std::size_t p = 0; p < r.passNames.size(); ++p) {
         for (PassId id : {PassId::BBUpdate, PassId::BBCollision, PassId::BvhBuild, PassId::BvhRefit,
                           PassId::BvhTraverse, PassId::TriTri})
             if (r.passNames[p] == passes::passName(id)) detection += r.passMs[p].median;
+        if (r.passNames[p] == passes::passName(PassId::FeaturePairs)) features += r.passMs[p].median;
+    }
     r.set("engine_step", 1);
     r.set("gpu_ms_per_substep", r.gpuMs.median / r.substeps);
     r.set("detection_ms_per_substep", detection / r.substeps);
-    r.set("dynamics_ms_per_substep", (r.gpuMs.median - detection) / r.substeps);
+    r.set("feature_pairs_ms_per_substep", features / r.substeps);
+    r.set("dynamics_ms_per_substep", (r.gpuMs.median - detection - features) / r.substeps);
     r.time = r.gpuMs.median / r.substeps;
     return r;
 }
@@ -327,6 +344,7 @@ struct SceneResult {
     std::vector<std::size_t> engine; ///< indices into out.runs, engine runs
     double candidates = std::nan("");
     bool candidatesEqual = true;
+    bool featuresEqual = true; ///< the GPU's feature pairs equal the CPU count in every run
     bool cpuChecked = false;
     FeaturePairs features;
 };
@@ -421,13 +439,21 @@ SceneResult measureScene(Context& ctx, const SceneInput& in) {
         ctx.out.runs.push_back(std::move(r));
     }
     if (reference) {
-        // R-TRIANGLES: when CollisionCounts gains the GPU's vertex-face / edge-edge feature-pair
-        // counts (another engineer's change), record them here next to these CPU counts
-        // ("vf_pairs_gpu", "ee_pairs_gpu") and compare: they must equal the "with ownership" ones.
+        // The GPU's Representative-Triangle expansion (vf_pairs_gpu, ee_pairs_gpu) must give the
+        // CPU's counts with ownership; a difference fails the run like a candidate difference.
         result.features = featurePairsWithOwnership(*model, *reference);
         result.candidates = double(reference->size());
         for (std::size_t i : result.runs) {
             RunResult& r = ctx.out.runs[i];
+            if (r.failure.empty() && (r.metric("vf_pairs_gpu") != result.features.vertexFace ||
+                                      r.metric("ee_pairs_gpu") != result.features.edgeEdge)) {
+                r.failure = "feature pairs differ from the CPU count with ownership: vertex-face " +
+                            grouped(std::uint64_t(r.metric("vf_pairs_gpu"))) + " vs " +
+                            grouped(std::uint64_t(result.features.vertexFace)) + ", edge-edge " +
+                            grouped(std::uint64_t(r.metric("ee_pairs_gpu"))) + " vs " +
+                            grouped(std::uint64_t(result.features.edgeEdge));
+                result.featuresEqual = false;
+            }
             r.set("reference_candidate_pairs", result.candidates);
             r.set("cpu_checked", result.cpuChecked ? 1 : 0);
             r.set("feature_pairs_without_ownership", kFeaturePairsPerFacePair * result.candidates);
@@ -685,12 +711,20 @@ void summarise(Context& ctx, const std::vector<SceneResult>& scenes) {
 
     // 5. Feature pairs with and without ownership (R-Triangles).
     {
+        const std::string timed = bvhNames.empty() ? x.configs.front().name : bvhNames.front();
         SummaryTable t;
         t.title =
             "Feature pairs behind the candidate face pairs: without ownership (15 per pair) and with the "
-            "owned-feature bits (CPU count); GPU counts: not measured yet";
-        t.header = {"scene",     "candidates", "without ownership", "with ownership: vertex-face",
-                    "edge-edge", "total",      "with / without",    "GPU (R-Triangles pass)"};
+            "owned-feature bits (Representative Triangles), GPU counts checked against the CPU's";
+        t.header = {"scene",
+                    "candidates",
+                    "without ownership",
+                    "with ownership: vertex-face",
+                    "edge-edge",
+                    "total",
+                    "with / without",
+                    "GPU = CPU in every run",
+                    "FeaturePairs ms (" + timed + ")"};
         for (const SceneResult& s : scenes) {
             if (std::isnan(s.candidates)) continue;
             const double without = kFeaturePairsPerFacePair * s.candidates;
@@ -698,10 +732,14 @@ void summarise(Context& ctx, const std::vector<SceneResult>& scenes) {
             t.rows.push_back({s.input.name, grouped(std::uint64_t(s.candidates)),
                               grouped(std::uint64_t(without)), grouped(std::uint64_t(s.features.vertexFace)),
                               grouped(std::uint64_t(s.features.edgeEdge)), grouped(std::uint64_t(with)),
-                              without > 0 ? ms(with / without) : "-", "not measured yet"});
+                              without > 0 ? ms(with / without) : "-", s.featuresEqual ? "yes" : "NO",
+                              cell(out, s, timed, "feature_pairs_ms")});
         }
         if (!t.rows.empty()) out.tables.push_back(std::move(t));
     }
+    bool featuresEqual = true;
+    for (const SceneResult& s : scenes) featuresEqual = featuresEqual && s.featuresEqual;
+    out.summary.push_back({"feature_pairs_gpu_equal_cpu_in_every_run", featuresEqual ? 1.0 : 0.0});
 }
 
 } // namespace
@@ -782,7 +820,7 @@ void runBvhExperiment(const Experiment& x, ExperimentResult& out, const Progress
             "object, so every candidate is a self-collision pair.");
     notes.push_back(
         "Detection rows: one substep's collision detection (CollisionDetection::detect: the broad "
-        "phase's passes, then TriTri) on the scene's positions, " +
+        "phase's passes, TriTri, then FeaturePairs) on the scene's positions, " +
         std::to_string(x.warmupFrames) + " warm-up and " + std::to_string(x.frames) +
         " timed repetitions, each bracketed by GL_TIMESTAMP queries per pass; medians. A bvh config "
         "that rebuilds every substep builds, refits and traverses in every repetition. Engine rows: "
@@ -811,9 +849,10 @@ void runBvhExperiment(const Experiment& x, ExperimentResult& out, const Progress
     }
     out.notes.push_back(
         "Feature pairs: without ownership every candidate face pair stands for 15 (3 + 3 vertex-face, "
-        "9 edge-edge); with ownership (the R-Triangle idea: each vertex and edge tested only by the "
-        "face that owns it, GpuFaceInfo's owned bits) counted on the CPU from the reference "
-        "candidates. The GPU's own counts come with the R-Triangles pass (not measured yet).");
+        "9 edge-edge); with ownership (Representative Triangles: each vertex and edge tested only by "
+        "the face that owns it, GpuFaceInfo's owned bits) counted on the CPU from the reference "
+        "candidates, and by the GPU's FeaturePairs stage in every detection run (vf_pairs_gpu, "
+        "ee_pairs_gpu): a difference fails the run. FeaturePairs is timed on its own, not in detection_ms.");
     for (const RunResult& r : out.runs)
         if (!r.failure.empty() && r.failure.find("work in progress") != std::string::npos) {
             out.notes.push_back("The bvh broad phase is not in this build (\"" + r.failure +

@@ -98,6 +98,7 @@ std::vector<std::pair<std::string, std::string>> tableMetrics(ExperimentKind kin
                 {"traverse_ms", "traverse"},
                 {"bbupdate_ms", "BBUpdate"},
                 {"bbcollision_ms", "BBCollision"},
+                {"feature_pairs_ms", "FeaturePairs"},
                 {"broad_phase_bytes_per_face", "bytes/face"},
                 {"detection_ms_per_substep", "engine: detection ms/substep"},
                 {"dynamics_ms_per_substep", "engine: rest ms/substep"}};

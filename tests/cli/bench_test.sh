@@ -59,6 +59,7 @@ for b in bvh:
                 "feature_pairs_without_ownership", "feature_pairs_with_ownership", "reference_candidate_pairs"]:
         assert key in b, b["name"] + " lacks " + key
     assert b["candidate_pairs"] == b["reference_candidate_pairs"] and b["accuracy_error"] == 0, b["name"]
+    assert b["vf_pairs_gpu"] == b["vf_pairs_with_ownership"] and b["ee_pairs_gpu"] == b["ee_pairs_with_ownership"], b["name"]
     assert b["cpu_checked"] == 1, b["name"]
     if b["config"].startswith("octree"):
         assert "bbupdate_ms" in b and "bbcollision_ms" in b, b["name"]
@@ -66,6 +67,7 @@ for b in bvh:
         assert "build_ms" in b and "refit_ms" in b and "traverse_ms" in b, b["name"]
 summary = [s for s in doc["experiment_summaries"] if s["experiment"] == "bvh"][0]
 assert summary["metrics"]["candidates_equal_in_every_configuration"] == 1
+assert summary["metrics"]["feature_pairs_gpu_equal_cpu_in_every_run"] == 1
 assert summary["metrics"]["bytes_per_face_target"] == 192
 assert summary["metrics"]["max_bytes_per_face/bvh"] <= 192
 assert summary["metrics"]["slope_detection/bvh"] is not None

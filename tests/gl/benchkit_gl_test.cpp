@@ -155,6 +155,12 @@ TEST(BenchkitGl, BvhExperimentCandidatesAgreeEverywhere) {
         EXPECT_EQ(run.metric("feature_pairs_without_ownership"), 15.0 * run.metric("candidate_pairs"));
         EXPECT_GT(run.metric("feature_pairs_with_ownership"), 0.0);
         EXPECT_LT(run.metric("feature_pairs_with_ownership"), run.metric("feature_pairs_without_ownership"));
+        // The GPU's Representative-Triangle expansion gives the CPU's counts with ownership.
+        EXPECT_EQ(run.metric("vf_pairs_gpu"), run.metric("vf_pairs_with_ownership"));
+        EXPECT_EQ(run.metric("ee_pairs_gpu"), run.metric("ee_pairs_with_ownership"));
+        EXPECT_EQ(run.metric("feature_pairs_without_ownership_gpu"),
+                  run.metric("feature_pairs_without_ownership"));
+        EXPECT_GT(run.metric("feature_pairs_ms"), 0.0);
         if (run.config == "bvh") { // rebuilt every substep: every timed detection builds
             EXPECT_GT(run.metric("build_ms"), 0.0);
             EXPECT_EQ(run.metric("bvh_rebuilt_last"), 1.0);
@@ -168,13 +174,15 @@ TEST(BenchkitGl, BvhExperimentCandidatesAgreeEverywhere) {
     EXPECT_THAT(titles, ::testing::Contains(::testing::HasSubstr("Cost exponent")));
     EXPECT_THAT(titles, ::testing::Contains(::testing::HasSubstr("Memory")));
     EXPECT_THAT(titles, ::testing::Contains(::testing::HasSubstr("Feature pairs")));
-    bool equal = false, octreeSlope = false, bvhSlope = false;
+    bool equal = false, featuresEqual = false, octreeSlope = false, bvhSlope = false;
     for (const Metric& m : r.summary) {
         if (m.key == "candidates_equal_in_every_configuration") equal = m.value == 1.0;
+        if (m.key == "feature_pairs_gpu_equal_cpu_in_every_run") featuresEqual = m.value == 1.0;
         if (m.key == "slope_detection/octree d2") octreeSlope = std::isfinite(m.value);
         if (m.key == "slope_detection/bvh") bvhSlope = std::isfinite(m.value);
     }
     EXPECT_TRUE(equal);
+    EXPECT_TRUE(featuresEqual);
     EXPECT_TRUE(octreeSlope);
     EXPECT_TRUE(bvhSlope);
     EXPECT_THAT(textTable(r), ::testing::HasSubstr("23.94 ms"));
