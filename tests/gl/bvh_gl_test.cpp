@@ -16,6 +16,7 @@
 #include "model/flat_model.hpp"
 #include "passes/broad_phase/radix_sort.hpp"
 #include "passes/collision_detection.hpp"
+#include "support/collision_buffers.hpp"
 
 #include <glcollide/error.hpp>
 
@@ -159,19 +160,11 @@ Scene foldedCloth(std::uint32_t cells, std::uint32_t layers, double spacing) {
 }
 
 passes::DeviceBuffers upload(const Scene& s) {
-    passes::DeviceBuffers b;
-    b.nodeCount = static_cast<std::uint32_t>(s.current.size());
-    b.faceCount = static_cast<std::uint32_t>(s.model.faceCount());
-    std::vector<glm::vec4> p;
-    for (const glm::vec3& x : s.current) p.emplace_back(x, 1.0f);
-    b.positions = gl::makeBuffer("positions", p);
-    b.faces = gl::makeBuffer("faces", s.model.faceIndices);
-    return b;
+    return test::collisionBuffers(s.current, s.model.faceIndices);
 }
 
 void setPositions(passes::DeviceBuffers& b, const std::vector<glm::vec3>& current) {
-    std::vector<glm::vec4> p;
-    for (const glm::vec3& x : current) p.emplace_back(x, 1.0f);
+    const std::vector<glm::vec4> p = test::positionsWithUnitW(current);
     b.positions.upload(0, p.size() * sizeof(glm::vec4), p.data());
 }
 

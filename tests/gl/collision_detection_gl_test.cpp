@@ -14,6 +14,7 @@
 #include "model/flat_model.hpp"
 #include "model/octree_layout.hpp"
 #include "passes/collision_detection.hpp"
+#include "support/collision_buffers.hpp"
 
 #include <glcollide/error.hpp>
 
@@ -77,15 +78,7 @@ Soup makeSoup(std::uint32_t faces, std::uint32_t objects, std::uint32_t seed, gl
 }
 
 passes::DeviceBuffers upload(const Soup& s) {
-    passes::DeviceBuffers b;
-    b.nodeCount = static_cast<std::uint32_t>(s.current.size());
-    b.faceCount = static_cast<std::uint32_t>(s.model.faceCount());
-    std::vector<glm::vec4> p;
-    for (const glm::vec3& x : s.current) p.emplace_back(x, 1.0f);
-    b.positions = gl::Buffer("positions", p.size() * sizeof(glm::vec4), p.empty() ? nullptr : p.data());
-    b.faces = gl::Buffer("faces", s.model.faceIndices.size() * sizeof(std::uint32_t),
-                         s.model.faceIndices.empty() ? nullptr : s.model.faceIndices.data());
-    return b;
+    return test::collisionBuffers(s.current, s.model.faceIndices);
 }
 
 struct Mode {

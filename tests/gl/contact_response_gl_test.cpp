@@ -450,14 +450,9 @@ TEST(ContactResponseGl, AVertexNearAnEdgeOfTwoFacesGetsOneContact) {
 }
 
 // The response with a substep length (decision 0019): sides from the previous positions x − dt·v
-// and the inelastic part. Per-component GPU-twin tolerance: the per-contribution bound of
-// MatchesTheTwinOnRandomTriangleSoups (2^-16 of the cap for the float evaluation, whose inelastic
-// term adds a few roundings of relative 2^-24 to a force below the cap; 0.5/forceScale for the
-// fixed point) times the node's contributions.
-double twinTolerance(const ContactParams& params, std::uint32_t contributions) {
-    return std::max(1u, contributions) * (params.forceCap / 65536.0 + 0.5 / params.forceScale);
-}
-
+// and the inelastic part. GPU against twin with expectForcesMatchTheTwin's per-contribution bound
+// (its inelastic term adds a few roundings of relative 2^-24 to a force below the cap, inside it).
+//
 // A vertex 0.02 below an open face, moving down at 3 m/s: 0.03 m in a substep of 0.01 s, so at
 // its start it was 0.01 above. It went through within the substep: it is pushed back up (the
 // unsigned rule of dt = 0 pushes it on down), by the impulse that stops it plus the penalty for
@@ -486,10 +481,7 @@ TEST(ContactResponseGl, AVertexThatCameThroughAnOpenFaceIsPushedBack) {
                                                            0.1 * depth / params.substep * perSpeed),
                                  params.forceCap);
     EXPECT_NEAR(cpu.forces[3].y, want, want * 1e-12); // double arithmetic
-    for (std::size_t n = 0; n < 6; ++n)
-        for (int k = 0; k < 3; ++k)
-            EXPECT_NEAR(gpu.forces[n][k], cpu.forces[n][k], twinTolerance(params, cpu.contributions[n]))
-                << "node " << n << " component " << k;
+    expectForcesMatchTheTwin(s, params, gpu, cpu, "substep response");
     EXPECT_GT(gpu.forces[3].y, 0.0);
     EXPECT_LT(gpu.forces[0].y + gpu.forces[1].y + gpu.forces[2].y, 0.0);
     // The same vertex at rest there came from below: it is kept below (pushed down).
@@ -517,10 +509,7 @@ TEST(ContactResponseGl, EdgesThatCrossedArePushedBackToTheirSides) {
     const cpu::ContactResult cpu = runCpu(s, params);
     EXPECT_EQ(gpu.contacts, 1u);
     EXPECT_EQ(cpu.contacts, 1u);
-    for (std::size_t n = 0; n < 6; ++n)
-        for (int k = 0; k < 3; ++k)
-            EXPECT_NEAR(gpu.forces[n][k], cpu.forces[n][k], twinTolerance(params, cpu.contributions[n]))
-                << "node " << n << " component " << k;
+    expectForcesMatchTheTwin(s, params, gpu, cpu, "substep response");
     EXPECT_GT(gpu.forces[3].y + gpu.forces[4].y, 0.0);
     EXPECT_LT(gpu.forces[0].y + gpu.forces[1].y, 0.0);
     // The stopping impulse plus the limited penalty for depth h + 0.02 (as in the vertex test),
