@@ -101,6 +101,15 @@ struct NonFiniteReport {
     std::uint32_t globalNode = 0; ///< the same node in the global (concatenated) node order
 };
 
+/// The implicit integrator's linear solves in one frame (all zero for symplectic Euler).
+struct SolverStats {
+    bool implicit = false;                 ///< the scene integrates with implicit Euler
+    std::uint32_t maxIterations = 0;       ///< most conjugate-gradient iterations of one substep
+    double maxRelativeResidual = 0.0;      ///< largest final ‖r‖/‖b‖ of one substep
+    std::uint32_t totalIterations = 0;     ///< summed over the frame's substeps
+    std::uint32_t unconvergedSubsteps = 0; ///< substeps that stopped at the cap above the tolerance
+};
+
 struct StepStats {
     std::uint64_t frame = 0; ///< frames completed, this one included
     double time = 0.0;       ///< s of simulated time after this frame
@@ -109,6 +118,11 @@ struct StepStats {
     std::vector<PassTiming> passes;
     bool collisions = false; ///< the collision passes ran (then `collision` is filled)
     CollisionStats collision;
+    SolverStats solver;
+    /// Compute dispatches per substep in this frame, counted as issued (the implicit solver issues
+    /// its whole iteration cap; iterations after convergence return at once; collision list
+    /// reruns add to it). Launches cost time of their own on a GPU.
+    double dispatchesPerSubstep = 0.0;
     /// Set by the first frame whose NodeUpdate produced a non-finite position or velocity (an
     /// infinity or a NaN: the integration diverged) and kept, unchanged, by every later frame.
     NonFiniteReport nonFinite;
@@ -181,6 +195,8 @@ class Engine {
     /// Labels of the GPU buffers allocated for this scene ("positions", "springs", ...).
     [[nodiscard]] std::vector<std::string> allocatedBuffers() const;
     [[nodiscard]] std::size_t allocatedBytes() const;
+    /// Bytes of the implicit solver's own buffers (part of allocatedBytes(); 0 for symplectic Euler).
+    [[nodiscard]] std::size_t solverBytes() const;
     [[nodiscard]] const SubstepInfo& substepInfo() const;
     /// Warnings found at construction (e.g. explicit substeps below the stability limit).
     [[nodiscard]] const std::vector<std::string>& warnings() const;

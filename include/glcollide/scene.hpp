@@ -110,11 +110,28 @@ struct CollisionSettings {
     BvhSettings bvh;                      ///< used by BroadPhase::Bvh
 };
 
+/// How a substep advances the nodes (docs/integration.md).
+enum class Integrator : std::uint8_t {
+    SymplecticEuler, ///< explicit: v += h·M⁻¹f(x, v); x += h·v. Conditionally stable (auto substeps)
+    ImplicitEuler    ///< Baraff & Witkin 1998: one linearised backward-Euler step, solved by PCG
+};
+
+/// The implicit integrator's linear solve: preconditioned conjugate gradients on the GPU.
+struct ImplicitSolverSettings {
+    /// Stop when ‖r‖ ≤ tolerance · ‖b‖ (residual of the velocity-change system relative to its
+    /// right-hand side), > 0.
+    double tolerance = 1.0e-4;
+    int maxIterations = 64; ///< iteration cap per substep, 1 … 1024 (two dispatches each)
+};
+
 struct TimeSettings {
     double dt = 1.0 / 60.0; ///< s per frame, > 0
-    /// Substeps per frame. 0 = automatic: the smallest count that keeps explicit integration
-    /// stable for the stiffest spring at its lightest node (see docs/integration.md).
+    Integrator integrator = Integrator::SymplecticEuler;
+    /// Substeps per frame. 0 = automatic: for symplectic Euler the smallest count that keeps it
+    /// stable for the stiffest spring at its lightest node; for implicit Euler one substep per
+    /// frame (see docs/integration.md).
     int substeps = 0;
+    ImplicitSolverSettings solver; ///< used by Integrator::ImplicitEuler
     int frames = 240; ///< frames `glcollide run` simulates by default, > 0
 };
 
@@ -152,6 +169,8 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& baseD
                  const std::string& sourceName);
 
 /// The scene-format names of the broad phases: "octree", "masked", "all_pairs", "bvh".
+const char* integratorName(Integrator kind);
+std::optional<Integrator> integratorFromName(std::string_view name);
 const char* broadPhaseName(BroadPhase kind);
 std::optional<BroadPhase> broadPhaseFromName(std::string_view name);
 

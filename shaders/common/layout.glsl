@@ -48,6 +48,18 @@
 // Representative-Triangle feature pairs (docs/design/decisions/0018-representative-triangles.md).
 #define GLC_BIND_VERTEX_FACE_PAIRS 36  // uvec2[capacity]: (node, face): a vertex against a face
 #define GLC_BIND_EDGE_EDGE_PAIRS 37    // uvec2[capacity]: (3*face+edge, 3*face+edge): two edges, edge e from corner e to e+1
+// The implicit Euler solver (docs/integration.md): block-Jacobi preconditioned conjugate
+// gradients on A·Δv = b, one vec4 per node per vector (w unused).
+#define GLC_BIND_SOLVER_RESIDUAL 38       // vec4[nodes]: r = b − A·Δv
+#define GLC_BIND_SOLVER_PRECONDITIONED 39 // vec4[nodes]: z = P⁻¹·r (P: the 3x3 diagonal blocks of A)
+#define GLC_BIND_SOLVER_DIRECTION_IN 40   // vec4[nodes]: the previous search direction p
+#define GLC_BIND_SOLVER_DIRECTION_OUT 41  // vec4[nodes]: the new search direction p = z + beta·p
+#define GLC_BIND_SOLVER_PRODUCT 42        // vec4[nodes]: q = A·p
+#define GLC_BIND_SOLVER_BLOCK_INVERSE 43  // float[6*nodes]: P⁻¹ per node, symmetric: xx xy xz yy yz zz
+#define GLC_BIND_SOLVER_PARTIALS_R 44     // vec2[groups]: per work group (r·z, r·r)
+#define GLC_BIND_SOLVER_PARTIALS_PQ 45    // float[groups]: per work group p·q
+#define GLC_BIND_SOLVER_STATE 46          // GpuSolverState
+#define GLC_BIND_HEAVY_NODES 47           // uint[]: nodes with more than GLC_HEAVY_ROW springs, ascending
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -73,6 +85,11 @@
 #define GLC_SORT_BLOCK 256       // radix sort: items per work group (one per invocation)
 #define GLC_SORT_DIGIT_BITS 4    // radix sort: bits per pass (16 digits)
 #define GLC_SCAN_GROUP 256       // radix sort: the one work group that scans the block counts
+
+// A node with more springs than this is gathered by a whole work group of GLC_WORKGROUP_SIZE
+// invocations (one per GLC_WORKGROUP_SIZE springs each), so no invocation walks more than this many
+// springs while the others of its group wait (docs/integration.md, "No serial hot spots").
+#define GLC_HEAVY_ROW 64u
 
 #define GLC_BVH_NONE 0xFFFFFFFFu // BVH link that points nowhere (the root's parent, the last escape)
 
@@ -147,6 +164,20 @@ struct GpuCollisionCounters {
 // A substep records only while badSubstep >= its own index, so a later substep of the same frame
 // cannot replace the first one's node.
 #define GLC_HEALTH_NONE 0xFFFFFFFFu
+// The implicit solver's shared scalars (written by one invocation, read by the next passes) and
+// the frame's solver statistics (cleared by the engine before each frame).
+#define GLC_SOLVER_RUNNING 0xFFFFFFFFu
+struct GpuSolverState {
+    float rhsNormSquared;     // ‖b‖² of this substep's system
+    float rz[2];              // r·z after the iteration of that parity
+    uint doneAt;              // the iteration whose residual met the tolerance, GLC_SOLVER_RUNNING before
+    uint maxIterations;       // frame: most iterations any substep took
+    uint maxResidualBits;     // frame: largest final ‖r‖/‖b‖ of any substep (float bits: non-negative
+                              // floats order like their bits, so atomicMax picks the largest)
+    uint totalIterations;     // frame: iterations summed over substeps
+    uint unconvergedSubsteps; // frame: substeps that reached the iteration cap above the tolerance
+};
+
 struct GpuHealth {
     uint firstBadNode; // lowest global node index found non-finite in substep badSubstep
     uint badSubstep;   // index within its frame (0 .. substeps-1) of the first such substep

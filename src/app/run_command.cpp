@@ -31,7 +31,13 @@ nlohmann::json frameRecord(const Engine& engine) {
                              {"kinetic_energy_J", e.kinetic},
                              {"potential_energy_J", e.potential},
                              {"total_energy_J", e.total()},
+                             {"dispatches_per_substep", s.dispatchesPerSubstep},
                              {"gpu_ms", gpu}};
+    if (s.solver.implicit)
+        record["solver"] = {{"max_iterations", s.solver.maxIterations},
+                            {"max_relative_residual", s.solver.maxRelativeResidual},
+                            {"total_iterations", s.solver.totalIterations},
+                            {"unconverged_substeps", s.solver.unconvergedSubsteps}};
     if (s.collisions) {
         const CollisionStats& c = s.collision;
         record["collision"] = {{"box_pairs", c.boxPairs},
@@ -112,10 +118,21 @@ void printSummary(const HeadlessContext& context, const Engine& engine, std::uin
     for (const std::string& p : engine.pipeline()) std::cout << ' ' << p;
     std::cout << "\nbuffers:";
     for (const std::string& b : engine.allocatedBuffers()) std::cout << ' ' << b;
-    std::cout << " (" << engine.allocatedBytes() << " bytes)\n"
-              << "time: " << frames << " frames of " << scene.time.dt << " s, " << sub.substeps
-              << " substeps each (" << (sub.automatic ? "auto" : "fixed") << "; stability needs "
-              << sub.stableSubsteps << ")\n";
+    std::cout << " (" << engine.allocatedBytes() << " bytes)\n";
+    if (scene.time.integrator == Integrator::ImplicitEuler) {
+        const double perNode =
+            engine.nodeCount() ? static_cast<double>(engine.solverBytes()) / engine.nodeCount() : 0.0;
+        std::cout << "solver: implicit Euler, conjugate gradients to " << scene.time.solver.tolerance
+                  << " relative residual or " << scene.time.solver.maxIterations << " iterations; "
+                  << engine.solverBytes() << " bytes (" << perNode << " per node)\n";
+        std::cout << "time: " << frames << " frames of " << scene.time.dt << " s, " << sub.substeps
+                  << " substeps each (" << (sub.automatic ? "auto" : "fixed")
+                  << "; symplectic Euler would need " << sub.stableSubsteps << ")\n";
+    } else {
+        std::cout << "time: " << frames << " frames of " << scene.time.dt << " s, " << sub.substeps
+                  << " substeps each (" << (sub.automatic ? "auto" : "fixed") << "; stability needs "
+                  << sub.stableSubsteps << ")\n";
+    }
     const SetupStats& setup = engine.setupStats();
     std::cout << "setup: " << setup.programs.size() << " programs in " << setup.compileLinkMilliseconds
               << " ms (program cache: " << setup.cacheHits << " hits, " << setup.cacheMisses << " misses, "
@@ -161,8 +178,14 @@ int runCommand(const RunOptions& options) {
     Progress progress("glcollide run", frames, !options.quiet);
     double wallTotal = 0.0;
     std::uint32_t maxIntersecting = 0, maxContacts = 0;
+    SolverStats solverTotals; // most iterations / residual of any substep; summed iterations, misses
     for (std::uint64_t f = 1; f <= frames; ++f) {
         engine.step();
+        const SolverStats& solver = engine.lastStep().solver;
+        solverTotals.maxIterations = std::max(solverTotals.maxIterations, solver.maxIterations);
+        solverTotals.maxRelativeResidual = std::max(solverTotals.maxRelativeResidual, solver.maxRelativeResidual);
+        solverTotals.totalIterations += solver.totalIterations;
+        solverTotals.unconvergedSubsteps += solver.unconvergedSubsteps;
         const NonFiniteReport& nonFinite = engine.lastStep().nonFinite;
         if (nonFinite.found && nonFinite.frame == f)
             std::cerr << "glcollide: warning: non-finite position at frame " << nonFinite.frame << " substep "
@@ -195,6 +218,9 @@ int runCommand(const RunOptions& options) {
         stats["faces"] = engine.faceCount();
         stats["pipeline"] = engine.pipeline();
         stats["buffers"] = engine.allocatedBuffers();
+        stats["allocated_bytes"] = engine.allocatedBytes();
+        stats["integrator"] = integratorName(scene.time.integrator);
+        stats["solver_bytes"] = engine.solverBytes();
         stats["dt_s"] = scene.time.dt;
         stats["substeps"] = engine.substepInfo().substeps;
         stats["stable_substeps"] = engine.substepInfo().stableSubsteps;
@@ -208,7 +234,15 @@ int runCommand(const RunOptions& options) {
         if (!out) throw Error(options.statsPath + ": write failed");
     }
     std::cout << "simulated " << frames << " frames in " << wallTotal << " ms ("
-              << (frames ? wallTotal / static_cast<double>(frames) : 0.0) << " ms/frame)\n";
+              << (frames ? wallTotal / static_cast<double>(frames) : 0.0) << " ms/frame; "
+              << engine.lastStep().dispatchesPerSubstep << " dispatches per substep)\n";
+    if (engine.lastStep().solver.implicit) {
+        const double substepsRun = static_cast<double>(frames) * engine.lastStep().substeps;
+        std::cout << "solver: " << (substepsRun > 0 ? solverTotals.totalIterations / substepsRun : 0.0)
+                  << " iterations per substep on average, at most " << solverTotals.maxIterations
+                  << "; largest final relative residual " << solverTotals.maxRelativeResidual << "; "
+                  << solverTotals.unconvergedSubsteps << " substeps stopped at the cap\n";
+    }
     if (engine.lastStep().collisions)
         std::cout << "collisions: at most " << maxContacts << " contacts and " << maxIntersecting
                   << " intersecting face pairs in a substep; "

@@ -35,4 +35,22 @@ struct NodeUpdateParams {
     bool checkFinite = false; ///< record the first non-finite node in the health buffer (GPU only)
 };
 
+/// The implicit (backward) Euler velocity update of Baraff & Witkin 1998, one linearised step:
+///   (M − h·∂f/∂v − h²·∂f/∂x) Δv = h·(f + h·∂f/∂x·v),   v += Δv
+/// solved by block-Jacobi preconditioned conjugate gradients (docs/integration.md). Positions
+/// then move by NodeUpdate without forces (x += h·v, ground).
+struct ImplicitParams {
+    double h = 0.0;                 ///< s, substep length
+    double airDamping = 0.0;        ///< 1/s: the NodeForce damping c (f = −c·m·v), 0 when off
+    bool springs = false;           ///< the springs effect is on
+    bool externalForces = false;    ///< NodeForce wrote external forces into the force buffer
+    bool contacts = false;          ///< add (and clear) the fixed-point contact forces of ContactResponse
+    double contactForceScale = 1.0; ///< fixed-point units per N of the contact forces
+    double tolerance = 1.0e-4;      ///< stop when ‖r‖ ≤ tolerance·‖b‖
+    int maxIterations = 64;         ///< CG iteration cap
+};
+
+/// Nodes with more springs than this are gathered by a whole work group (GLC_HEAVY_ROW).
+inline constexpr std::uint32_t kHeavyRow = 64;
+
 } // namespace glcollide

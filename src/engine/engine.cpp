@@ -8,11 +8,13 @@
 #include "gl/debug_output.hpp"
 #include "gl/gpu_timer.hpp"
 #include "gl/host_state.hpp"
+#include "gl/program.hpp"
 #include "gl/setup_stats_sink.hpp"
 #include "model/flat_model.hpp"
 #include "passes/collision_detection.hpp"
 #include "passes/contact_response.hpp"
 #include "passes/dynamics_passes.hpp"
+#include "passes/implicit_solver.hpp"
 
 #include <glcollide/error.hpp>
 #include <glcollide/gl_info.hpp>
@@ -61,6 +63,7 @@ struct Engine::Impl {
     std::optional<passes::NodeForcePass> nodeForce;
     std::optional<passes::SpringUpdatePass> springUpdate;
     std::optional<passes::NodeUpdatePass> nodeUpdate;
+    std::optional<passes::ImplicitSolverPass> implicitSolve;
     std::optional<passes::CollisionDetection> collision;
     std::optional<passes::ContactResponsePass> contact;
     std::vector<passes::PassId> passIds; ///< the substep's passes in order; stats.passes follows it
@@ -68,11 +71,13 @@ struct Engine::Impl {
     gl::GpuTimer timer{passes::kPassCount}; // one section per pass: passes::passIndex(id)
     StepStats stats;
     SetupStats setup;
+    std::vector<std::uint32_t> heavyNodes; ///< nodes with more than kHeavyRow springs
 
     void chooseSubsteps();
     void allocate();
     void substep(int index, bool lastOfFrame);
     void readHealth();
+    void readSolverStats();
     template <typename Pass, typename... Args> void run(const Pass& pass, Args&&... args);
 };
 
@@ -85,7 +90,11 @@ void Engine::Impl::chooseSubsteps() {
     substeps.maxStableSubstep = limit.maxSubstep;
     substeps.limitingNode = limit.node;
     substeps.automatic = scene.time.substeps == 0;
-    if (substeps.automatic) {
+    if (plan.implicitSolve) {
+        // Backward Euler is stable for any step of the linear spring system it solves: the count
+        // is the user's (auto: one substep per frame), never a stability requirement.
+        substeps.substeps = substeps.automatic ? 1 : scene.time.substeps;
+    } else if (substeps.automatic) {
         if (stable > cpu::kMaxSubsteps) {
             std::ostringstream msg;
             msg << scene.sourcePath.string() << ": scene too stiff: explicit integration needs "
@@ -105,6 +114,7 @@ void Engine::Impl::chooseSubsteps() {
     }
     substeps.substepLength = dt / substeps.substeps;
     plan.nodeUpdateParams.h = substeps.substepLength;
+    plan.implicitParams.h = substeps.substepLength;
     plan.contact.substep = substeps.substepLength;
 }
 
@@ -119,7 +129,8 @@ void Engine::Impl::allocate() {
     buffers.faces = gl::makeBuffer("faces", m.faceIndices);
     if (plan.nodeForce || plan.springUpdate)
         buffers.forces = gl::Buffer("forces", m.nodeCount() * sizeof(glm::vec4));
-    if (plan.springUpdate) {
+    const bool needSprings = plan.springUpdate || (plan.implicitSolve && plan.implicitParams.springs);
+    if (needSprings) {
         std::vector<gpu::GpuSpring> springs;
         springs.reserve(m.springs.size());
         for (const model::FlatSpring& s : m.springs)
@@ -129,8 +140,15 @@ void Engine::Impl::allocate() {
             for (std::uint32_t k = 0; k < m.objects[o].springCount; ++k)
                 springs[m.objects[o].firstSpring + k].object = static_cast<std::uint32_t>(o);
         buffers.springs = gl::makeBuffer("springs", springs);
-        buffers.nodeSpringOffsets = gl::makeBuffer("nodeSpringOffsets", m.nodeSprings.offsets);
         buffers.nodeSpringList = gl::makeBuffer("nodeSpringList", m.nodeSprings.items);
+    }
+    if (needSprings || plan.implicitSolve) {
+        // Without springs every row is empty (the solver still reads the row lengths).
+        const std::vector<std::uint32_t> offsets =
+            needSprings ? m.nodeSprings.offsets : std::vector<std::uint32_t>(m.nodeCount() + 1, 0u);
+        buffers.nodeSpringOffsets = gl::makeBuffer("nodeSpringOffsets", offsets);
+        heavyNodes = passes::heavyRowNodes(offsets);
+        buffers.heavyNodes = gl::makeBuffer("heavyNodes", heavyNodes);
     }
     if (plan.nodeForce && plan.nodeForceParams.wind) {
         buffers.nodeFaceOffsets = gl::makeBuffer("nodeFaceOffsets", m.nodeFaces.offsets);
@@ -180,6 +198,9 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
     if (d.plan.nodeForce) d.nodeForce.emplace(d.plan.nodeForceParams);
     if (d.plan.springUpdate) d.springUpdate.emplace(d.plan.springUpdateParams);
     if (d.plan.nodeUpdate) d.nodeUpdate.emplace(d.plan.nodeUpdateParams);
+    if (d.plan.implicitSolve)
+        d.implicitSolve.emplace(d.plan.implicitParams, d.buffers.nodeCount,
+                                static_cast<std::uint32_t>(d.heavyNodes.size()));
     if (d.plan.collisions) {
         passes::CollisionConfig config;
         config.betweenObjects = d.plan.betweenObjects;
@@ -263,7 +284,19 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
                                            sizeof c.contacts, &c.contacts);
         }
     }
+    if (implicitSolve) run(*implicitSolve, plan.implicitParams);
     if (nodeUpdate) run(*nodeUpdate, plan.nodeUpdateParams, static_cast<std::uint32_t>(index));
+}
+
+void Engine::Impl::readSolverStats() {
+    SolverStats& s = stats.solver;
+    s.implicit = implicitSolve.has_value();
+    if (!implicitSolve) return;
+    const passes::ImplicitSolverCounts c = implicitSolve->readStatistics();
+    s.maxIterations = c.maxIterations;
+    s.maxRelativeResidual = c.maxRelativeResidual;
+    s.totalIterations = c.totalIterations;
+    s.unconvergedSubsteps = c.unconvergedSubsteps;
 }
 
 void Engine::Impl::readHealth() {
@@ -294,16 +327,21 @@ void Engine::step() {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     if (d.options.gpuTiming) d.timer.beginFrame();
     d.stats.collision = {};
+    if (d.implicitSolve) d.implicitSolve->resetStatistics();
+    const std::uint64_t dispatchesBefore = gl::dispatchCount();
     {
         gl::DebugGroup frame("glcollide::Engine::step");
         for (int s = 0; s < d.substeps.substeps; ++s) d.substep(s, s + 1 == d.substeps.substeps);
     }
+    d.stats.dispatchesPerSubstep =
+        static_cast<double>(gl::dispatchCount() - dispatchesBefore) / d.substeps.substeps;
     // A host draws positions as vertices and faces as indices right after step().
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT |
                     GL_SHADER_STORAGE_BARRIER_BIT);
     d.stats.frame += 1;
     d.stats.time = static_cast<double>(d.stats.frame) * d.scene.time.dt;
     d.readHealth();
+    d.readSolverStats();
     if (d.options.gpuTiming) {
         const std::vector<double> ms = d.timer.resolveMilliseconds();
         const std::vector<passes::PassId>& ids = d.passIds;
@@ -326,13 +364,20 @@ std::vector<std::string> Engine::pipeline() const {
 }
 std::vector<std::string> Engine::allocatedBuffers() const {
     std::vector<std::string> labels = m_impl->buffers.allocatedLabels();
+    if (m_impl->implicitSolve)
+        for (std::string& l : m_impl->implicitSolve->allocatedLabels()) labels.push_back(std::move(l));
     if (m_impl->collision)
         for (std::string& l : m_impl->collision->allocatedLabels()) labels.push_back(std::move(l));
     return labels;
 }
 
 std::size_t Engine::allocatedBytes() const {
-    return m_impl->buffers.allocatedBytes() + (m_impl->collision ? m_impl->collision->allocatedBytes() : 0);
+    return m_impl->buffers.allocatedBytes() + solverBytes() +
+           (m_impl->collision ? m_impl->collision->allocatedBytes() : 0);
+}
+
+std::size_t Engine::solverBytes() const {
+    return m_impl->implicitSolve ? m_impl->implicitSolve->allocatedBytes() : 0;
 }
 
 std::vector<std::array<std::uint32_t, 2>> Engine::readIntersectingPairs() const {

@@ -19,6 +19,7 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
         p.push_back(PassId::FeaturePairs);
         p.push_back(PassId::ContactResponse);
     }
+    if (implicitSolve) p.push_back(PassId::ImplicitSolve);
     if (nodeUpdate) p.push_back(PassId::NodeUpdate);
     return p;
 }
@@ -34,11 +35,11 @@ std::vector<std::string> PipelinePlan::buffers() const {
     if (!nodeUpdate) return b;
     b = {"positions", "velocities", "faces"};
     if (nodeForce || springUpdate) b.emplace_back("forces");
-    if (springUpdate) {
-        b.emplace_back("springs");
-        b.emplace_back("nodeSpringOffsets");
-        b.emplace_back("nodeSpringList");
-    }
+    const bool springs = springUpdate || (implicitSolve && implicitParams.springs);
+    if (springs) b.emplace_back("springs");
+    if (springs || implicitSolve) b.emplace_back("nodeSpringOffsets");
+    if (springs) b.emplace_back("nodeSpringList");
+    if (springs || implicitSolve) b.emplace_back("heavyNodes");
     if (nodeForce && nodeForceParams.wind) {
         b.emplace_back("nodeFaceOffsets");
         b.emplace_back("nodeFaceList");
@@ -76,6 +77,21 @@ PipelinePlan planPipeline(const Scene& scene) {
     NodeUpdateParams& nu = plan.nodeUpdateParams;
     nu.forces = plan.nodeForce || plan.springUpdate;
     nu.contacts = plan.collisions;
+    if (scene.time.integrator == Integrator::ImplicitEuler && plan.nodeUpdate) {
+        plan.implicitSolve = true;
+        ImplicitParams& ip = plan.implicitParams;
+        ip.springs = plan.springUpdate;
+        ip.externalForces = plan.nodeForce;
+        ip.airDamping = nf.damping ? nf.dampingCoefficient : 0.0;
+        ip.contacts = plan.collisions;
+        ip.contactForceScale = plan.contact.forceScale;
+        ip.tolerance = scene.time.solver.tolerance;
+        ip.maxIterations = scene.time.solver.maxIterations;
+        plan.springUpdate = false; // the solver gathers the springs itself
+        plan.springUpdateParams.accumulate = false;
+        nu.forces = false;
+        nu.contacts = false;
+    }
     nu.contactForceScale = plan.contact.forceScale;
     nu.ground = fx.has(Effect::Ground);
     nu.groundHeight = scene.ground.height;

@@ -20,6 +20,10 @@ struct PipelinePlan {
     NodeForceParams nodeForceParams;
     SpringUpdateParams springUpdateParams;
     NodeUpdateParams nodeUpdateParams; ///< h is filled in once substeps are known
+    /// Implicit Euler (time.integrator): ImplicitSolve replaces SpringUpdate and NodeUpdate's force
+    /// and contact terms; NodeUpdate only moves the positions (x += h·v) and applies the ground.
+    bool implicitSolve = false;
+    ImplicitParams implicitParams; ///< h is filled in once substeps are known
 
     /// Collision detection and response (effects collisions / self_collisions).
     bool collisions = false;

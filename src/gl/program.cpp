@@ -185,7 +185,25 @@ void ComputeProgram::dispatch1D(std::uint32_t invocations, std::uint32_t groupSi
     constexpr std::uint32_t kMaxGroups = 65535;
     const std::uint32_t x = groups < kMaxGroups ? groups : kMaxGroups;
     const std::uint32_t y = (groups + x - 1) / x;
-    glDispatchCompute(x, y, 1);
+    dispatch(x, y, 1);
+}
+
+namespace {
+std::uint64_t g_dispatches = 0;
+}
+
+void ComputeProgram::dispatch(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+    ++g_dispatches;
+    glDispatchCompute(x, y, z);
+}
+
+void ComputeProgram::dispatchIndirect(std::intptr_t offset) {
+    ++g_dispatches;
+    glDispatchComputeIndirect(static_cast<GLintptr>(offset));
+}
+
+std::uint64_t dispatchCount() {
+    return g_dispatches;
 }
 
 } // namespace glcollide::gl

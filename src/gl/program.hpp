@@ -3,6 +3,7 @@
 
 #include "gl/handles.hpp"
 
+#include <cstdint>
 #include <glm/vec3.hpp>
 
 #include <functional>
@@ -47,6 +48,10 @@ class ComputeProgram {
     /// glDispatchCompute with enough groups of `groupSize` to cover `invocations` (x only; more
     /// than 65535 groups spill into y, and the shader folds y back into its index).
     void dispatch1D(std::uint32_t invocations, std::uint32_t groupSize) const;
+    /// glDispatchCompute(x, y, z), counted by dispatchCount().
+    static void dispatch(std::uint32_t x, std::uint32_t y, std::uint32_t z);
+    /// glDispatchComputeIndirect at `offset` of the bound GL_DISPATCH_INDIRECT_BUFFER, counted.
+    static void dispatchIndirect(std::intptr_t offset);
 
   private:
     /// Loads the program from the program binary cache (gl/program_cache.hpp) or compiles and
@@ -60,5 +65,10 @@ class ComputeProgram {
     Handle<deleteProgram> m_handle;
     std::string m_shaderName;
 };
+
+/// Compute dispatches issued through ComputeProgram since the process started (GL is used from one
+/// thread). The engine reports dispatches per substep from its differences: launch count is a
+/// cost of its own on a GPU (docs/integration.md).
+std::uint64_t dispatchCount();
 
 } // namespace glcollide::gl

@@ -7,7 +7,7 @@ namespace {
 template <typename F> void forEach(const DeviceBuffers& b, F&& f) {
     for (const gl::Buffer* buffer :
          {&b.positions, &b.velocities, &b.faces, &b.forces, &b.springs, &b.nodeSpringOffsets,
-          &b.nodeSpringList, &b.nodeFaceOffsets, &b.nodeFaceList, &b.contactForces, &b.health})
+          &b.nodeSpringList, &b.heavyNodes, &b.nodeFaceOffsets, &b.nodeFaceList, &b.contactForces, &b.health})
         if (*buffer) f(*buffer);
 }
 } // namespace

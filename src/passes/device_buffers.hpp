@@ -22,6 +22,7 @@ struct DeviceBuffers {
     gl::Buffer springs;           ///< GpuSpring (SpringUpdate)
     gl::Buffer nodeSpringOffsets; ///< uint[nodeCount + 1] (SpringUpdate)
     gl::Buffer nodeSpringList;    ///< uint[2 * springCount] (SpringUpdate)
+    gl::Buffer heavyNodes;        ///< uint[]: nodes with more than kHeavyRow springs (SpringUpdate, ImplicitSolve)
     gl::Buffer nodeFaceOffsets;   ///< uint[nodeCount + 1] (NodeForce with wind)
     gl::Buffer nodeFaceList;      ///< uint[3 * faceCount] (NodeForce with wind)
     gl::Buffer contactForces;     ///< ivec4 fixed point (collisions: ContactResponse → NodeUpdate)

@@ -21,14 +21,15 @@ enum class PassId : std::uint8_t {
     TriTri,
     FeaturePairs, ///< Representative Triangles: candidate face pairs -> vertex-face, edge-edge pairs
     ContactResponse,
+    ImplicitSolve, ///< implicit Euler: assemble A·Δv = b, conjugate gradients, v += Δv
     NodeUpdate
 };
 
-inline constexpr std::size_t kPassCount = 11;
+inline constexpr std::size_t kPassCount = 12;
 
 inline constexpr std::array<const char*, kPassCount> kPassNames = {
     "NodeForce",   "SpringUpdate", "BBUpdate",     "BBCollision",     "BvhBuild",  "BvhRefit",
-    "BvhTraverse", "TriTri",       "FeaturePairs", "ContactResponse", "NodeUpdate"};
+    "BvhTraverse", "TriTri",       "FeaturePairs", "ContactResponse", "ImplicitSolve", "NodeUpdate"};
 
 constexpr const char* passName(PassId id) {
     return kPassNames[static_cast<std::size_t>(id)];

@@ -117,10 +117,35 @@ std::string string(const Ctx& c, const json& j, const Ptr& p) {
 
 // ---- top level ----
 
+ImplicitSolverSettings parseSolver(const Ctx& c, const json& j, const Ptr& p) {
+    checkObject(c, j, p, {"tolerance", "max_iterations"});
+    ImplicitSolverSettings s;
+    if (const json* v = find(j, "tolerance")) {
+        s.tolerance = positive(c, *v, p / "tolerance");
+        if (s.tolerance >= 1.0) c.fail(p / "tolerance", "expected a relative residual in (0, 1), got " + shown(*v));
+    }
+    if (const json* v = find(j, "max_iterations"))
+        s.maxIterations = integer(c, *v, p / "max_iterations", 1, 1024);
+    return s;
+}
+
 TimeSettings parseTime(const Ctx& c, const json& j, const Ptr& p) {
-    checkObject(c, j, p, {"dt", "substeps", "frames"});
+    checkObject(c, j, p, {"dt", "integrator", "substeps", "solver", "frames"});
     TimeSettings t;
     if (const json* v = find(j, "dt")) t.dt = positive(c, *v, p / "dt");
+    if (const json* v = find(j, "integrator")) {
+        const std::optional<Integrator> kind = integratorFromName(string(c, *v, p / "integrator"));
+        if (!kind)
+            c.fail(p / "integrator",
+                   "expected \"symplectic_euler\" or \"implicit_euler\", got " + shown(*v));
+        t.integrator = *kind;
+    }
+    if (const json* v = find(j, "solver")) {
+        if (t.integrator != Integrator::ImplicitEuler)
+            c.fail(p / "solver", "given but /time/integrator is not \"implicit_euler\" (only the implicit "
+                                 "integrator solves a linear system)");
+        t.solver = parseSolver(c, *v, p / "solver");
+    }
     if (const json* v = find(j, "substeps")) {
         if (v->is_string()) {
             if (v->get<std::string>() != "auto")
@@ -698,6 +723,22 @@ Scene loadScene(const std::filesystem::path& path) {
 
 Scene defaultScene() {
     return parseScene(kDefaultScene, {}, "default scene");
+}
+
+const char* integratorName(Integrator kind) {
+    switch (kind) {
+    case Integrator::SymplecticEuler:
+        return "symplectic_euler";
+    case Integrator::ImplicitEuler:
+        return "implicit_euler";
+    }
+    return "?";
+}
+
+std::optional<Integrator> integratorFromName(std::string_view name) {
+    for (Integrator kind : {Integrator::SymplecticEuler, Integrator::ImplicitEuler})
+        if (name == integratorName(kind)) return kind;
+    return std::nullopt;
 }
 
 const char* broadPhaseName(BroadPhase kind) {

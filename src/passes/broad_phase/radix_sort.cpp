@@ -82,7 +82,7 @@ void RadixSort::sort(std::uint32_t count, std::uint32_t keyBits) const {
         m_count.dispatch1D(blocks * GLC_SORT_BLOCK, GLC_SORT_BLOCK);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         m_scan.use();
-        glDispatchCompute(1, 1, 1);
+        gl::ComputeProgram::dispatch(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         m_scatter.use();
         m_scatter.dispatch1D(blocks * GLC_SORT_BLOCK, GLC_SORT_BLOCK);

@@ -18,7 +18,7 @@ void dispatchUpperTriangle(const gl::ComputeProgram& program, std::uint32_t n, s
             const std::uint32_t nx = std::min(kMaxGroups, groups - gx);
             program.set("u_tileOriginX", gx * tile);
             program.set("u_tileOriginY", gy * tile);
-            glDispatchCompute(nx, ny, 1);
+            gl::ComputeProgram::dispatch(nx, ny, 1);
         }
         if (gy + ny >= groups) break;
     }

@@ -125,11 +125,11 @@ void AppendLists::dispatchOver(const gl::ComputeProgram& program, std::uint32_t 
     m_argsProgram.set("u_list", list);
     m_argsProgram.set("u_itemsPerGroup", itemsPerGroup);
     m_argsProgram.set("u_zGroups", zGroups);
-    glDispatchCompute(1, 1, 1);
+    gl::ComputeProgram::dispatch(1, 1, 1);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
     program.use();
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_dispatchArgs.name());
-    glDispatchComputeIndirect(static_cast<GLintptr>(list * kArgsPerList));
+    gl::ComputeProgram::dispatchIndirect(static_cast<std::intptr_t>(list * kArgsPerList));
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

@@ -1,0 +1,103 @@
+#version 430 core
+// glcollide-features: GLC_SPRINGS GLC_EXTERNAL_FORCES GLC_CONTACTS
+// ImplicitSetup — assembles one implicit Euler substep's system A·Δv = b per node (Baraff &
+// Witkin 1998, one Newton step of backward Euler) and starts the conjugate gradients at Δv = 0:
+//   b = h·f + h²·Σ K_s (v_j − v_i),   P = m(1 + h·c_air)·I + Σ (h·C_s + h²·K_s)  (A's diagonal block)
+//   r = b,  z = P⁻¹·r,  p = z,  per-group partial sums of r·z and r·r.
+// f is the external force NodeForce wrote (GLC_EXTERNAL_FORCES), the springs' force (GLC_SPRINGS)
+// and the contact force of ContactResponse (GLC_CONTACTS, cleared here). Pinned nodes (w = 0) get
+// zeros everywhere: their Δv stays 0. Twin: cpu::implicitVelocityUpdate.
+#include "common/layout.glsl"
+
+layout(local_size_x = GLC_WORKGROUP_SIZE) in;
+#include "common/row_gather.glsl"
+#include "common/implicit_solver.glsl"
+
+layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
+layout(std430, binding = GLC_BIND_NODE_VELOCITIES) readonly buffer NodeVelocitiesBuf { vec4 g_velocities[]; };
+#ifdef GLC_SPRINGS
+layout(std430, binding = GLC_BIND_SPRINGS) readonly buffer SpringsBuf { GpuSpring g_springs[]; };
+layout(std430, binding = GLC_BIND_NODE_SPRING_LIST) readonly buffer NodeSpringListBuf { uint g_nodeSpringList[]; };
+#endif
+#ifdef GLC_EXTERNAL_FORCES
+layout(std430, binding = GLC_BIND_NODE_FORCES) readonly buffer NodeForcesBuf { vec4 g_forces[]; };
+#endif
+#ifdef GLC_CONTACTS
+layout(std430, binding = GLC_BIND_CONTACT_FORCES) buffer ContactForcesBuf { ivec4 g_contactForces[]; };
+uniform float u_contactForceScale; // fixed-point units per N
+#endif
+layout(std430, binding = GLC_BIND_SOLVER_RESIDUAL) writeonly buffer ResidualBuf { vec4 g_residual[]; };
+layout(std430, binding = GLC_BIND_SOLVER_PRECONDITIONED) writeonly buffer PreconditionedBuf { vec4 g_preconditioned[]; };
+layout(std430, binding = GLC_BIND_SOLVER_DIRECTION_OUT) writeonly buffer DirectionBuf { vec4 g_direction[]; };
+layout(std430, binding = GLC_BIND_SOLVER_BLOCK_INVERSE) writeonly buffer BlockInverseBuf { float g_blockInverse[]; };
+
+void main() {
+    if (groupIsPadding()) return; // whole groups only: the rest meet at barriers
+    RowTask task = rowTask();
+    uint i = task.node;
+    float w = task.gathers ? g_positions[i].w : 0.0;
+
+    // This invocation's share of the row: spring force, K·(v_j − v_i), and the diagonal block.
+    vec3 force = vec3(0.0), stiffnessTimesVelocity = vec3(0.0);
+    vec4 blockA = vec4(0.0); // xx xy xz yy
+    vec2 blockB = vec2(0.0); // yz zz
+#ifdef GLC_SPRINGS
+    if (w > 0.0) {
+        vec3 xi = g_positions[i].xyz, vi = g_velocities[i].xyz;
+        for (uint k = task.firstSpring; k < rowEnd(task); k += task.stride) {
+            GpuSpring s = g_springs[g_nodeSpringList[k]];
+            uint j = (s.nodeA == i) ? s.nodeB : s.nodeA;
+            vec3 vj = g_velocities[j].xyz;
+            SpringTerm term = springTerm(s, xi, g_positions[j].xyz, vi, vj);
+            if (!term.valid) continue;
+            force += term.force * term.u;
+            vec3 dv = vj - vi;
+            stiffnessTimesVelocity += term.transverseStiffness * dv + (term.alongStiffness * dot(term.u, dv)) * term.u;
+            vec3 u = term.u;
+            blockA += vec4(term.alpha, 0.0, 0.0, term.alpha) + term.beta * vec4(u.x * u.x, u.x * u.y, u.x * u.z, u.y * u.y);
+            blockB += vec2(0.0, term.alpha) + term.beta * vec2(u.y * u.z, u.z * u.z);
+        }
+    }
+#endif
+    vec4 sum0 = rowSum(vec4(force, blockB.x));
+    vec4 sum1 = rowSum(vec4(stiffnessTimesVelocity, blockB.y));
+    vec4 sum2 = rowSum(blockA);
+
+    vec2 partial = vec2(0.0);
+    if (task.owner) {
+        vec3 r = vec3(0.0), z = vec3(0.0);
+        vec4 inverseA = vec4(0.0);
+        vec2 inverseB = vec2(0.0);
+        vec3 f = sum0.xyz;
+#ifdef GLC_EXTERNAL_FORCES
+        f += g_forces[i].xyz;
+#endif
+#ifdef GLC_CONTACTS
+        f += vec3(g_contactForces[i].xyz) / u_contactForceScale;
+        g_contactForces[i] = ivec4(0);
+#endif
+        if (w > 0.0) {
+            float m = u_massFactor / w;
+            vec4 a = sum2 + vec4(m, 0.0, 0.0, m);
+            vec2 b = vec2(sum0.w, sum1.w + m);
+            symInverse(a, b, inverseA, inverseB);
+            r = u_h * f + (u_h * u_h) * sum1.xyz;
+            z = symMul(inverseA, inverseB, r);
+            partial = vec2(dot(r, z), dot(r, r));
+        }
+        g_residual[i] = vec4(r, 0.0);
+        g_preconditioned[i] = vec4(z, 0.0);
+        g_direction[i] = vec4(z, 0.0);
+        g_blockInverse[6u * i] = inverseA.x;
+        g_blockInverse[6u * i + 1u] = inverseA.y;
+        g_blockInverse[6u * i + 2u] = inverseA.z;
+        g_blockInverse[6u * i + 3u] = inverseA.w;
+        g_blockInverse[6u * i + 4u] = inverseB.x;
+        g_blockInverse[6u * i + 5u] = inverseB.y;
+    }
+    vec2 groupPartial = groupSum(vec4(partial, 0.0, 0.0)).xy;
+    if (gl_LocalInvocationID.x == 0u) {
+        g_partialsR[groupIndex()] = groupPartial;
+        if (groupIndex() == 0u) g_state.doneAt = GLC_SOLVER_RUNNING;
+    }
+}

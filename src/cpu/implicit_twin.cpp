@@ -1,0 +1,210 @@
+#include "cpu/implicit_twin.hpp"
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+namespace glcollide::cpu {
+namespace {
+
+/// k·max(0, 1 − L/l) across the spring and k·(1 − max(0, 1 − L/l)) along it: K_s = kT·I + kA·u uᵀ.
+struct SpringStiffness {
+    double transverse = 0, along = 0;
+};
+
+SpringStiffness stiffnessOf(const model::FlatSpring& s, double length) {
+    const double t = std::max(0.0, 1.0 - s.restLength / length); // the definiteness clamp
+    return {s.stiffness * t, s.stiffness * (1.0 - t)};
+}
+
+/// The assembled per-node pieces of the system: right-hand side and diagonal blocks.
+struct Assembly {
+    std::vector<glm::dvec3> b;
+    std::vector<glm::dmat3> diagonal;
+};
+
+double massFactor(const ImplicitParams& p) {
+    return 1.0 + p.h * p.airDamping;
+}
+
+Assembly assemble(const ImplicitParams& p, const std::vector<model::FlatSpring>& springs,
+                  const model::Csr& rows, const NodeState& state) {
+    const std::size_t n = state.positions.size();
+    Assembly a{std::vector<glm::dvec3>(n, glm::dvec3(0.0)), std::vector<glm::dmat3>(n, glm::dmat3(0.0))};
+    for (std::size_t i = 0; i < n; ++i) {
+        const double w = state.inverseMasses[i];
+        if (w <= 0.0) continue;
+        glm::dvec3 f = state.forces[i];
+        glm::dvec3 stiffnessTimesVelocity(0.0);
+        glm::dmat3 d(massFactor(p) / w);
+        if (p.springs)
+            for (std::uint32_t k = rows.offsets[i]; k < rows.offsets[i + 1]; ++k) {
+                const model::FlatSpring& s = springs[rows.items[k]];
+                const std::uint32_t j = s.a == i ? s.b : s.a;
+                const SpringBlock blk = springBlock(s, state.positions[i], state.positions[j],
+                                                    state.velocities[i], state.velocities[j], p.h);
+                if (!blk.valid) continue;
+                f += blk.force * blk.u;
+                d += glm::dmat3(blk.alpha) + blk.beta * glm::outerProduct(blk.u, blk.u);
+                const SpringStiffness st = stiffnessOf(s, glm::length(state.positions[j] - state.positions[i]));
+                const glm::dvec3 dv = state.velocities[j] - state.velocities[i];
+                stiffnessTimesVelocity += st.transverse * dv + st.along * glm::dot(blk.u, dv) * blk.u;
+            }
+        a.b[i] = p.h * f + p.h * p.h * stiffnessTimesVelocity;
+        a.diagonal[i] = d;
+    }
+    return a;
+}
+
+/// q = A·x over the free nodes (pinned entries of x are ignored, pinned rows of q are 0).
+std::vector<glm::dvec3> multiply(const ImplicitParams& p, const std::vector<model::FlatSpring>& springs,
+                                 const model::Csr& rows, const NodeState& state,
+                                 const std::vector<glm::dvec3>& x) {
+    const std::size_t n = state.positions.size();
+    std::vector<glm::dvec3> q(n, glm::dvec3(0.0));
+    for (std::size_t i = 0; i < n; ++i) {
+        const double w = state.inverseMasses[i];
+        if (w <= 0.0) continue;
+        glm::dvec3 sum = (massFactor(p) / w) * x[i];
+        if (p.springs)
+            for (std::uint32_t k = rows.offsets[i]; k < rows.offsets[i + 1]; ++k) {
+                const model::FlatSpring& s = springs[rows.items[k]];
+                const std::uint32_t j = s.a == i ? s.b : s.a;
+                const SpringBlock blk = springBlock(s, state.positions[i], state.positions[j],
+                                                    state.velocities[i], state.velocities[j], p.h);
+                if (!blk.valid) continue;
+                const glm::dvec3 xj = state.inverseMasses[j] > 0.0 ? x[j] : glm::dvec3(0.0);
+                const glm::dvec3 d = x[i] - xj;
+                sum += blk.alpha * d + blk.beta * glm::dot(blk.u, d) * blk.u;
+            }
+        q[i] = sum;
+    }
+    return q;
+}
+
+double dotAll(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) {
+    double s = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) s += glm::dot(a[i], b[i]);
+    return s;
+}
+
+} // namespace
+
+SpringBlock springBlock(const model::FlatSpring& s, const glm::dvec3& xi, const glm::dvec3& xj,
+                        const glm::dvec3& vi, const glm::dvec3& vj, double h) {
+    SpringBlock b;
+    const glm::dvec3 d = xj - xi;
+    const double length = glm::length(d);
+    if (length <= 0.0) return b; // coincident ends: no direction, as in SpringUpdate
+    b.u = d / length;
+    const SpringStiffness st = stiffnessOf(s, length);
+    b.alpha = h * h * st.transverse;
+    b.beta = h * s.damping + h * h * st.along;
+    b.force = s.stiffness * (length - s.restLength) + s.damping * glm::dot(vj - vi, b.u);
+    b.valid = true;
+    return b;
+}
+
+ImplicitSolveStats implicitVelocityUpdate(const ImplicitParams& params,
+                                          const std::vector<model::FlatSpring>& springs,
+                                          const model::Csr& nodeSprings, NodeState& state) {
+    const std::size_t n = state.positions.size();
+    const Assembly a = assemble(params, springs, nodeSprings, state);
+    std::vector<glm::dmat3> inverse(n, glm::dmat3(0.0));
+    for (std::size_t i = 0; i < n; ++i)
+        if (state.inverseMasses[i] > 0.0) inverse[i] = glm::inverse(a.diagonal[i]);
+    const auto precondition = [&](const std::vector<glm::dvec3>& r) {
+        std::vector<glm::dvec3> z(n);
+        for (std::size_t i = 0; i < n; ++i) z[i] = inverse[i] * r[i];
+        return z;
+    };
+    std::vector<glm::dvec3> dv(n, glm::dvec3(0.0)), r = a.b, z = precondition(r), direction = z;
+    double rz = dotAll(r, z), rr = dotAll(r, r), previousRz = 0.0;
+    const double bb = rr;
+    const double tol2 = params.tolerance * params.tolerance;
+    ImplicitSolveStats stats;
+    for (int k = 0;; ++k) {
+        if (rr <= tol2 * bb) {
+            stats.iterations = k;
+            stats.converged = true;
+            break;
+        }
+        if (k == params.maxIterations) {
+            stats.iterations = k;
+            break;
+        }
+        const double beta = k == 0 ? 0.0 : rz / previousRz;
+        for (std::size_t i = 0; i < n; ++i) direction[i] = z[i] + beta * direction[i];
+        const std::vector<glm::dvec3> q = multiply(params, springs, nodeSprings, state, direction);
+        const double alpha = rz / dotAll(direction, q);
+        for (std::size_t i = 0; i < n; ++i) {
+            dv[i] += alpha * direction[i];
+            r[i] -= alpha * q[i];
+        }
+        z = precondition(r);
+        previousRz = rz;
+        rz = dotAll(r, z);
+        rr = dotAll(r, r);
+    }
+    stats.relativeResidual = bb > 0.0 ? std::sqrt(rr / bb) : 0.0;
+    for (std::size_t i = 0; i < n; ++i) state.velocities[i] += dv[i];
+    return stats;
+}
+
+std::vector<glm::dvec3> implicitVelocityChangeDense(const ImplicitParams& params,
+                                                    const std::vector<model::FlatSpring>& springs,
+                                                    const model::Csr& nodeSprings, const NodeState& state) {
+    const std::size_t n = state.positions.size();
+    std::vector<std::size_t> freeIndex(n, n);
+    std::vector<std::size_t> freeNodes;
+    for (std::size_t i = 0; i < n; ++i)
+        if (state.inverseMasses[i] > 0.0) {
+            freeIndex[i] = freeNodes.size();
+            freeNodes.push_back(i);
+        }
+    const std::size_t m = 3 * freeNodes.size();
+    // Column c of A is A·e_c: build it with the same product the solver uses.
+    std::vector<double> A(m * m, 0.0), b(m, 0.0);
+    const Assembly a = assemble(params, springs, nodeSprings, state);
+    for (std::size_t c = 0; c < m; ++c) {
+        std::vector<glm::dvec3> e(n, glm::dvec3(0.0));
+        e[freeNodes[c / 3]][static_cast<int>(c % 3)] = 1.0;
+        const std::vector<glm::dvec3> col = multiply(params, springs, nodeSprings, state, e);
+        for (std::size_t r = 0; r < m; ++r) A[r * m + c] = col[freeNodes[r / 3]][static_cast<int>(r % 3)];
+    }
+    for (std::size_t r = 0; r < m; ++r) b[r] = a.b[freeNodes[r / 3]][static_cast<int>(r % 3)];
+    // Cholesky A = L Lᵀ in place (lower triangle).
+    for (std::size_t j = 0; j < m; ++j) {
+        double d = A[j * m + j];
+        for (std::size_t k = 0; k < j; ++k) d -= A[j * m + k] * A[j * m + k];
+        d = std::sqrt(d);
+        A[j * m + j] = d;
+        for (std::size_t i = j + 1; i < m; ++i) {
+            double s = A[i * m + j];
+            for (std::size_t k = 0; k < j; ++k) s -= A[i * m + k] * A[j * m + k];
+            A[i * m + j] = s / d;
+        }
+    }
+    for (std::size_t i = 0; i < m; ++i) { // L y = b
+        for (std::size_t k = 0; k < i; ++k) b[i] -= A[i * m + k] * b[k];
+        b[i] /= A[i * m + i];
+    }
+    for (std::size_t i = m; i-- > 0;) { // Lᵀ x = y
+        for (std::size_t k = i + 1; k < m; ++k) b[i] -= A[k * m + i] * b[k];
+        b[i] /= A[i * m + i];
+    }
+    std::vector<glm::dvec3> dv(n, glm::dvec3(0.0));
+    for (std::size_t r = 0; r < m; ++r) dv[freeNodes[r / 3]][static_cast<int>(r % 3)] = b[r];
+    return dv;
+}
+
+double implicitRightHandSideNorm(const ImplicitParams& params, const std::vector<model::FlatSpring>& springs,
+                                 const model::Csr& nodeSprings, const NodeState& state) {
+    const Assembly a = assemble(params, springs, nodeSprings, state);
+    return std::sqrt(dotAll(a.b, a.b));
+}
+
+} // namespace glcollide::cpu

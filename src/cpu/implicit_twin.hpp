@@ -1,0 +1,57 @@
+#pragma once
+// CPU twin of the implicit Euler velocity update (shaders/passes/implicit_*.comp), in double
+// precision, and an exact dense solve of the same linear system for tests.
+//
+// The system of one substep (Baraff & Witkin 1998, one Newton step of backward Euler):
+//   A Δv = b,  A = M(1 + h·c_air) + Σ_springs (h·C_s + h²·K_s) as a graph Laplacian,
+//              b = h·f(x, v) + h²·Σ_springs K_s (v_j − v_i)   (per node i)
+// with K_s = k·[u uᵀ + max(0, 1 − L/l)(I − u uᵀ)] (the transverse term clamped at 0 for
+// compressed springs, so K_s is positive semidefinite) and C_s = c·u uᵀ. Pinned nodes keep
+// Δv = 0 (their rows and columns are removed). A is then symmetric positive definite.
+
+#include "core/dynamics_params.hpp"
+#include "cpu/dynamics_twin.hpp"
+#include "model/flat_model.hpp"
+
+#include <glm/mat3x3.hpp>
+
+#include <vector>
+
+namespace glcollide::cpu {
+
+/// The 3×3 block h·C_s + h²·K_s of one spring between i and j, as α·I + β·u uᵀ.
+struct SpringBlock {
+    glm::dvec3 u{0.0}; ///< unit direction from i to j
+    double alpha = 0;  ///< h²·k·max(0, 1 − L/l)
+    double beta = 0;   ///< h·c + h²·k·(1 − max(0, 1 − L/l))
+    double force = 0;  ///< k(l − L) + c·u·(v_j − v_i): the force on i along u
+    bool valid = false; ///< false for coincident ends (no direction: no force, no block)
+};
+SpringBlock springBlock(const model::FlatSpring& s, const glm::dvec3& xi, const glm::dvec3& xj,
+                        const glm::dvec3& vi, const glm::dvec3& vj, double h);
+
+/// What one solve did.
+struct ImplicitSolveStats {
+    int iterations = 0;          ///< CG updates until ‖r‖ ≤ tol·‖b‖ (maxIterations if never)
+    double relativeResidual = 0; ///< ‖r‖/‖b‖ at the end (0 when b = 0)
+    bool converged = false;
+};
+
+/// Twin of implicit_setup + implicit_cg_direction + implicit_cg_update: adds the PCG solution Δv to
+/// state.velocities. state.forces holds the external forces (NodeForce output, or zeros) plus the
+/// contact forces. Same algorithm and order as the GPU (block-Jacobi PCG starting from Δv = 0).
+ImplicitSolveStats implicitVelocityUpdate(const ImplicitParams& params,
+                                          const std::vector<model::FlatSpring>& springs,
+                                          const model::Csr& nodeSprings, NodeState& state);
+
+/// The exact Δv of the same system, by dense Cholesky factorisation of A in double (test oracle;
+/// O(n³): small systems only). Pinned nodes get 0.
+std::vector<glm::dvec3> implicitVelocityChangeDense(const ImplicitParams& params,
+                                                    const std::vector<model::FlatSpring>& springs,
+                                                    const model::Csr& nodeSprings, const NodeState& state);
+
+/// ‖b‖₂ of the system (for the error bound ‖Δv − Δv*‖ ≤ tol·‖b‖ / min mass of the tests).
+double implicitRightHandSideNorm(const ImplicitParams& params, const std::vector<model::FlatSpring>& springs,
+                                 const model::Csr& nodeSprings, const NodeState& state);
+
+} // namespace glcollide::cpu

