@@ -79,7 +79,11 @@ vec4 groupSum(vec4 v) {
         barrier();
     }
     vec4 sum = s_groupSum[0];
-    barrier(); // the next call overwrites s_groupSum
+    // The next call overwrites s_groupSum[0]: every invocation must have read it first. Without
+    // the memory barrier llvmpipe let the read slip past barrier() (the 0/8 split of a group showed
+    // two different sums).
+    memoryBarrierShared();
+    barrier();
     return sum;
 }
 

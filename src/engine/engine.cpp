@@ -83,7 +83,7 @@ struct Engine::Impl {
 
 void Engine::Impl::chooseSubsteps() {
     const double dt = scene.time.dt;
-    const cpu::StabilityLimit limit = cpu::stableSubstep(model, plan.springUpdate, plan.nodeForceParams, 0.9,
+    const cpu::StabilityLimit limit = cpu::stableSubstep(model, plan.springUpdate || (plan.implicitSolve && plan.implicitParams.springs), plan.nodeForceParams, 0.9,
                                                          plan.collisions ? &plan.contact : nullptr);
     const int stable = cpu::substepsFor(dt, limit);
     substeps.stableSubsteps = stable;

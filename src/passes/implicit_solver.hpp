@@ -47,6 +47,13 @@ class ImplicitSolverPass {
 
     [[nodiscard]] std::vector<std::string> allocatedLabels() const;
     [[nodiscard]] std::size_t allocatedBytes() const;
+    /// The solver's vectors after the last dispatch (tests compare them with the twin).
+    [[nodiscard]] const gl::Buffer& residual() const { return m_residual; }
+    [[nodiscard]] const gl::Buffer& preconditioned() const { return m_preconditioned; }
+    [[nodiscard]] const gl::Buffer& blockInverse() const { return m_blockInverse; }
+    [[nodiscard]] const gl::Buffer& product() const { return m_product; }
+    [[nodiscard]] const gl::Buffer& direction(int parity) const { return parity ? m_direction1 : m_direction0; }
+
     /// Dispatches of one velocity update: 1 + 2·maxIterations + 1.
     [[nodiscard]] std::uint32_t dispatchesPerSubstep() const;
 

@@ -120,17 +120,5 @@ TEST_P(ImplicitGl, SolveMatchesExactSolution) {
 
 INSTANTIATE_TEST_SUITE_P(Sizes, ImplicitGl, ::testing::ValuesIn(kSizes));
 
-TEST(ImplicitDebug, Iterations) {
-    using namespace testing_support;
-    RandomModel m = makeRandomModel(127, 4127);
-    for (int cap : {1, 2, 3}) {
-        ImplicitParams p = solverParams();
-        p.maxIterations = cap;
-        passes::ImplicitSolverCounts c;
-        auto v = solveOnGpu(p, m, &c);
-        double mx = 0; for (auto& x : v) mx = std::max(mx, glm::length(x));
-        std::printf("cap %d: iters %u residual %g unconverged %u maxv %g\n", cap, c.maxIterations, c.maxRelativeResidual, c.unconvergedSubsteps, mx);
-    }
-}
-}
 } // namespace
+} // namespace glcollide
