@@ -3,38 +3,41 @@
 // SpringUpdate — Hooke force plus damping along each spring, gathered per node.
 // The SpringUpdate stage of the AABB-octree pipeline (seeds/002, Table 2). The paper scatters per
 // spring; we gather through a node->spring CSR list in a fixed order, so the sum is deterministic
-// and needs no float atomics (GL 4.3 has none). Each spring is evaluated once per end.
+// and needs no float atomics (GL 4.3 has none). Each spring is evaluated once per end. A node with
+// more than GLC_HEAVY_ROW springs is gathered by a whole work group (common/row_gather.glsl).
 // GLC_ACCUMULATE: add to the forces NodeForce wrote; otherwise write them. Twin: cpu::springUpdate.
 #include "common/layout.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
-#include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
+#include "common/row_gather.glsl"
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
 layout(std430, binding = GLC_BIND_NODE_VELOCITIES) readonly buffer NodeVelocitiesBuf { vec4 g_velocities[]; };
 layout(std430, binding = GLC_BIND_SPRINGS) readonly buffer SpringsBuf { GpuSpring g_springs[]; };
 layout(std430, binding = GLC_BIND_NODE_FORCES) buffer NodeForcesBuf { vec4 g_forces[]; };
-layout(std430, binding = GLC_BIND_NODE_SPRING_OFFSETS) readonly buffer NodeSpringOffsetsBuf { uint g_nodeSpringOffsets[]; };
 layout(std430, binding = GLC_BIND_NODE_SPRING_LIST) readonly buffer NodeSpringListBuf { uint g_nodeSpringList[]; };
 
-uniform uint u_nodeCount;
-
 void main() {
-    uint i = globalIndex();
-    if (i >= u_nodeCount) return;
-    vec3 xi = g_positions[i].xyz;
-    vec3 vi = g_velocities[i].xyz;
+    if (groupIsPadding()) return; // whole groups only: the rest meet at barriers
+    RowTask task = rowTask();
+    uint i = task.node;
     vec3 f = vec3(0.0);
-    for (uint k = g_nodeSpringOffsets[i]; k < g_nodeSpringOffsets[i + 1u]; ++k) {
-        GpuSpring s = g_springs[g_nodeSpringList[k]];
-        uint j = (s.nodeA == i) ? s.nodeB : s.nodeA;
-        vec3 d = g_positions[j].xyz - xi;
-        float len = length(d);
-        if (len <= 0.0) continue; // coincident ends: no direction, no force
-        vec3 dir = d / len;
-        float magnitude = s.stiffness * (len - s.restLength) + s.damping * dot(g_velocities[j].xyz - vi, dir);
-        f += magnitude * dir;
+    if (task.gathers) {
+        vec3 xi = g_positions[i].xyz;
+        vec3 vi = g_velocities[i].xyz;
+        for (uint k = task.firstSpring; k < rowEnd(task); k += task.stride) {
+            GpuSpring s = g_springs[g_nodeSpringList[k]];
+            uint j = (s.nodeA == i) ? s.nodeB : s.nodeA;
+            vec3 d = g_positions[j].xyz - xi;
+            float len = length(d);
+            if (len <= 0.0) continue; // coincident ends: no direction, no force
+            vec3 dir = d / len;
+            float magnitude = s.stiffness * (len - s.restLength) + s.damping * dot(g_velocities[j].xyz - vi, dir);
+            f += magnitude * dir;
+        }
     }
+    f = rowSum(vec4(f, 0.0)).xyz;
+    if (!task.owner) return;
 #ifdef GLC_ACCUMULATE
     g_forces[i].xyz += f;
 #else

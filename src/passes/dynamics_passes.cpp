@@ -63,7 +63,16 @@ void SpringUpdatePass::dispatch(const DeviceBuffers& b) const {
     bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
     bindRequired(b.nodeSpringOffsets, GLC_BIND_NODE_SPRING_OFFSETS, kName, "nodeSpringOffsets");
     bindRequired(b.nodeSpringList, GLC_BIND_NODE_SPRING_LIST, kName, "nodeSpringList");
-    finish(m_program, b.nodeCount);
+    bindRequired(b.heavyNodes, GLC_BIND_HEAVY_NODES, kName, "heavyNodes");
+    // One group per GLC_WORKGROUP_SIZE nodes, then one per heavy node (common/row_gather.glsl).
+    const std::uint32_t lightGroups = (b.nodeCount + GLC_WORKGROUP_SIZE - 1) / GLC_WORKGROUP_SIZE;
+    const auto heavyCount = static_cast<std::uint32_t>(b.heavyNodes.bytes() / sizeof(std::uint32_t));
+    m_program.use();
+    m_program.set("u_nodeCount", b.nodeCount);
+    m_program.set("u_lightGroups", lightGroups);
+    m_program.set("u_heavyCount", heavyCount);
+    m_program.dispatch1D((lightGroups + heavyCount) * GLC_WORKGROUP_SIZE, GLC_WORKGROUP_SIZE);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 NodeUpdatePass::NodeUpdatePass(const NodeUpdateParams& config)

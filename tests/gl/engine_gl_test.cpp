@@ -39,16 +39,16 @@ TEST(EngineGl, PassesAndBuffersFollowTheEffects) {
         {R"(["springs"])",
          "",
          {"SpringUpdate", "NodeUpdate"},
-         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList"}},
+         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList", "heavyNodes"}},
         {R"(["gravity", "springs", "damping"])",
          R"("damping": 0.1,)",
          {"NodeForce", "SpringUpdate", "NodeUpdate"},
-         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList"}},
+         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList", "heavyNodes"}},
         {R"(["ground"])", "", {"NodeUpdate"}, {"positions", "velocities", "faces"}},
         {R"(["wind", "springs"])",
          R"("wind": {"velocity": [1, 0, 0], "drag": 1},)",
          {"NodeForce", "SpringUpdate", "NodeUpdate"},
-         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList",
+         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList", "heavyNodes",
           "nodeFaceOffsets", "nodeFaceList"}},
     };
     for (const Case& c : cases) {
@@ -59,6 +59,37 @@ TEST(EngineGl, PassesAndBuffersFollowTheEffects) {
         EXPECT_EQ(engine.allocatedBuffers(), buffers) << c.effects;
         engine.step(); // every composition runs
         EXPECT_EQ(engine.lastStep().passes.size(), c.passes.size());
+    }
+}
+
+TEST(EngineGl, ImplicitEulerReplacesSpringUpdateWithTheSolver) {
+    const Names solverBuffers = {"solverResidual", "solverPreconditioned", "solverDirection0", "solverDirection1",
+                                 "solverProduct",  "solverBlockInverse",   "solverPartialsR",  "solverPartialsPq",
+                                 "solverState"};
+    const std::string implicit = R"("time": {"integrator": "implicit_euler"},)";
+    {
+        Engine engine(sceneWith(R"(["gravity", "springs", "damping"])", implicit + R"("damping": 0.1,)"));
+        EXPECT_EQ(engine.pipeline(), (Names{"NodeForce", "ImplicitSolve", "NodeUpdate"}));
+        Names buffers = {"positions",      "velocities", "faces",  "forces", "springs", "nodeSpringOffsets",
+                         "nodeSpringList", "heavyNodes", "health"};
+        buffers.insert(buffers.end(), solverBuffers.begin(), solverBuffers.end());
+        EXPECT_EQ(engine.allocatedBuffers(), buffers);
+        EXPECT_EQ(engine.substepInfo().substeps, 1); // "auto" means one substep per frame
+        // 104 bytes per node of vectors, plus per-group partials and 32 bytes of state.
+        EXPECT_LE(engine.solverBytes(), 128u * engine.nodeCount());
+        engine.step();
+        EXPECT_TRUE(engine.lastStep().solver.implicit);
+        EXPECT_EQ(engine.lastStep().solver.unconvergedSubsteps, 0u);
+        EXPECT_LE(engine.lastStep().solver.maxRelativeResidual, 1.0e-4);
+        EXPECT_GE(engine.lastStep().solver.maxIterations, 1u);
+        // Setup, 64 × (direction + update), the last check, and NodeForce and NodeUpdate.
+        EXPECT_EQ(engine.lastStep().dispatchesPerSubstep, 1.0 + 2.0 * 64 + 1.0 + 2.0);
+    }
+    {   // Gravity alone: no springs, the system is M·Δv = h·f.
+        Engine engine(sceneWith(R"(["gravity"])", implicit));
+        EXPECT_EQ(engine.pipeline(), (Names{"NodeForce", "ImplicitSolve", "NodeUpdate"}));
+        engine.step();
+        for (const glm::dvec3& v : engine.readVelocities()) EXPECT_NEAR(v.y, -9.81 / 60.0, 1e-6);
     }
 }
 
@@ -91,7 +122,7 @@ TEST(EngineGl, CollisionEffectsAddTheirPassesAndBuffers) {
     EXPECT_EQ(engine.pipeline(), (Names{"SpringUpdate", "BBUpdate", "BBCollision", "TriTri", "FeaturePairs",
                                         "ContactResponse", "NodeUpdate"}));
     Names buffers = {"positions",         "velocities",     "faces",         "forces", "springs",
-                     "nodeSpringOffsets", "nodeSpringList", "contactForces", "health"};
+                     "nodeSpringOffsets", "nodeSpringList", "heavyNodes", "contactForces", "health"};
     buffers.insert(buffers.end(), collisionBuffers.begin(), collisionBuffers.end());
     EXPECT_EQ(engine.allocatedBuffers(), buffers);
     engine.step();
