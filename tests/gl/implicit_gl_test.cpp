@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace glcollide {
 namespace {
@@ -119,6 +120,84 @@ TEST_P(ImplicitGl, SolveMatchesExactSolution) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Sizes, ImplicitGl, ::testing::ValuesIn(kSizes));
+
+/// A hub node joined to 10,000 leaves on a sphere around it (rest lengths 0.8–1.2 of the distance:
+/// some springs compressed), the leaves joined in a ring, every tenth leaf pinned.
+RandomModel star(std::uint32_t leaves) {
+    std::mt19937 rng(99);
+    std::uniform_real_distribution<double> zeroOne(0.0, 1.0);
+    RandomModel m;
+    auto add = [&](glm::dvec3 x, double w) {
+        m.state.positions.push_back(glm::dvec3(glm::vec3(x)));
+        m.state.velocities.push_back(glm::dvec3(glm::vec3(zeroOne(rng) - 0.5, zeroOne(rng) - 0.5, zeroOne(rng) - 0.5)));
+        m.state.forces.push_back(glm::dvec3(0.0, -0.01, 0.0));
+        m.state.inverseMasses.push_back(w);
+    };
+    add(glm::dvec3(0.0), toFloat(1.0 / 0.05));
+    const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+    for (std::uint32_t i = 0; i < leaves; ++i) { // Fibonacci sphere
+        const double y = 1.0 - 2.0 * (i + 0.5) / leaves, r = std::sqrt(1.0 - y * y);
+        add(glm::dvec3(r * std::cos(golden * i), y, r * std::sin(golden * i)), i % 10 == 0 ? 0.0 : toFloat(1.0 / 0.001));
+    }
+    for (std::uint32_t i = 1; i <= leaves; ++i) {
+        const std::uint32_t next = i % leaves + 1;
+        const double hubLength = glm::length(m.state.positions[i]);
+        const double ringLength = glm::length(m.state.positions[next] - m.state.positions[i]);
+        m.springs.push_back({0, i, toFloat(hubLength * (0.8 + 0.4 * zeroOne(rng))), 1000.0, 0.01});
+        m.springs.push_back({i, next, toFloat(ringLength), 100.0, 0.0});
+    }
+    const auto n = static_cast<std::uint32_t>(m.state.positions.size());
+    m.nodeSprings = model::buildSpringAdjacency(n, m.springs);
+    m.nodeFaces = model::buildAdjacency(n, m.faceIndices, 3);
+    return m;
+}
+
+TEST(ImplicitGl, NodeOfValence10000IsGatheredByAWorkGroupAndMatchesTheTwin) {
+    RandomModel m = star(10000);
+    ASSERT_EQ(passes::heavyRowNodes(m.nodeSprings.offsets), std::vector<std::uint32_t>{0u});
+    const auto n = static_cast<std::uint32_t>(m.state.positions.size());
+
+    // SpringUpdate: the hub's force is a sum of 10,000 spring forces.
+    {
+        passes::DeviceBuffers b = uploadModel(m);
+        const SpringUpdateParams p{false};
+        passes::SpringUpdatePass(p).dispatch(b);
+        const std::vector<glm::dvec4> gpu = download(b.forces, n);
+        cpu::NodeState twin = m.state;
+        cpu::springUpdate(p, m.springs, m.nodeSprings, twin);
+        for (std::uint32_t i = 0; i < n; ++i) {
+            double magnitudes = 0.0; // Σ |term| over the row
+            for (std::uint32_t k = m.nodeSprings.offsets[i]; k < m.nodeSprings.offsets[i + 1]; ++k) {
+                const model::FlatSpring& s = m.springs[m.nodeSprings.items[k]];
+                const double length = glm::length(m.state.positions[s.b] - m.state.positions[s.a]);
+                magnitudes += s.stiffness * (length + s.restLength + 2.0) + s.damping * 2.0;
+            }
+            // Each term carries ~16u relative (the per-spring bound of DynamicsGl), and the sum adds
+            // at most row/128 + log2(128) + 1 roundings of u·Σ|term| (strided, then the tree).
+            const double row = m.nodeSprings.offsets[i + 1] - m.nodeSprings.offsets[i];
+            const double tolerance = (16.0 + row / 128.0 + 8.0) * kUnitRoundoff * magnitudes;
+            ASSERT_LE(glm::length(glm::dvec3(gpu[i]) - twin.forces[i]), tolerance) << "node " << i;
+        }
+    }
+    // The implicit solve, with the hub's row gathered cooperatively in the setup and every product.
+    {
+        ImplicitParams p = solverParams();
+        p.externalForces = true;
+        passes::ImplicitSolverCounts counts;
+        const std::vector<glm::dvec3> gpu = solveOnGpu(p, m, &counts);
+        EXPECT_EQ(counts.unconvergedSubsteps, 0u);
+        cpu::NodeState twin = m.state;
+        ImplicitParams tight = p;
+        tight.tolerance = 1.0e-12;
+        tight.maxIterations = 5000;
+        ASSERT_TRUE(cpu::implicitVelocityUpdate(tight, m.springs, m.nodeSprings, twin).converged);
+        const double b = cpu::implicitRightHandSideNorm(p, m.springs, m.nodeSprings, m.state);
+        const double bound = (p.tolerance + kUnitRoundoff * conditionBound(p, m) *
+                                                std::max<double>(1.0, counts.maxIterations)) *
+                             b / smallestMass(m);
+        expectWithinBound(gpu, twin.velocities, bound, "star: GPU velocities vs the twin");
+    }
+}
 
 } // namespace
 } // namespace glcollide
