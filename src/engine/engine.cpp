@@ -94,6 +94,19 @@ void Engine::Impl::chooseSubsteps() {
         // Backward Euler is stable for any step of the linear spring system it solves: the count
         // is the user's (auto: one substep per frame), never a stability requirement.
         substeps.substeps = substeps.automatic ? 1 : scene.time.substeps;
+        if (plan.collisions && !plan.contact.velocityResponse) {
+            // Penalty contact forces enter the implicit step explicitly (docs/integration.md), so
+            // they keep the explicit limit of a contact spring.
+            const cpu::StabilityLimit contactLimit =
+                cpu::stableSubstep(model, false, NodeForceParams{}, 0.9, &plan.contact);
+            const int contactSubsteps = cpu::substepsFor(dt, contactLimit);
+            if (substeps.substeps < contactSubsteps)
+                warnings.push_back("/time/substeps " + std::to_string(substeps.substeps) +
+                                   " with implicit_euler: the penalty contact response is explicit and needs " +
+                                   std::to_string(contactSubsteps) +
+                                   " substeps per frame to stay stable; use \"response\": \"bridson\" "
+                                   "(velocity-level, stable at any step) or more substeps");
+        }
     } else if (substeps.automatic) {
         if (stable > cpu::kMaxSubsteps) {
             std::ostringstream msg;
