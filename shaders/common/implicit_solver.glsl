@@ -3,7 +3,6 @@
 // Include after row_gather.glsl. CPU twin: cpu/implicit_twin.cpp (same formulas, double).
 
 layout(std430, binding = GLC_BIND_SOLVER_PARTIALS_R) buffer PartialsRBuf { vec2 g_partialsR[]; };
-layout(std430, binding = GLC_BIND_SOLVER_PARTIALS_PQ) buffer PartialsPqBuf { float g_partialsPq[]; };
 layout(std430, binding = GLC_BIND_SOLVER_STATE) buffer SolverStateBuf { GpuSolverState g_state; };
 
 uniform float u_h;          // s, substep length
@@ -71,8 +70,3 @@ vec2 sumPartialsR() {
     return groupSum(acc).xy;
 }
 
-float sumPartialsPq() {
-    vec4 acc = vec4(0.0);
-    for (uint k = gl_LocalInvocationID.x; k < partialCount(); k += GLC_WORKGROUP_SIZE) acc.x += g_partialsPq[k];
-    return groupSum(acc).x;
-}

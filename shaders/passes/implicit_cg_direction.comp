@@ -12,6 +12,7 @@
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/row_gather.glsl"
 #include "common/implicit_solver.glsl"
+#include "common/implicit_pq.glsl"
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
 #ifdef GLC_SPRINGS

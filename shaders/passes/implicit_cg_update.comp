@@ -11,11 +11,12 @@
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/row_gather.glsl"
 #include "common/implicit_solver.glsl"
+#include "common/implicit_pq.glsl"
 
 layout(std430, binding = GLC_BIND_NODE_VELOCITIES) buffer NodeVelocitiesBuf { vec4 g_velocities[]; };
 layout(std430, binding = GLC_BIND_SOLVER_RESIDUAL) buffer ResidualBuf { vec4 g_residual[]; };
 layout(std430, binding = GLC_BIND_SOLVER_PRECONDITIONED) writeonly buffer PreconditionedBuf { vec4 g_preconditioned[]; };
-layout(std430, binding = GLC_BIND_SOLVER_DIRECTION_OUT) readonly buffer DirectionBuf { vec4 g_direction[]; };
+layout(std430, binding = GLC_BIND_SOLVER_DIRECTION_OUT) readonly buffer DirectionOutBuf { vec4 g_direction[]; };
 layout(std430, binding = GLC_BIND_SOLVER_PRODUCT) readonly buffer ProductBuf { vec4 g_product[]; };
 layout(std430, binding = GLC_BIND_SOLVER_BLOCK_INVERSE) readonly buffer BlockInverseBuf { float g_blockInverse[]; };
 

@@ -1,11 +1,12 @@
 #version 430 core
-// glcollide-features: GLC_ACCUMULATE
+// glcollide-features: GLC_GRAVITY GLC_DAMPING GLC_WIND
 // SpringUpdate — Hooke force plus damping along each spring, gathered per node.
 // The SpringUpdate stage of the AABB-octree pipeline (seeds/002, Table 2). The paper scatters per
 // spring; we gather through a node->spring CSR list in a fixed order, so the sum is deterministic
 // and needs no float atomics (GL 4.3 has none). Each spring is evaluated once per end. A node with
 // more than GLC_HEAVY_ROW springs is gathered by a whole work group (common/row_gather.glsl).
-// GLC_ACCUMULATE: add to the forces NodeForce wrote; otherwise write them. Twin: cpu::springUpdate.
+// With GLC_GRAVITY / GLC_DAMPING / GLC_WIND it adds the external force (common/external_force.glsl)
+// too, so a substep needs no NodeForce dispatch. Twin: cpu::springUpdate.
 #include "common/layout.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
@@ -14,8 +15,9 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
 layout(std430, binding = GLC_BIND_NODE_VELOCITIES) readonly buffer NodeVelocitiesBuf { vec4 g_velocities[]; };
 layout(std430, binding = GLC_BIND_SPRINGS) readonly buffer SpringsBuf { GpuSpring g_springs[]; };
-layout(std430, binding = GLC_BIND_NODE_FORCES) buffer NodeForcesBuf { vec4 g_forces[]; };
+layout(std430, binding = GLC_BIND_NODE_FORCES) writeonly buffer NodeForcesBuf { vec4 g_forces[]; };
 layout(std430, binding = GLC_BIND_NODE_SPRING_LIST) readonly buffer NodeSpringListBuf { uint g_nodeSpringList[]; };
+#include "common/external_force.glsl"
 
 void main() {
     if (groupIsPadding()) return; // whole groups only: the rest meet at barriers
@@ -38,9 +40,5 @@ void main() {
     }
     f = rowSum(vec4(f, 0.0)).xyz;
     if (!task.owner) return;
-#ifdef GLC_ACCUMULATE
-    g_forces[i].xyz += f;
-#else
-    g_forces[i] = vec4(f, 0.0);
-#endif
+    g_forces[i] = vec4(f + externalForce(i), 0.0);
 }

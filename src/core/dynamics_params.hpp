@@ -17,9 +17,10 @@ struct NodeForceParams {
     double windDrag = 0.0;                           ///< kg/(m²·s)
 };
 
-/// SpringUpdate: whether it adds to forces written by NodeForce or writes them itself.
+/// SpringUpdate: the springs' force plus, in the same dispatch, the external force (so a
+/// substep with springs needs no NodeForce dispatch).
 struct SpringUpdateParams {
-    bool accumulate = false;
+    NodeForceParams external;
 };
 
 /// NodeUpdate: one symplectic Euler substep of length h, with an optional ground plane.
@@ -41,9 +42,9 @@ struct NodeUpdateParams {
 /// then move by NodeUpdate without forces (x += h·v, ground).
 struct ImplicitParams {
     double h = 0.0;                 ///< s, substep length
-    double airDamping = 0.0;        ///< 1/s: the NodeForce damping c (f = −c·m·v), 0 when off
+    double airDamping = 0.0;        ///< 1/s: the air damping c (f = −c·m·v) of `external`, 0 when off
     bool springs = false;           ///< the springs effect is on
-    bool externalForces = false;    ///< NodeForce wrote external forces into the force buffer
+    NodeForceParams external;       ///< gravity, air damping, wind: added in the setup dispatch
     bool contacts = false;          ///< add (and clear) the fixed-point contact forces of ContactResponse
     double contactForceScale = 1.0; ///< fixed-point units per N of the contact forces
     double tolerance = 1.0e-4;      ///< stop when ‖r‖ ≤ tolerance·‖b‖

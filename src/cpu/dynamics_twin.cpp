@@ -39,10 +39,9 @@ void nodeForce(const NodeForceParams& params, const std::vector<std::uint32_t>& 
     }
 }
 
-void springUpdate(const SpringUpdateParams& params, const std::vector<model::FlatSpring>& springs,
-                  const model::Csr& nodeSprings, NodeState& state) {
+void springUpdate(const std::vector<model::FlatSpring>& springs, const model::Csr& nodeSprings, NodeState& state) {
     const std::size_t n = state.positions.size();
-    if (!params.accumulate) state.forces.assign(n, glm::dvec3(0.0));
+    state.forces.resize(n, glm::dvec3(0.0));
     for (std::size_t i = 0; i < n; ++i) {
         glm::dvec3 f(0.0);
         for (std::uint32_t k = nodeSprings.offsets[i]; k < nodeSprings.offsets[i + 1]; ++k) {

@@ -83,7 +83,8 @@ struct Engine::Impl {
 
 void Engine::Impl::chooseSubsteps() {
     const double dt = scene.time.dt;
-    const cpu::StabilityLimit limit = cpu::stableSubstep(model, plan.springUpdate || (plan.implicitSolve && plan.implicitParams.springs), plan.nodeForceParams, 0.9,
+    const bool springs = scene.effects.has(Effect::Springs);
+    const cpu::StabilityLimit limit = cpu::stableSubstep(model, springs, plan.nodeForceParams, 0.9,
                                                          plan.collisions ? &plan.contact : nullptr);
     const int stable = cpu::substepsFor(dt, limit);
     substeps.stableSubsteps = stable;
@@ -163,7 +164,7 @@ void Engine::Impl::allocate() {
         heavyNodes = passes::heavyRowNodes(offsets);
         buffers.heavyNodes = gl::makeBuffer("heavyNodes", heavyNodes);
     }
-    if (plan.nodeForce && plan.nodeForceParams.wind) {
+    if (plan.nodeForceParams.wind) { // NodeForce, SpringUpdate or ImplicitSetup gathers the faces
         buffers.nodeFaceOffsets = gl::makeBuffer("nodeFaceOffsets", m.nodeFaces.offsets);
         buffers.nodeFaceList = gl::makeBuffer("nodeFaceList", m.nodeFaces.items);
     }
@@ -281,7 +282,7 @@ void addSubstepCounts(const passes::CollisionCounts& counts, CollisionStats& c) 
 
 void Engine::Impl::substep(int index, bool lastOfFrame) {
     if (nodeForce) run(*nodeForce, plan.nodeForceParams);
-    if (springUpdate) run(*springUpdate);
+    if (springUpdate) run(*springUpdate, plan.springUpdateParams);
     if (collision) {
         const passes::CollisionCounts counts =
             collision->detect(buffers, options.gpuTiming ? &timer : nullptr);
@@ -462,7 +463,8 @@ EnergyReport Engine::energy() const {
     const bool gravity = d.scene.effects.has(Effect::Gravity);
     const cpu::Energy e =
         cpu::energy(readPositions(), readVelocities(), d.model.masses, d.model.inverseMasses,
-                    gravity ? &d.scene.gravity : nullptr, d.plan.springUpdate ? &d.model.springs : nullptr);
+                    gravity ? &d.scene.gravity : nullptr,
+                    d.scene.effects.has(Effect::Springs) ? &d.model.springs : nullptr);
     return {e.kinetic, e.gravitational + e.elastic};
 }
 

@@ -40,7 +40,7 @@ std::vector<std::string> PipelinePlan::buffers() const {
     if (springs || implicitSolve) b.emplace_back("nodeSpringOffsets");
     if (springs) b.emplace_back("nodeSpringList");
     if (springs || implicitSolve) b.emplace_back("heavyNodes");
-    if (nodeForce && nodeForceParams.wind) {
+    if (nodeForceParams.wind && (nodeForce || springUpdate || implicitSolve)) {
         b.emplace_back("nodeFaceOffsets");
         b.emplace_back("nodeFaceList");
     }
@@ -70,9 +70,11 @@ PipelinePlan planPipeline(const Scene& scene) {
     plan.collisions = plan.nodeUpdate && faces > 0 && (plan.betweenObjects || plan.selfCollisions);
     plan.collision = scene.collision;
     plan.contact = contactParams(scene.collision);
-    plan.nodeForce = plan.nodeUpdate && (nf.gravity || nf.damping || nf.wind);
+    const bool external = nf.gravity || nf.damping || nf.wind;
     plan.springUpdate = plan.nodeUpdate && fx.has(Effect::Springs);
-    plan.springUpdateParams.accumulate = plan.nodeForce;
+    // With springs, SpringUpdate adds the external force in its own dispatch (one fewer per substep).
+    plan.nodeForce = plan.nodeUpdate && external && !plan.springUpdate;
+    plan.springUpdateParams.external = nf;
 
     NodeUpdateParams& nu = plan.nodeUpdateParams;
     nu.forces = plan.nodeForce || plan.springUpdate;
@@ -81,14 +83,14 @@ PipelinePlan planPipeline(const Scene& scene) {
         plan.implicitSolve = true;
         ImplicitParams& ip = plan.implicitParams;
         ip.springs = plan.springUpdate;
-        ip.externalForces = plan.nodeForce;
+        ip.external = nf; // the setup dispatch adds the external force: no NodeForce pass
         ip.airDamping = nf.damping ? nf.dampingCoefficient : 0.0;
         ip.contacts = plan.collisions;
         ip.contactForceScale = plan.contact.forceScale;
         ip.tolerance = scene.time.solver.tolerance;
         ip.maxIterations = scene.time.solver.maxIterations;
         plan.springUpdate = false; // the solver gathers the springs itself
-        plan.springUpdateParams.accumulate = false;
+        plan.nodeForce = false;
         nu.forces = false;
         nu.contacts = false;
     }

@@ -7,14 +7,6 @@
 namespace glcollide::passes {
 namespace {
 
-std::vector<std::string> nodeForceDefines(const NodeForceParams& c) {
-    std::vector<std::string> d;
-    if (c.gravity) d.emplace_back("GLC_GRAVITY");
-    if (c.damping) d.emplace_back("GLC_DAMPING");
-    if (c.wind) d.emplace_back("GLC_WIND");
-    return d;
-}
-
 std::vector<std::string> nodeUpdateDefines(const NodeUpdateParams& c) {
     std::vector<std::string> d;
     if (c.forces) d.emplace_back("GLC_FORCES");
@@ -33,30 +25,43 @@ void finish(const gl::ComputeProgram& program, std::uint32_t nodeCount) {
 
 } // namespace
 
+std::vector<std::string> externalForceDefines(const NodeForceParams& c) {
+    std::vector<std::string> d;
+    if (c.gravity) d.emplace_back("GLC_GRAVITY");
+    if (c.damping) d.emplace_back("GLC_DAMPING");
+    if (c.wind) d.emplace_back("GLC_WIND");
+    return d;
+}
+
+void bindExternalForce(const gl::ComputeProgram& program, const DeviceBuffers& b, const NodeForceParams& params,
+                       const NodeForceParams& compiled, const char* pass) {
+    if (compiled.wind) {
+        bindRequired(b.faces, GLC_BIND_FACES, pass, "faces");
+        bindRequired(b.nodeFaceOffsets, GLC_BIND_NODE_FACE_OFFSETS, pass, "nodeFaceOffsets");
+        bindRequired(b.nodeFaceList, GLC_BIND_NODE_FACE_LIST, pass, "nodeFaceList");
+        program.set("u_windVelocity", params.windVelocity);
+        program.set("u_windDrag", static_cast<float>(params.windDrag));
+    }
+    program.set("u_gravity", params.gravityAcceleration);
+    program.set("u_damping", static_cast<float>(params.dampingCoefficient));
+}
+
 NodeForcePass::NodeForcePass(const NodeForceParams& config)
-    : m_config(config), m_program("node_force", nodeForceDefines(config)) {}
+    : m_config(config), m_program("node_force", externalForceDefines(config)) {}
 
 void NodeForcePass::dispatch(const DeviceBuffers& b, const NodeForceParams& params) const {
     bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
     bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
-    if (m_config.wind) {
-        bindRequired(b.faces, GLC_BIND_FACES, kName, "faces");
-        bindRequired(b.nodeFaceOffsets, GLC_BIND_NODE_FACE_OFFSETS, kName, "nodeFaceOffsets");
-        bindRequired(b.nodeFaceList, GLC_BIND_NODE_FACE_LIST, kName, "nodeFaceList");
-        m_program.set("u_windVelocity", params.windVelocity);
-        m_program.set("u_windDrag", static_cast<float>(params.windDrag));
-    }
-    m_program.set("u_gravity", params.gravityAcceleration);
-    m_program.set("u_damping", static_cast<float>(params.dampingCoefficient));
+    bindExternalForce(m_program, b, params, m_config, kName);
     finish(m_program, b.nodeCount);
 }
 
 SpringUpdatePass::SpringUpdatePass(const SpringUpdateParams& config)
-    : m_program("spring_update", config.accumulate ? std::vector<std::string>{"GLC_ACCUMULATE"}
-                                                   : std::vector<std::string>{}) {}
+    : m_config(config), m_program("spring_update", externalForceDefines(config.external)) {}
 
-void SpringUpdatePass::dispatch(const DeviceBuffers& b) const {
+void SpringUpdatePass::dispatch(const DeviceBuffers& b, const SpringUpdateParams& params) const {
+    bindExternalForce(m_program, b, params.external, m_config.external, kName);
     bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
     bindRequired(b.springs, GLC_BIND_SPRINGS, kName, "springs");

@@ -11,6 +11,12 @@
 
 namespace glcollide::passes {
 
+/// The define list of common/external_force.glsl for these terms.
+std::vector<std::string> externalForceDefines(const NodeForceParams& terms);
+/// Binds external_force.glsl's buffers and sets its uniforms on `program`.
+void bindExternalForce(const gl::ComputeProgram& program, const DeviceBuffers& buffers,
+                       const NodeForceParams& params, const NodeForceParams& compiled, const char* pass);
+
 class NodeForcePass {
   public:
     static constexpr PassId kId = PassId::NodeForce;
@@ -28,9 +34,10 @@ class SpringUpdatePass {
     static constexpr PassId kId = PassId::SpringUpdate;
     static constexpr const char* kName = passName(kId);
     explicit SpringUpdatePass(const SpringUpdateParams& config);
-    void dispatch(const DeviceBuffers& buffers) const;
+    void dispatch(const DeviceBuffers& buffers, const SpringUpdateParams& params) const;
 
   private:
+    SpringUpdateParams m_config;
     gl::ComputeProgram m_program;
 };
 

@@ -1,6 +1,7 @@
 #include "passes/implicit_solver.hpp"
 
 #include "core/gpu_layout.hpp"
+#include "passes/dynamics_passes.hpp"
 
 #include <epoxy/gl.h>
 
@@ -11,9 +12,8 @@ namespace glcollide::passes {
 namespace {
 
 std::vector<std::string> solverDefines(const ImplicitParams& c, bool setup) {
-    std::vector<std::string> d;
+    std::vector<std::string> d = setup ? externalForceDefines(c.external) : std::vector<std::string>{};
     if (c.springs) d.emplace_back("GLC_SPRINGS");
-    if (setup && c.externalForces) d.emplace_back("GLC_EXTERNAL_FORCES");
     if (setup && c.contacts) d.emplace_back("GLC_CONTACTS");
     return d;
 }
@@ -75,7 +75,6 @@ void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& 
         bindRequired(b.springs, GLC_BIND_SPRINGS, kName, "springs");
         bindRequired(b.nodeSpringList, GLC_BIND_NODE_SPRING_LIST, kName, "nodeSpringList");
     }
-    if (m_config.externalForces) bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
     if (m_config.contacts) bindRequired(b.contactForces, GLC_BIND_CONTACT_FORCES, kName, "contactForces");
     m_residual.bindStorage(GLC_BIND_SOLVER_RESIDUAL);
     m_preconditioned.bindStorage(GLC_BIND_SOLVER_PRECONDITIONED);
@@ -83,6 +82,7 @@ void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& 
     m_blockInverse.bindStorage(GLC_BIND_SOLVER_BLOCK_INVERSE);
 
     bindLayout(m_setup, b);
+    bindExternalForce(m_setup, b, params.external, m_config.external, kName);
     directions[0]->bindStorage(GLC_BIND_SOLVER_DIRECTION_OUT);
     m_setup.set("u_h", h);
     m_setup.set("u_massFactor", massFactor);

@@ -71,16 +71,23 @@ TEST_P(DynamicsGl, NodeForceMatchesTwin) {
 
 TEST_P(DynamicsGl, SpringUpdateMatchesTwin) {
     const std::uint32_t n = GetParam();
-    for (bool accumulate : {false, true}) {
+    for (bool external : {false, true}) { // with gravity and air damping added in the same dispatch
         RandomModel m = makeRandomModel(n, 2000 + n);
-        const std::vector<glm::dvec3> initialForces = m.state.forces;
         passes::DeviceBuffers b = uploadModel(m);
-        SpringUpdateParams p{accumulate};
-        passes::SpringUpdatePass(p).dispatch(b);
+        SpringUpdateParams p;
+        p.external.gravity = p.external.damping = external;
+        p.external.gravityAcceleration = {0.3, -9.81, 0.7};
+        p.external.dampingCoefficient = 0.37;
+        passes::SpringUpdatePass(p).dispatch(b, p);
         const auto gpu = download(b.forces, n);
-        cpu::springUpdate(p, m.springs, m.nodeSprings, m.state);
+        cpu::nodeForce(p.external, m.faceIndices, m.nodeFaces, m.state);
+        cpu::springUpdate(m.springs, m.nodeSprings, m.state);
         for (std::uint32_t i = 0; i < n; ++i) {
-            double scale = accumulate ? glm::length(initialForces[i]) : 0.0;
+            const double w = m.state.inverseMasses[i];
+            double scale = 0.0; // magnitudes the force is summed from
+            if (external && w > 0.0)
+                scale += glm::length(p.external.gravityAcceleration) / w +
+                         p.external.dampingCoefficient / w * glm::length(m.state.velocities[i]);
             for (std::uint32_t k = m.nodeSprings.offsets[i]; k < m.nodeSprings.offsets[i + 1]; ++k) {
                 const model::FlatSpring& s = m.springs[m.nodeSprings.items[k]];
                 const glm::dvec3 xa = m.state.positions[s.a], xb = m.state.positions[s.b];
@@ -95,7 +102,7 @@ TEST_P(DynamicsGl, SpringUpdateMatchesTwin) {
             }
             const double tolerance = 16.0 * kUnitRoundoff * scale;
             ASSERT_LE(glm::length(glm::dvec3(gpu[i]) - m.state.forces[i]), tolerance)
-                << "node " << i << (accumulate ? " accumulate" : " overwrite");
+                << "node " << i << (external ? " with external force" : "");
         }
     }
 }

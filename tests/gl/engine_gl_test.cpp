@@ -42,12 +42,12 @@ TEST(EngineGl, PassesAndBuffersFollowTheEffects) {
          {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList", "heavyNodes"}},
         {R"(["gravity", "springs", "damping"])",
          R"("damping": 0.1,)",
-         {"NodeForce", "SpringUpdate", "NodeUpdate"},
+         {"SpringUpdate", "NodeUpdate"}, // SpringUpdate adds gravity and damping in its dispatch
          {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList", "heavyNodes"}},
         {R"(["ground"])", "", {"NodeUpdate"}, {"positions", "velocities", "faces"}},
         {R"(["wind", "springs"])",
          R"("wind": {"velocity": [1, 0, 0], "drag": 1},)",
-         {"NodeForce", "SpringUpdate", "NodeUpdate"},
+         {"SpringUpdate", "NodeUpdate"},
          {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList", "heavyNodes",
           "nodeFaceOffsets", "nodeFaceList"}},
     };
@@ -69,8 +69,8 @@ TEST(EngineGl, ImplicitEulerReplacesSpringUpdateWithTheSolver) {
     const std::string implicit = R"("time": {"integrator": "implicit_euler"},)";
     {
         Engine engine(sceneWith(R"(["gravity", "springs", "damping"])", implicit + R"("damping": 0.1,)"));
-        EXPECT_EQ(engine.pipeline(), (Names{"NodeForce", "ImplicitSolve", "NodeUpdate"}));
-        Names buffers = {"positions",      "velocities", "faces",  "forces", "springs", "nodeSpringOffsets",
+        EXPECT_EQ(engine.pipeline(), (Names{"ImplicitSolve", "NodeUpdate"}));
+        Names buffers = {"positions",      "velocities", "faces", "springs", "nodeSpringOffsets",
                          "nodeSpringList", "heavyNodes", "health"};
         buffers.insert(buffers.end(), solverBuffers.begin(), solverBuffers.end());
         EXPECT_EQ(engine.allocatedBuffers(), buffers);
@@ -82,12 +82,12 @@ TEST(EngineGl, ImplicitEulerReplacesSpringUpdateWithTheSolver) {
         EXPECT_EQ(engine.lastStep().solver.unconvergedSubsteps, 0u);
         EXPECT_LE(engine.lastStep().solver.maxRelativeResidual, 1.0e-4);
         EXPECT_GE(engine.lastStep().solver.maxIterations, 1u);
-        // Setup, 64 × (direction + update), the last check, and NodeForce and NodeUpdate.
-        EXPECT_EQ(engine.lastStep().dispatchesPerSubstep, 1.0 + 2.0 * 64 + 1.0 + 2.0);
+        // Setup (with gravity and damping), 64 × (direction + update), the last check, NodeUpdate.
+        EXPECT_EQ(engine.lastStep().dispatchesPerSubstep, 1.0 + 2.0 * 64 + 1.0 + 1.0);
     }
     {   // Gravity alone: no springs, the system is M·Δv = h·f.
         Engine engine(sceneWith(R"(["gravity"])", implicit));
-        EXPECT_EQ(engine.pipeline(), (Names{"NodeForce", "ImplicitSolve", "NodeUpdate"}));
+        EXPECT_EQ(engine.pipeline(), (Names{"ImplicitSolve", "NodeUpdate"}));
         engine.step();
         for (const glm::dvec3& v : engine.readVelocities()) EXPECT_NEAR(v.y, -9.81 / 60.0, 1e-6);
     }
@@ -149,9 +149,9 @@ TEST(EngineGl, TimingsArePerPass) {
     Engine engine(sceneWith(R"(["gravity", "springs"])"));
     engine.step();
     const StepStats& s = engine.lastStep();
-    ASSERT_EQ(s.passes.size(), 3u);
+    ASSERT_EQ(s.passes.size(), 2u); // SpringUpdate (gravity included), NodeUpdate
     for (const PassTiming& p : s.passes) EXPECT_GE(p.gpuMilliseconds, 0.0) << p.name;
-    EXPECT_GT(s.passes[1].gpuMilliseconds, 0.0) << "timestamp pairs measure SpringUpdate";
+    EXPECT_GT(s.passes[0].gpuMilliseconds, 0.0) << "timestamp pairs measure SpringUpdate";
     EXPECT_EQ(s.frame, 1u);
 }
 

@@ -328,7 +328,7 @@ TEST_F(HostDebugCallback, EngineCallbackChainsToTheHostsAndIsRemovedWithTheEngin
         EXPECT_TRUE(contains(m_host.messages, "host marker"));
         EXPECT_TRUE(contains(engineMessages, "host marker"));
         engine.step();
-        for (const char* group : {"glcollide::Engine::step", "NodeForce", "SpringUpdate", "NodeUpdate"}) {
+        for (const char* group : {"glcollide::Engine::step", "SpringUpdate", "NodeUpdate"}) {
             EXPECT_TRUE(contains(engineMessages, group)) << group;
             EXPECT_TRUE(contains(m_host.messages, group)) << group;
         }

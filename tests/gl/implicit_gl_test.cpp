@@ -56,7 +56,9 @@ ImplicitParams solverParams() {
     p.h = 1.0 / 60.0;
     p.airDamping = 0.3;
     p.springs = true;
-    p.externalForces = true;
+    p.external.gravity = p.external.damping = true; // added by the setup dispatch
+    p.external.gravityAcceleration = {0.3, -9.81, 0.7};
+    p.external.dampingCoefficient = p.airDamping;
     p.tolerance = 1.0e-5;
     p.maxIterations = 400;
     return p;
@@ -98,6 +100,7 @@ TEST_P(ImplicitGl, SolveMatchesExactSolution) {
     const std::vector<glm::dvec3> gpu = solveOnGpu(p, m, &counts);
     EXPECT_EQ(counts.unconvergedSubsteps, 0u);
     EXPECT_LE(counts.maxRelativeResidual, p.tolerance);
+    cpu::nodeForce(p.external, m.faceIndices, m.nodeFaces, m.state); // the twin's f: the same terms
 
     std::vector<glm::dvec3> reference = m.state.velocities;
     if (n <= 200) {
@@ -130,7 +133,7 @@ RandomModel star(std::uint32_t leaves) {
     auto add = [&](glm::dvec3 x, double w) {
         m.state.positions.push_back(glm::dvec3(glm::vec3(x)));
         m.state.velocities.push_back(glm::dvec3(glm::vec3(zeroOne(rng) - 0.5, zeroOne(rng) - 0.5, zeroOne(rng) - 0.5)));
-        m.state.forces.push_back(glm::dvec3(0.0, -0.01, 0.0));
+        m.state.forces.push_back(glm::dvec3(0.0));
         m.state.inverseMasses.push_back(w);
     };
     add(glm::dvec3(0.0), toFloat(1.0 / 0.05));
@@ -160,11 +163,12 @@ TEST(ImplicitGl, NodeOfValence10000IsGatheredByAWorkGroupAndMatchesTheTwin) {
     // SpringUpdate: the hub's force is a sum of 10,000 spring forces.
     {
         passes::DeviceBuffers b = uploadModel(m);
-        const SpringUpdateParams p{false};
-        passes::SpringUpdatePass(p).dispatch(b);
+        const SpringUpdateParams p;
+        passes::SpringUpdatePass(p).dispatch(b, p);
         const std::vector<glm::dvec4> gpu = download(b.forces, n);
         cpu::NodeState twin = m.state;
-        cpu::springUpdate(p, m.springs, m.nodeSprings, twin);
+        twin.forces.assign(n, glm::dvec3(0.0));
+        cpu::springUpdate(m.springs, m.nodeSprings, twin);
         for (std::uint32_t i = 0; i < n; ++i) {
             double magnitudes = 0.0; // Σ |term| over the row
             for (std::uint32_t k = m.nodeSprings.offsets[i]; k < m.nodeSprings.offsets[i + 1]; ++k) {
@@ -182,10 +186,10 @@ TEST(ImplicitGl, NodeOfValence10000IsGatheredByAWorkGroupAndMatchesTheTwin) {
     // The implicit solve, with the hub's row gathered cooperatively in the setup and every product.
     {
         ImplicitParams p = solverParams();
-        p.externalForces = true;
         passes::ImplicitSolverCounts counts;
         const std::vector<glm::dvec3> gpu = solveOnGpu(p, m, &counts);
         EXPECT_EQ(counts.unconvergedSubsteps, 0u);
+        cpu::nodeForce(p.external, m.faceIndices, m.nodeFaces, m.state);
         cpu::NodeState twin = m.state;
         ImplicitParams tight = p;
         tight.tolerance = 1.0e-12;

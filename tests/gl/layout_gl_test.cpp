@@ -65,6 +65,17 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"SortKeysOutBuf", GLC_BIND_SORT_KEYS_OUT},
     {"SortValuesOutBuf", GLC_BIND_SORT_VALUES_OUT},
     {"SortBlockCountsBuf", GLC_BIND_SORT_BLOCK_COUNTS},
+    // the implicit solver (src/passes/implicit_solver.cpp) and the heavy-row layout of SpringUpdate
+    {"ResidualBuf", GLC_BIND_SOLVER_RESIDUAL},
+    {"PreconditionedBuf", GLC_BIND_SOLVER_PRECONDITIONED},
+    {"DirectionInBuf", GLC_BIND_SOLVER_DIRECTION_IN},
+    {"DirectionOutBuf", GLC_BIND_SOLVER_DIRECTION_OUT},
+    {"ProductBuf", GLC_BIND_SOLVER_PRODUCT},
+    {"BlockInverseBuf", GLC_BIND_SOLVER_BLOCK_INVERSE},
+    {"PartialsRBuf", GLC_BIND_SOLVER_PARTIALS_R},
+    {"PartialsPqBuf", GLC_BIND_SOLVER_PARTIALS_PQ},
+    {"SolverStateBuf", GLC_BIND_SOLVER_STATE},
+    {"HeavyNodesBuf", GLC_BIND_HEAVY_NODES},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {

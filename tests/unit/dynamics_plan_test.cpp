@@ -34,11 +34,15 @@ TEST(PipelinePlan, PassesFollowEffects) {
     EXPECT_EQ(engine::planPipeline(scene).passes(), std::vector<std::string>{"NodeUpdate"});
     scene.effects = {Effect::Gravity, Effect::Springs};
     auto plan = engine::planPipeline(scene);
-    EXPECT_EQ(plan.passes(), (std::vector<std::string>{"NodeForce", "SpringUpdate", "NodeUpdate"}));
-    EXPECT_TRUE(plan.springUpdateParams.accumulate) << "SpringUpdate adds to NodeForce's output";
+    // SpringUpdate adds gravity in its own dispatch: no NodeForce pass.
+    EXPECT_EQ(plan.passes(), (std::vector<std::string>{"SpringUpdate", "NodeUpdate"}));
+    EXPECT_TRUE(plan.springUpdateParams.external.gravity);
+    scene.effects = {Effect::Gravity};
+    plan = engine::planPipeline(scene);
+    EXPECT_EQ(plan.passes(), (std::vector<std::string>{"NodeForce", "NodeUpdate"}));
     scene.effects = {Effect::Springs};
     plan = engine::planPipeline(scene);
-    EXPECT_FALSE(plan.springUpdateParams.accumulate) << "without NodeForce, SpringUpdate writes";
+    EXPECT_FALSE(plan.springUpdateParams.external.gravity);
     EXPECT_TRUE(plan.nodeUpdateParams.forces);
     scene.effects = {Effect::Ground};
     plan = engine::planPipeline(scene);
@@ -128,7 +132,8 @@ TEST(Stability, ExplicitEulerOnTheTwinIsStableAtTheLimitAndUnstableAboveTheExact
         s.positions[1].y -= 0.1;
         double amplitude = 0;
         for (int i = 0; i < 2000; ++i) {
-            cpu::springUpdate({false}, model.springs, model.nodeSprings, s);
+            s.forces.assign(s.positions.size(), glm::dvec3(0.0));
+            cpu::springUpdate(model.springs, model.nodeSprings, s);
             cpu::nodeUpdate({h, true}, s);
             amplitude = std::max(amplitude, std::abs(s.positions[1].y + 1.0));
         }
