@@ -5,9 +5,12 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <set>
+#include <vector>
 
 using namespace glcollide;
 using namespace glcollide::detail;
@@ -25,6 +28,64 @@ double enclosedVolume(const Body& b) {
     for (const Face& f : b.faces)
         v += glm::dot(b.positions[f[0]], glm::cross(b.positions[f[1]], b.positions[f[2]])) / 6.0;
     return v;
+}
+
+/// A sum of many signed volumes (det/6 terms) with an a-priori bound on its rounding error.
+struct BoundedSum {
+    long double value = 0.0L;
+    long double absSum = 0.0L;    // Σ |term|
+    long double termError = 0.0L; // Σ of each term's own rounding bound
+    std::size_t terms = 0;
+    /// Adds fl(u · (v × w)) / 6, where u, v, w are differences of exact doubles that were each rounded
+    /// once. Each of the determinant's 6 monomials u_i v_j w_k then carries at most 9 roundings (3
+    /// differences, 2 in the cross product, 3 in the dot product, 1 in the division), so the term's
+    /// error is at most γ₉ · perm(|u|, |v|, |w|) / 6 < 10·unit_roundoff · perm / 6, where perm is
+    /// the determinant with every product's sign made + and every entry made positive.
+    void add(double det, const glm::dvec3& u, const glm::dvec3& v, const glm::dvec3& w) {
+        const glm::dvec3 au = glm::abs(u), av = glm::abs(v), aw = glm::abs(w);
+        const double perm = au.x * (av.y * aw.z + av.z * aw.y) + au.y * (av.z * aw.x + av.x * aw.z) +
+                            au.z * (av.x * aw.y + av.y * aw.x);
+        constexpr double unitRoundoff = std::numeric_limits<double>::epsilon() / 2.0;
+        value += det / 6.0;
+        absSum += std::abs(det / 6.0);
+        termError += 10.0 * unitRoundoff * perm / 6.0;
+        ++terms;
+    }
+    /// The terms' errors plus the long double recursive summation's, (n − 1)·u_ld·Σ|term| (Higham,
+    /// Accuracy and Stability of Numerical Algorithms, §4.2; u_ld = u where long double is double).
+    long double errorBound() const {
+        constexpr long double unitRoundoff = std::numeric_limits<long double>::epsilon() / 2.0L;
+        return termError + static_cast<long double>(terms) * unitRoundoff * absSum;
+    }
+};
+
+/// The tets' volumes exactly as mass lumping computes them (tetDet / 6).
+BoundedSum tetVolumes(const Body& b) {
+    BoundedSum sum;
+    for (const Tet& t : b.tets) {
+        const glm::dvec3 &p0 = b.positions[t[0]], &p1 = b.positions[t[1]], &p2 = b.positions[t[2]],
+                         &p3 = b.positions[t[3]];
+        sum.add(tetDet(p0, p1, p2, p3), p1 - p0, p2 - p0, p3 - p0);
+    }
+    return sum;
+}
+
+/// The volume enclosed by the faces, Σ det(a, b, c) / 6, evaluated as a · ((b − a) × (c − a)) / 6
+/// (the same value: a · (a × ·) = 0), which does not cancel for small faces far from the origin.
+/// (a is not a rounded difference, which only makes the bound of BoundedSum::add looser.)
+BoundedSum surfaceVolume(const Body& b) {
+    BoundedSum sum;
+    for (const Face& f : b.faces) {
+        const glm::dvec3 a = b.positions[f[0]], u = b.positions[f[1]] - a, w = b.positions[f[2]] - a;
+        sum.add(glm::dot(a, glm::cross(u, w)), a, u, w);
+    }
+    return sum;
+}
+
+/// A face with its smallest index first, winding kept.
+Face canonical(Face f) {
+    std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+    return f;
 }
 
 double tetVolumeSum(const Body& b, bool requirePositive) {
@@ -94,26 +155,95 @@ TEST(GeneratorTetBox, BoundaryVolumeAndOrientation) {
 }
 
 TEST(GeneratorSphere, IcosphereCountsAndVolume) {
-    for (int s = 0; s <= 3; ++s) {
+    for (int s = 0; s <= 5; ++s) {
+        SCOPED_TRACE("subdivisions " + std::to_string(s));
         const double r = 0.7;
         const Body b = generateSphere(r, s);
         const std::size_t faces = 20u << (2 * s);
         const std::size_t surfaceVerts = 10u * (1u << (2 * s)) + 2u;
         EXPECT_EQ(b.faces.size(), faces);
-        EXPECT_EQ(b.positions.size(), surfaceVerts + 1);
-        EXPECT_EQ(b.tets.size(), faces);
-        // Springs: surface edges (3F/2) plus one radial edge per surface vertex.
-        EXPECT_EQ(b.springs.size(), faces * 3 / 2 + surfaceVerts);
+        // One icosphere shell per level 0 … s (the surface is level s) and the centre.
+        std::size_t nodes = 1;
+        for (int k = 0; k <= s; ++k) nodes += 10u * (1u << (2 * k)) + 2u;
+        EXPECT_EQ(b.positions.size(), nodes);
+        EXPECT_LE(static_cast<double>(b.positions.size()), 1.4 * static_cast<double>(surfaceVerts));
+        // 20 centre tets; 7 per level-(k − 1) triangle between shells k − 1 and k.
+        EXPECT_EQ(b.tets.size(), 20u + 140u * ((1u << (2 * s)) - 1u) / 3u);
+        // Springs are exactly the unique tet edges: a ball has Euler characteristic
+        // V − E + F − T = 1 with F = (4T + boundary faces) / 2 triangles.
+        EXPECT_EQ(b.springs.size(), b.positions.size() + b.tets.size() + faces / 2 - 1);
         expectUniqueSprings(b);
-        EXPECT_EQ(boundaryFaces(b.tets, "sphere").size(), faces);
-        const double v = tetVolumeSum(b, true);
-        EXPECT_NEAR(enclosedVolume(b), v, 1e-12);
-        // The inscribed polyhedron approaches the ball from below.
+        std::set<std::pair<std::uint32_t, std::uint32_t>> springs, edges;
+        for (const Spring& sp : b.springs) springs.insert(std::minmax(sp.a, sp.b));
+        for (const Tet& t : b.tets)
+            for (std::size_t i = 0; i < 4; ++i)
+                for (std::size_t j = i + 1; j < 4; ++j) edges.insert(std::minmax(t[i], t[j]));
+        EXPECT_EQ(springs, edges);
+        for (const Spring& sp : b.springs) EXPECT_EQ(sp.kind, SpringKind::Edge);
+        // The tets' boundary is the surface, triangle for triangle and winding for winding.
+        std::multiset<Face> boundary, surface;
+        for (const Face& f : boundaryFaces(b.tets, "sphere")) boundary.insert(canonical(f));
+        for (const Face& f : b.faces) surface.insert(canonical(f));
+        EXPECT_EQ(boundary, surface);
+        // Every tet positive; together they fill the surface polyhedron exactly, up to rounding.
+        const BoundedSum tets = tetVolumes(b), enclosed = surfaceVolume(b);
+        for (const Tet& t : b.tets)
+            EXPECT_GT(tetDet(b.positions[t[0]], b.positions[t[1]], b.positions[t[2]], b.positions[t[3]]),
+                      0.0);
+        EXPECT_LE(std::abs(tets.value - enclosed.value), tets.errorBound() + enclosed.errorBound());
+        if constexpr (std::numeric_limits<long double>::digits > std::numeric_limits<double>::digits) {
+            EXPECT_LT(tets.errorBound() + enclosed.errorBound(), 1e-13L * enclosed.value); // a tight check
+        }
+        // The surface polyhedron lies in the ball and contains the ball of radius `inner`, the
+        // nearest face plane's distance (it is star-shaped about the centre: every face sees it
+        // from inside). Its volume is between the two balls'.
+        double inner = r;
+        for (const Face& f : b.faces) {
+            const glm::dvec3 &p0 = b.positions[f[0]], &p1 = b.positions[f[1]], &p2 = b.positions[f[2]];
+            const glm::dvec3 n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+            EXPECT_GT(glm::dot(n, p0), 0.0);
+            inner = std::min(inner, glm::dot(n, p0));
+        }
+        const double v = static_cast<double>(enclosed.value);
         EXPECT_LT(v, 4.0 / 3.0 * std::numbers::pi * r * r * r);
+        EXPECT_GE(v, 4.0 / 3.0 * std::numbers::pi * inner * inner * inner);
         EXPECT_GT(v, 0.6 * 4.0 / 3.0 * std::numbers::pi * r * r * r);
-        for (std::size_t i = 0; i + 1 < b.positions.size(); ++i)
+        // Surface nodes first, as on the icosphere; interior nodes strictly inside; centre last.
+        for (std::size_t i = 0; i < surfaceVerts; ++i)
             EXPECT_NEAR(glm::length(b.positions[i]), r, 1e-15); // one normalisation, one scale: ~2 ulp
+        for (std::size_t i = surfaceVerts; i < b.positions.size(); ++i)
+            EXPECT_LT(glm::length(b.positions[i]), r);
+        for (const Face& f : b.faces)
+            for (std::uint32_t i : f) EXPECT_LT(i, surfaceVerts);
         EXPECT_EQ(b.positions.back(), glm::dvec3(0.0));
+    }
+}
+
+TEST(GeneratorSphere, BoundedValenceAndShape) {
+    // The ball has no hub: every node's spring count stays below a constant that does not grow with
+    // the subdivisions (measured maxima 12, 15, 18, 19, 19, 19, also 19 at 6 and 7). Its tets
+    // keep their shape: longest over shortest edge at most 2.02 (the transition from a shell to
+    // the next finer one halves edges) and 6·volume at least 0.108 longest edge³ (measured, s ≤ 5;
+    // checked with a little room).
+    for (int s = 0; s <= 5; ++s) {
+        SCOPED_TRACE("subdivisions " + std::to_string(s));
+        const Body b = generateSphere(1.5, s);
+        std::vector<int> valence(b.positions.size(), 0);
+        for (const Spring& sp : b.springs) ++valence[sp.a], ++valence[sp.b];
+        EXPECT_LE(*std::max_element(valence.begin(), valence.end()), 20);
+        EXPECT_EQ(valence.back(), 12); // the centre: the 12 icosahedron nodes of the innermost shell
+        for (const Tet& t : b.tets) {
+            double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
+            for (std::size_t i = 0; i < 4; ++i)
+                for (std::size_t j = i + 1; j < 4; ++j) {
+                    const double len = glm::length(b.positions[t[i]] - b.positions[t[j]]);
+                    shortest = std::min(shortest, len);
+                    longest = std::max(longest, len);
+                }
+            EXPECT_LE(longest, 2.05 * shortest);
+            EXPECT_GE(tetDet(b.positions[t[0]], b.positions[t[1]], b.positions[t[2]], b.positions[t[3]]),
+                      0.1 * longest * longest * longest);
+        }
     }
 }
 
