@@ -111,9 +111,10 @@ Body generateCloth(double width, double height, int nx, int ny, bool withShear, 
 /// tet edges; faces: the boundary.
 Body generateTetBox(const glm::dvec3& size, const std::array<int, 3>& cells);
 
-/// An icosphere of `radius` m with `subdivisions` midpoint refinements, plus one centre node
-/// (the last index). Tets: centre + each surface triangle. Springs: surface edges and radial
-/// edges. Faces: the icosphere surface, outward.
+/// A tetrahedral ball whose surface is the icosphere of `radius` m with `subdivisions` refinements
+/// (surface nodes first, in icosphere order); inside, one icosphere shell per coarser level joined
+/// by 7-tet transition cells, and a centre node (the last index). Valence at most 19, node count
+/// about 1.33 × the surface's. Springs: unique tet edges. Faces: the icosphere surface, outward.
 Body generateSphere(double radius, int subdivisions);
 
 // ---- mass (mass.cpp) ----
