@@ -55,6 +55,11 @@ struct EngineOptions {
     /// wrong case; Warn: it is added to warnings(); Off: no check. GLCOLLIDE_SELF_CHECK=
     /// error|warn|off, when set, wins. The result: setupStats().robustSelfCheck.
     SelfCheckMode robustSelfCheck = SelfCheckMode::Error;
+    /// Run all substeps of a frame in one dispatch (FrameStep) when the scene qualifies: symplectic
+    /// Euler, no collision effect, forces to integrate, at most 4096 nodes and no node with more
+    /// than 64 springs. Same arithmetic as SpringUpdate + NodeUpdate; launch count is the cost of a
+    /// small scene (docs/integration.md, "Fewer dispatches").
+    bool frameStep = true;
 };
 
 /// GPU time of one pass over all substeps of a frame.

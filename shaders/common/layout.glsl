@@ -85,6 +85,7 @@
 #define GLC_SORT_BLOCK 256       // radix sort: items per work group (one per invocation)
 #define GLC_SORT_DIGIT_BITS 4    // radix sort: bits per pass (16 digits)
 #define GLC_SCAN_GROUP 256       // radix sort: the one work group that scans the block counts
+#define GLC_FRAME_STEP_GROUP 1024 // FrameStep: the one work group that runs a small scene's whole frame
 
 // A node with more springs than this is gathered by a whole work group of GLC_WORKGROUP_SIZE
 // invocations (one per GLC_WORKGROUP_SIZE springs each), so no invocation walks more than this many
@@ -167,6 +168,7 @@ struct GpuCollisionCounters {
 // The implicit solver's shared scalars (written by one invocation, read by the next passes) and
 // the frame's solver statistics (cleared by the engine before each frame).
 #define GLC_SOLVER_RUNNING 0xFFFFFFFFu
+#define GLC_SOLVER_TINY_RESIDUAL2 1e-30 // ‖r‖² (kg² m²/s²) below which the solve is over whatever ‖b‖
 struct GpuSolverState {
     float rhsNormSquared;     // ‖b‖² of this substep's system
     float rz[2];              // r·z after the iteration of that parity

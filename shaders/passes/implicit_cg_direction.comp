@@ -33,7 +33,10 @@ void main() {
     uint k = u_iteration;
     vec2 rz_rr = sumPartialsR(); // the same bits in every group
     float rhsNormSquared = (k == 0u) ? rz_rr.y : g_state.rhsNormSquared;
-    bool converged = rz_rr.y <= u_tolerance2 * rhsNormSquared;
+    // Also converged when ‖r‖² is below GLC_SOLVER_TINY_RESIDUAL2 (kg²m²/s²): near rest ‖b‖² can be
+    // so small that tolerance²·‖b‖² underflows to 0 and p·q flushes to 0 (found by the oscillator
+    // benchmark: 0/0 = NaN); such a residual moves no float velocity of any realistic mass.
+    bool converged = rz_rr.y <= u_tolerance2 * rhsNormSquared || rz_rr.y < GLC_SOLVER_TINY_RESIDUAL2;
     bool over = converged || k >= u_maxIterations;
     if (groupIndex() == 0u && gl_LocalInvocationID.x == 0u) {
         if (k == 0u) g_state.rhsNormSquared = rz_rr.y;

@@ -25,7 +25,9 @@ uniform uint u_iteration;
 void main() {
     if (groupIsPadding()) return; // whole groups only: the rest meet at barriers
     if (g_state.doneAt != GLC_SOLVER_RUNNING) return; // set by the previous pass: uniform
-    float alpha = g_state.rz[u_iteration & 1u] / sumPartialsPq();
+    float pq = sumPartialsPq();
+    // p·q > 0 for A positive definite and p ≠ 0; anything else (rounding to 0 near rest) is no step.
+    float alpha = pq > 0.0 ? g_state.rz[u_iteration & 1u] / pq : 0.0;
     uint i = groupIndex() * GLC_WORKGROUP_SIZE + gl_LocalInvocationID.x;
     vec2 partial = vec2(0.0);
     if (!groupIsHeavy() && i < u_nodeCount) {

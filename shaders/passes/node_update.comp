@@ -29,62 +29,22 @@ uniform uint u_substep; // index of this substep within its frame
 #endif
 
 uniform uint u_nodeCount;
-uniform float u_h; // s
-#ifdef GLC_GROUND
-uniform float u_groundHeight; // m
-uniform float u_restitution;
-uniform float u_friction;
-#endif
+#include "common/advance_node.glsl"
 
 void main() {
     uint i = globalIndex();
     if (i >= u_nodeCount) return;
-    vec4 p = g_positions[i];
-    float w = p.w;
+    vec3 f = vec3(0.0);
+#ifdef GLC_FORCES
+    f += g_forces[i].xyz;
+#endif
 #ifdef GLC_CONTACTS
-    vec3 contactForce = vec3(g_contactForces[i].xyz) / u_contactForceScale;
+    f += vec3(g_contactForces[i].xyz) / u_contactForceScale;
     g_contactForces[i] = ivec4(0);
 #endif
-    if (w <= 0.0) {
-        g_velocities[i] = vec4(0.0);
-        return;
-    }
-    vec3 v = g_velocities[i].xyz;
-#ifdef GLC_FORCES
-    v += (u_h * w) * g_forces[i].xyz;
-#endif
-#ifdef GLC_CONTACTS
-    v += (u_h * w) * contactForce;
-#endif
-    vec3 x = p.xyz + u_h * v;
-#ifdef GLC_GROUND
-    if (x.y < u_groundHeight) {
-        x.y = u_groundHeight;
-        if (v.y < 0.0) {
-            float normalSpeed = -v.y;
-            v.y = u_restitution * normalSpeed;
-            float tangentialSpeed = length(v.xz);
-            if (tangentialSpeed > 0.0) {
-                // Coulomb: the normal impulse (1+e)|vn| bounds the tangential change.
-                float scale = max(0.0, 1.0 - u_friction * (1.0 + u_restitution) * normalSpeed / tangentialSpeed);
-                v.xz *= scale;
-            }
-        }
-    }
-#endif
-    g_positions[i] = vec4(x, w);
-    g_velocities[i] = vec4(v, 0.0);
 #ifdef GLC_CHECK_FINITE
-    // Infinity and NaN are the floats whose 8 exponent bits are all ones.
-    const uint exponent = 0x7F800000u;
-    if (any(equal(floatBitsToUint(x) & exponent, uvec3(exponent))) ||
-        any(equal(floatBitsToUint(v) & exponent, uvec3(exponent)))) {
-        // An earlier substep of this frame (or an earlier frame, already reported) wrote a lower
-        // index: keep it. All invocations of this dispatch share u_substep.
-        if (g_health.badSubstep >= u_substep) {
-            atomicMin(g_health.firstBadNode, i);
-            atomicMin(g_health.badSubstep, u_substep);
-        }
-    }
+    advanceNode(i, f, u_substep);
+#else
+    advanceNode(i, f, 0u);
 #endif
 }

@@ -18,26 +18,13 @@ layout(std430, binding = GLC_BIND_SPRINGS) readonly buffer SpringsBuf { GpuSprin
 layout(std430, binding = GLC_BIND_NODE_FORCES) writeonly buffer NodeForcesBuf { vec4 g_forces[]; };
 layout(std430, binding = GLC_BIND_NODE_SPRING_LIST) readonly buffer NodeSpringListBuf { uint g_nodeSpringList[]; };
 #include "common/external_force.glsl"
+#include "common/spring_force.glsl"
 
 void main() {
     if (groupIsPadding()) return; // whole groups only: the rest meet at barriers
     RowTask task = rowTask();
     uint i = task.node;
-    vec3 f = vec3(0.0);
-    if (task.gathers) {
-        vec3 xi = g_positions[i].xyz;
-        vec3 vi = g_velocities[i].xyz;
-        for (uint k = task.firstSpring; k < rowEnd(task); k += task.stride) {
-            GpuSpring s = g_springs[g_nodeSpringList[k]];
-            uint j = (s.nodeA == i) ? s.nodeB : s.nodeA;
-            vec3 d = g_positions[j].xyz - xi;
-            float len = length(d);
-            if (len <= 0.0) continue; // coincident ends: no direction, no force
-            vec3 dir = d / len;
-            float magnitude = s.stiffness * (len - s.restLength) + s.damping * dot(g_velocities[j].xyz - vi, dir);
-            f += magnitude * dir;
-        }
-    }
+    vec3 f = task.gathers ? springForce(i, task.firstSpring, rowEnd(task), task.stride) : vec3(0.0);
     f = rowSum(vec4(f, 0.0)).xyz;
     if (!task.owner) return;
     g_forces[i] = vec4(f + externalForce(i), 0.0);

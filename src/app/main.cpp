@@ -28,6 +28,9 @@ int main(int argc, char** argv) {
     runCmd->add_flag("--quiet", run.quiet, "No progress on stderr");
     bool noTiming = false;
     runCmd->add_flag("--no-gpu-timing", noTiming, "Do not time passes (no wait for the GPU each frame)");
+    bool noFrameStep = false;
+    runCmd->add_flag("--no-frame-step", noFrameStep,
+                     "Dispatch every substep's passes even where one FrameStep dispatch could run the frame");
 
     glcollide::app::InfoOptions info;
     CLI::App* infoCmd =
@@ -100,6 +103,7 @@ int main(int argc, char** argv) {
     try {
         if (runCmd->parsed()) {
             run.gpuTiming = !noTiming;
+            run.frameStep = !noFrameStep;
             return glcollide::app::runCommand(run);
         }
         if (infoCmd->parsed()) return glcollide::app::infoCommand(info);

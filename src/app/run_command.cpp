@@ -161,7 +161,10 @@ int runCommand(const RunOptions& options) {
     }
 
     HeadlessContext context({options.device});
-    Engine engine(scene, {options.gpuTiming});
+    EngineOptions engineOptions;
+    engineOptions.gpuTiming = options.gpuTiming;
+    engineOptions.frameStep = options.frameStep;
+    Engine engine(scene, engineOptions);
     const auto frames = static_cast<std::uint64_t>(scene.time.frames);
     printSummary(context, engine, frames);
     for (const std::string& w : engine.warnings()) std::cerr << "glcollide: warning: " << w << "\n";

@@ -1,5 +1,7 @@
 #include "cpu/implicit_twin.hpp"
 
+#include "core/gpu_layout.hpp"
+
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -127,7 +129,7 @@ ImplicitSolveStats implicitVelocityUpdate(const ImplicitParams& params,
     const double tol2 = params.tolerance * params.tolerance;
     ImplicitSolveStats stats;
     for (int k = 0;; ++k) {
-        if (rr <= tol2 * bb) {
+        if (rr <= tol2 * bb || rr < GLC_SOLVER_TINY_RESIDUAL2) { // the GPU's rule
             stats.iterations = k;
             stats.converged = true;
             break;
@@ -139,7 +141,8 @@ ImplicitSolveStats implicitVelocityUpdate(const ImplicitParams& params,
         const double beta = k == 0 ? 0.0 : rz / previousRz;
         for (std::size_t i = 0; i < n; ++i) direction[i] = z[i] + beta * direction[i];
         const std::vector<glm::dvec3> q = multiply(params, springs, nodeSprings, state, direction);
-        const double alpha = rz / dotAll(direction, q);
+        const double pq = dotAll(direction, q);
+        const double alpha = pq > 0.0 ? rz / pq : 0.0; // as the GPU: no step without p·q > 0
         for (std::size_t i = 0; i < n; ++i) {
             dv[i] += alpha * direction[i];
             r[i] -= alpha * q[i];

@@ -64,6 +64,8 @@ struct Engine::Impl {
     std::optional<passes::SpringUpdatePass> springUpdate;
     std::optional<passes::NodeUpdatePass> nodeUpdate;
     std::optional<passes::ImplicitSolverPass> implicitSolve;
+    std::optional<passes::FrameStepPass> frameStep;
+    FrameStepParams frameStepParams;
     std::optional<passes::CollisionDetection> collision;
     std::optional<passes::ContactResponsePass> contact;
     std::vector<passes::PassId> passIds; ///< the substep's passes in order; stats.passes follows it
@@ -209,6 +211,18 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
     d.plan.nodeUpdateParams.checkFinite = options.checkFinite;
     d.chooseSubsteps();
     d.allocate();
+    d.plan.frameStep = options.frameStep && d.plan.nodeUpdate && !d.plan.implicitSolve && !d.plan.collisions &&
+                       (d.plan.nodeForce || d.plan.springUpdate) && d.buffers.nodeCount <= kFrameStepMaxNodes &&
+                       d.heavyNodes.empty();
+    if (d.plan.frameStep) {
+        FrameStepParams& f = d.frameStepParams;
+        f.external = d.plan.nodeForceParams;
+        f.springs = d.plan.springUpdate;
+        f.update = d.plan.nodeUpdateParams;
+        f.substeps = static_cast<std::uint32_t>(d.substeps.substeps);
+        d.frameStep.emplace(f);
+        d.plan.nodeForce = d.plan.springUpdate = d.plan.nodeUpdate = false; // FrameStep does their work
+    }
     if (d.plan.nodeForce) d.nodeForce.emplace(d.plan.nodeForceParams);
     if (d.plan.springUpdate) d.springUpdate.emplace(d.plan.springUpdateParams);
     if (d.plan.nodeUpdate) d.nodeUpdate.emplace(d.plan.nodeUpdateParams);
@@ -345,7 +359,10 @@ void Engine::step() {
     const std::uint64_t dispatchesBefore = gl::dispatchCount();
     {
         gl::DebugGroup frame("glcollide::Engine::step");
-        for (int s = 0; s < d.substeps.substeps; ++s) d.substep(s, s + 1 == d.substeps.substeps);
+        if (d.frameStep)
+            d.run(*d.frameStep, d.frameStepParams);
+        else
+            for (int s = 0; s < d.substeps.substeps; ++s) d.substep(s, s + 1 == d.substeps.substeps);
     }
     d.stats.dispatchesPerSubstep =
         static_cast<double>(gl::dispatchCount() - dispatchesBefore) / d.substeps.substeps;

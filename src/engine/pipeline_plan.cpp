@@ -9,6 +9,7 @@ namespace glcollide::engine {
 std::vector<passes::PassId> PipelinePlan::passIds() const {
     using passes::PassId;
     std::vector<PassId> p;
+    if (frameStep) return {PassId::FrameStep};
     if (nodeForce) p.push_back(PassId::NodeForce);
     if (springUpdate) p.push_back(PassId::SpringUpdate);
     if (collisions) {

@@ -23,6 +23,9 @@ struct PipelinePlan {
     /// Implicit Euler (time.integrator): ImplicitSolve replaces SpringUpdate and NodeUpdate's force
     /// and contact terms; NodeUpdate only moves the positions (x += h·v) and applies the ground.
     bool implicitSolve = false;
+    /// FrameStep replaces the per-substep passes (set by the engine, which knows the model's size
+    /// and rows: EngineOptions::frameStep).
+    bool frameStep = false;
     ImplicitParams implicitParams; ///< h is filled in once substeps are known
 
     /// Collision detection and response (effects collisions / self_collisions).

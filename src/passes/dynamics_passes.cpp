@@ -4,6 +4,8 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
+
 namespace glcollide::passes {
 namespace {
 
@@ -103,6 +105,48 @@ void NodeUpdatePass::dispatch(const DeviceBuffers& b, const NodeUpdateParams& pa
         m_program.set("u_friction", static_cast<float>(params.friction));
     }
     finish(m_program, b.nodeCount);
+}
+
+namespace {
+std::vector<std::string> frameStepDefines(const FrameStepParams& c) {
+    std::vector<std::string> d = externalForceDefines(c.external);
+    if (c.springs) d.emplace_back("GLC_SPRINGS");
+    if (c.update.ground) d.emplace_back("GLC_GROUND");
+    if (c.update.checkFinite) d.emplace_back("GLC_CHECK_FINITE");
+    return d;
+}
+} // namespace
+
+FrameStepPass::FrameStepPass(const FrameStepParams& config)
+    : m_config(config), m_program("frame_step", frameStepDefines(config)) {}
+
+void FrameStepPass::dispatch(const DeviceBuffers& b, const FrameStepParams& params) const {
+    bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
+    bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
+    bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
+    if (m_config.springs) {
+        bindRequired(b.springs, GLC_BIND_SPRINGS, kName, "springs");
+        bindRequired(b.nodeSpringOffsets, GLC_BIND_NODE_SPRING_OFFSETS, kName, "nodeSpringOffsets");
+        bindRequired(b.nodeSpringList, GLC_BIND_NODE_SPRING_LIST, kName, "nodeSpringList");
+    }
+    if (m_config.update.checkFinite) bindRequired(b.health, GLC_BIND_HEALTH, kName, "health");
+    bindExternalForce(m_program, b, params.external, m_config.external, kName);
+    m_program.use();
+    m_program.set("u_nodeCount", b.nodeCount);
+    m_program.set("u_h", static_cast<float>(params.update.h));
+    if (m_config.update.ground) {
+        m_program.set("u_groundHeight", static_cast<float>(params.update.groundHeight));
+        m_program.set("u_restitution", static_cast<float>(params.update.restitution));
+        m_program.set("u_friction", static_cast<float>(params.update.friction));
+    }
+    // At most kFrameStepSubstepsPerDispatch substeps per dispatch, so no single dispatch runs long
+    // enough to meet a display driver's watchdog.
+    for (std::uint32_t first = 0; first < params.substeps; first += kFrameStepSubstepsPerDispatch) {
+        m_program.set("u_firstSubstep", first);
+        m_program.set("u_substeps", std::min(kFrameStepSubstepsPerDispatch, params.substeps - first));
+        gl::ComputeProgram::dispatch(1, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
 }
 
 } // namespace glcollide::passes

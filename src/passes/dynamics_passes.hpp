@@ -55,4 +55,18 @@ class NodeUpdatePass {
     gl::ComputeProgram m_program;
 };
 
+/// Every substep of a frame in one dispatch (shaders/passes/frame_step.comp): for small scenes
+/// without collisions and without heavy rows.
+class FrameStepPass {
+  public:
+    static constexpr PassId kId = PassId::FrameStep;
+    static constexpr const char* kName = passName(kId);
+    explicit FrameStepPass(const FrameStepParams& config);
+    void dispatch(const DeviceBuffers& buffers, const FrameStepParams& params) const;
+
+  private:
+    FrameStepParams m_config;
+    gl::ComputeProgram m_program;
+};
+
 } // namespace glcollide::passes

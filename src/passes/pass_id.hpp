@@ -22,14 +22,16 @@ enum class PassId : std::uint8_t {
     FeaturePairs, ///< Representative Triangles: candidate face pairs -> vertex-face, edge-edge pairs
     ContactResponse,
     ImplicitSolve, ///< implicit Euler: assemble A·Δv = b, conjugate gradients, v += Δv
-    NodeUpdate
+    NodeUpdate,
+    FrameStep ///< a small scene's whole frame (SpringUpdate + NodeUpdate per substep) in one dispatch
 };
 
-inline constexpr std::size_t kPassCount = 12;
+inline constexpr std::size_t kPassCount = 13;
 
 inline constexpr std::array<const char*, kPassCount> kPassNames = {
     "NodeForce",   "SpringUpdate", "BBUpdate",     "BBCollision",     "BvhBuild",  "BvhRefit",
-    "BvhTraverse", "TriTri",       "FeaturePairs", "ContactResponse", "ImplicitSolve", "NodeUpdate"};
+    "BvhTraverse", "TriTri",       "FeaturePairs", "ContactResponse", "ImplicitSolve", "NodeUpdate",
+    "FrameStep"};
 
 constexpr const char* passName(PassId id) {
     return kPassNames[static_cast<std::size_t>(id)];

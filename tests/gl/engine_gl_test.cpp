@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
+
 #include <cmath>
 #include <filesystem>
 
@@ -52,7 +54,7 @@ TEST(EngineGl, PassesAndBuffersFollowTheEffects) {
           "nodeFaceOffsets", "nodeFaceList"}},
     };
     for (const Case& c : cases) {
-        Engine engine(sceneWith(c.effects, c.extra));
+        Engine engine(sceneWith(c.effects, c.extra), {.frameStep = false}); // the per-substep passes
         EXPECT_EQ(engine.pipeline(), c.passes) << c.effects;
         Names buffers = c.buffers;
         buffers.emplace_back("health"); // EngineOptions::checkFinite (default on)
@@ -91,6 +93,32 @@ TEST(EngineGl, ImplicitEulerReplacesSpringUpdateWithTheSolver) {
         engine.step();
         for (const glm::dvec3& v : engine.readVelocities()) EXPECT_NEAR(v.y, -9.81 / 60.0, 1e-6);
     }
+}
+
+TEST(EngineGl, SmallScenesRunAFrameInOneDispatchWithTheSameResult) {
+    // The default scene (1024 nodes, 66 substeps): FrameStep against SpringUpdate + NodeUpdate.
+    Scene scene = defaultScene();
+    Engine fused(scene), perSubstep(scene, {.frameStep = false});
+    EXPECT_EQ(fused.pipeline(), (Names{"FrameStep"}));
+    EXPECT_EQ(perSubstep.pipeline(), (Names{"SpringUpdate", "NodeUpdate"}));
+    for (int frame = 0; frame < 3; ++frame) {
+        fused.step();
+        perSubstep.step();
+    }
+    const int substeps = fused.substepInfo().substeps;
+    EXPECT_EQ(fused.lastStep().dispatchesPerSubstep, 1.0 / substeps);
+    EXPECT_EQ(perSubstep.lastStep().dispatchesPerSubstep, 2.0);
+    // Same arithmetic (shared includes) in a different program: a compiler may contract or order
+    // differently, so allow float rounding — u = 2^-24 of the 1.5 m coordinates per substep, 200
+    // substeps, 8x margin (measured on llvmpipe: bit-identical).
+    const std::vector<glm::dvec3> a = fused.readPositions(), b = perSubstep.readPositions();
+    for (std::size_t i = 0; i < a.size(); ++i)
+        ASSERT_LE(glm::length(a[i] - b[i]), 8.0 * 3 * substeps * 1.5 * 0x1p-24) << "node " << i;
+    // Collisions, implicit Euler, large scenes and heavy rows keep the per-substep passes.
+    Engine collisions(sceneWith(R"(["springs", "collisions"])"));
+    EXPECT_NE(collisions.pipeline().front(), "FrameStep");
+    Engine implicit(sceneWith(R"(["springs"])", R"("time": {"integrator": "implicit_euler"},)"));
+    EXPECT_EQ(implicit.pipeline(), (Names{"ImplicitSolve", "NodeUpdate"}));
 }
 
 TEST(EngineGl, EveryShippedSceneComposesAndSteps) {
@@ -146,7 +174,7 @@ TEST(EngineGl, ExplicitSubstepsBelowTheLimitWarn) {
 }
 
 TEST(EngineGl, TimingsArePerPass) {
-    Engine engine(sceneWith(R"(["gravity", "springs"])"));
+    Engine engine(sceneWith(R"(["gravity", "springs"])"), {.frameStep = false});
     engine.step();
     const StepStats& s = engine.lastStep();
     ASSERT_EQ(s.passes.size(), 2u); // SpringUpdate (gravity included), NodeUpdate

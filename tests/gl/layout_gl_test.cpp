@@ -238,6 +238,7 @@ TEST(LayoutGl, WorkGroupSizesMatchTheSharedConstants) {
         {"radix_count", {GLC_SORT_BLOCK, 1, 1}},
         {"radix_scatter", {GLC_SORT_BLOCK, 1, 1}},
         {"radix_scan", {GLC_SCAN_GROUP, 1, 1}},
+        {"frame_step", {GLC_FRAME_STEP_GROUP, 1, 1}},
     };
     std::size_t checked = 0;
     for (const gl::ComputeProgram& program : allPrograms()) {
@@ -265,8 +266,9 @@ TEST(LayoutGl, HealthStructMatchesCpp) {
 
 TEST(LayoutGl, CompileErrorsNameTheFileAndLine) {
     // Defining u_friction as a macro turns its declaration into a syntax error on a known line of
-    // node_update.comp; the mapped log must name that file and line, not "0:<n>".
-    std::ifstream in(std::string(GLCOLLIDE_SOURCE_DIR) + "/shaders/passes/node_update.comp");
+    // common/advance_node.glsl, which node_update.comp includes; the mapped log must name that file
+    // and line, not "0:<n>".
+    std::ifstream in(std::string(GLCOLLIDE_SOURCE_DIR) + "/shaders/common/advance_node.glsl");
     std::string line;
     int lineNumber = 0, declaration = 0;
     while (std::getline(in, line) && declaration == 0) {
@@ -279,7 +281,7 @@ TEST(LayoutGl, CompileErrorsNameTheFileAndLine) {
         gl::ComputeProgram program("node_update", {"GLC_GROUND", "u_friction 1.0 +"});
         FAIL() << "compiling broken GLSL succeeded";
     } catch (const Error& e) {
-        const std::string where = "shaders/passes/node_update.comp:" + std::to_string(declaration);
+        const std::string where = "shaders/common/advance_node.glsl:" + std::to_string(declaration);
         EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
     }
 }

@@ -1,0 +1,52 @@
+// One symplectic Euler substep of node i under force f (v += h·w·f; x += h·v), a pinned node
+// (w = 0) held, the optional ground plane with restitution and Coulomb friction on the velocity,
+// and the optional non-finite check. Shared by NodeUpdate and FrameStep. Include after
+// g_positions and g_velocities (and, with GLC_CHECK_FINITE, g_health) are declared.
+// Twin: cpu::nodeUpdate.
+uniform float u_h; // s
+#ifdef GLC_GROUND
+uniform float u_groundHeight; // m
+uniform float u_restitution;
+uniform float u_friction;
+#endif
+
+void advanceNode(uint i, vec3 f, uint substep) {
+    vec4 p = g_positions[i];
+    float w = p.w;
+    if (w <= 0.0) {
+        g_velocities[i] = vec4(0.0);
+        return;
+    }
+    vec3 v = g_velocities[i].xyz + (u_h * w) * f;
+    vec3 x = p.xyz + u_h * v;
+#ifdef GLC_GROUND
+    if (x.y < u_groundHeight) {
+        x.y = u_groundHeight;
+        if (v.y < 0.0) {
+            float normalSpeed = -v.y;
+            v.y = u_restitution * normalSpeed;
+            float tangentialSpeed = length(v.xz);
+            if (tangentialSpeed > 0.0) {
+                // Coulomb: the normal impulse (1+e)|vn| bounds the tangential change.
+                float scale = max(0.0, 1.0 - u_friction * (1.0 + u_restitution) * normalSpeed / tangentialSpeed);
+                v.xz *= scale;
+            }
+        }
+    }
+#endif
+    g_positions[i] = vec4(x, w);
+    g_velocities[i] = vec4(v, 0.0);
+#ifdef GLC_CHECK_FINITE
+    // Infinity and NaN are the floats whose 8 exponent bits are all ones.
+    const uint exponent = 0x7F800000u;
+    if (any(equal(floatBitsToUint(x) & exponent, uvec3(exponent))) ||
+        any(equal(floatBitsToUint(v) & exponent, uvec3(exponent)))) {
+        // An earlier substep of this frame (or an earlier frame, already reported) wrote a lower
+        // index: keep it.
+        if (g_health.badSubstep >= substep) {
+            atomicMin(g_health.firstBadNode, i);
+            atomicMin(g_health.badSubstep, substep);
+        }
+    }
+#endif
+}
