@@ -133,4 +133,25 @@ double symplecticEulerAmplitudeRatioPerPeriod(const DampedOscillator& o, double 
     return std::pow(1.0 - h * o.damping / o.mass, std::numbers::pi / theta);
 }
 
+namespace {
+
+double implicitEulerTheta(const DampedOscillator& o, double h) {
+    const double w = o.omega(), gamma = o.damping / o.mass;
+    const double d = 1.0 + h * gamma + h * h * w * w;
+    const double c = (2.0 + h * gamma) / (2.0 * std::sqrt(d));
+    if (!(std::abs(c) < 1.0)) return std::numeric_limits<double>::quiet_NaN(); // overdamped step
+    return gamma == 0.0 ? std::atan(h * w) : std::acos(c);
+}
+
+} // namespace
+
+double implicitEulerPeriod(const DampedOscillator& o, double h) {
+    return 2.0 * std::numbers::pi * h / implicitEulerTheta(o, h);
+}
+
+double implicitEulerAmplitudeRatioPerPeriod(const DampedOscillator& o, double h) {
+    const double w = o.omega(), gamma = o.damping / o.mass;
+    return std::pow(1.0 + h * gamma + h * h * w * w, -std::numbers::pi / implicitEulerTheta(o, h));
+}
+
 } // namespace glcollide::benchkit

@@ -71,4 +71,12 @@ double meanAmplitudeRatio(const std::vector<double>& peaks);
 double symplecticEulerPeriod(const DampedOscillator& o, double h);
 double symplecticEulerAmplitudeRatioPerPeriod(const DampedOscillator& o, double h);
 
+/// Implicit (backward) Euler (v' = v + h a(x', v'); x' = x + h v'), exact for this linear system in
+/// one Newton step: with D = 1 + hγ + h²ω² the map is [[1 + hγ, h], [−hω², 1]] / D, determinant
+/// 1/D and trace (2 + hγ)/D; eigenvalues D^{−1/2} e^{±iθ} with cos θ = (2 + hγ) / (2 sqrt(D))
+/// (undamped: θ = atan(hω)). Period 2πh/θ (long by (hω)²/3 undamped), amplitude ratio D^{−π/θ}
+/// per period (undamped ≈ e^{−πhω}: numerical damping). For checks once that integrator exists.
+double implicitEulerPeriod(const DampedOscillator& o, double h);
+double implicitEulerAmplitudeRatioPerPeriod(const DampedOscillator& o, double h);
+
 } // namespace glcollide::benchkit

@@ -462,5 +462,44 @@ TEST(BenchkitOscillator, SymplecticEulerPeriodAndDampingAreTheDiscreteMapsOwn) {
         symplecticEulerPeriod(DampedOscillator{1.0, 40.0, 0.0, 0.0, 0.06}, 2.0 / std::sqrt(40.0))));
 }
 
+TEST(BenchkitOscillator, ImplicitEulerPeriodAndDampingAreTheDiscreteMapsOwn) {
+    // Backward Euler solved exactly per step (what one Newton step gives on this linear system):
+    // (1 + hγ + h²ω²) v' = v − hω² x, x' = x + h v'. Its frames must show the formulas' period and
+    // amplitude ratio within the estimators' bounds; undamped the period is long by (hω)²/3 and
+    // the ratio ≈ e^{−πhω}: heavy numerical damping at the frame step, unlike symplectic Euler.
+    const double dt = 0.02;
+    for (double c : {0.0, 0.2}) {
+        for (int substeps : {1, 4}) {
+            SCOPED_TRACE("c " + std::to_string(c) + ", substeps " + std::to_string(substeps));
+            const DampedOscillator o{1.0, 40.0, c, 0.0, 0.06};
+            const double h = dt / substeps, gamma = c / o.mass, w2 = o.omega() * o.omega();
+            double u = 0.0, v = o.v0;
+            std::vector<double> samples{u};
+            for (int f = 0; f < 500; ++f) {
+                for (int s = 0; s < substeps; ++s) {
+                    v = (v - h * w2 * u) / (1.0 + h * gamma + h * h * w2);
+                    u += h * v;
+                }
+                samples.push_back(u);
+            }
+            const std::vector<double> t = upwardZeroCrossings(samples, dt);
+            ASSERT_GE(t.size(), 10u);
+            const double period = implicitEulerPeriod(o, h),
+                         ratio = implicitEulerAmplitudeRatioPerPeriod(o, h);
+            const double omega = 2 * std::numbers::pi / period, decay = -std::log(ratio) / period;
+            EXPECT_NEAR(meanPeriod(t), period,
+                        2 * crossingTimeBound(omega, decay, dt) / double(t.size() - 1));
+            const std::vector<double> peaks = periodPeaks(samples, dt, t);
+            EXPECT_NEAR(meanAmplitudeRatio(peaks), ratio,
+                        1.1 * 2 * peakBound(omega, decay, dt) * ratio / double(peaks.size() - 1));
+            if (c == 0.0) {
+                const double hw = h * o.omega();
+                EXPECT_NEAR(period / o.period() - 1, hw * hw / 3, 0.1 * hw * hw / 3);
+                EXPECT_NEAR(std::log(ratio), -std::numbers::pi * hw, 0.1 * std::numbers::pi * hw);
+            }
+        }
+    }
+}
+
 } // namespace
 } // namespace glcollide::benchkit
