@@ -1,6 +1,7 @@
 #include "benchkit/experiments.hpp"
 
 #include "benchkit/bvh_experiment.hpp"
+#include "benchkit/oscillator.hpp"
 #include "benchkit/paper_fused_tri_tri.hpp"
 
 #include "core/gpu_layout.hpp"
@@ -24,6 +25,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 namespace glcollide::benchkit {
@@ -162,12 +164,17 @@ void compareWithOracle(Engine& engine, const FaceData& d, RunResult& r) {
 /// Called once after the measured frames, while the engine still holds the final state.
 using AfterRun = std::function<void(Engine&, const Scene&, RunResult&)>;
 
-/// One scene under one configuration: built, measured, then `after` (ground truth on the state).
+/// Called once before the first frame, with the engine in its initial state.
+using BeforeRun = std::function<void(Engine&)>;
+
+/// One scene under one configuration: built, `before`, measured, then `after` (ground truth on
+/// the state).
 RunResult runScene(const Experiment& x, const SceneEntry& s, const ConfigEntry& c, const FrameHook& hook,
-                   const AfterRun& after = nullptr) {
+                   const AfterRun& after = nullptr, const BeforeRun& before = nullptr) {
     Scene scene = buildScene(s, c);
     applySubstepFactor(scene, c.substepFactor);
     Engine engine(scene);
+    if (before) before(engine);
     RunResult r = measureRun(engine, x, hook);
     r.scene = s.name;
     r.config = c.name;
@@ -352,10 +359,13 @@ void narrowPhase(const Experiment& x, ExperimentResult& out, const Progress& pro
             "configuration's precision; time is GPU ms per batch, ground truth the exact oracle.");
 }
 
-/// Node positions and energy after every frame.
+/// Node positions and energy after every frame (warm-up frames included), and before the first.
 struct Trajectory {
     std::vector<std::vector<glm::dvec3>> positions;
     std::vector<double> energy;
+    double initialEnergy = 0.0;
+    double dt = 0.0; ///< s per frame
+    int stabilityRuleSubsteps = 0;
 };
 
 FrameHook recordTrajectory(Trajectory& t) {
@@ -363,6 +373,29 @@ FrameHook recordTrajectory(Trajectory& t) {
         t.positions.push_back(e.readPositions());
         t.energy.push_back(e.energy().total());
     };
+}
+
+BeforeRun recordStart(Trajectory& t) {
+    return [&t](Engine& e) {
+        t.initialEnergy = e.energy().total();
+        t.dt = e.scene().time.dt;
+        t.stabilityRuleSubsteps = e.substepInfo().stableSubsteps;
+    };
+}
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// What every integration run reports besides its error: the cost of one simulated second and
+/// the energy drift over the run.
+void addCostAndDrift(const Trajectory& t, RunResult& r) {
+    r.set("dt_s", t.dt);
+    r.set("gpu_ms_per_simulated_second", r.gpuMs.median / t.dt);
+    r.set("wall_ms_per_simulated_second", r.wallMs.median / t.dt);
+    r.set("stability_rule_substeps", t.stabilityRuleSubsteps);
+    const double end = t.energy.empty() ? t.initialEnergy : t.energy.back();
+    // Relative to |E(0)|; no relative drift exists for a state that starts with zero energy.
+    r.set("energy_drift_relative",
+          t.initialEnergy != 0.0 ? (end - t.initialEnergy) / std::abs(t.initialEnergy) : kNaN);
 }
 
 /// A body in free flight under gravity with its springs at rest: every free node moves on the
@@ -441,12 +474,146 @@ void compareTrajectories(const Trajectory& run, const Trajectory& ref, double re
     r.error = r.metric("max_position_error_m");
 }
 
+/// One free node on one spring along its initial velocity, every other spring at it
+/// perpendicular to that axis with a pinned far end (docs/benchmarks.md, "The oscillator
+/// reference"): along the axis the node is the damped oscillator m u'' + c u' + k u = 0, u(0) = 0,
+/// u'(0) = |v0|, exactly (the axis spring stays on its axis: its length is L0 -+ u); a perpendicular
+/// spring of length w adds only the third-order force k_p u^3 / (2 w^2) along the axis and a
+/// second-order pull u^2 / (2 w) off it, which the run reports as max_off_axis_m.
+struct Oscillator {
+    DampedOscillator o;
+    std::uint32_t node = 0;
+    glm::dvec3 start{0.0}, axis{0.0};
+    double restLength = 0.0; ///< of the axis spring
+
+    [[nodiscard]] glm::dvec3 position(double t) const { return start + axis * o.displacement(t); }
+};
+
+Oscillator oscillatorOf(const Scene& scene, const std::string& source) {
+    const auto fail = [&](const std::string& what) -> Oscillator {
+        throw Error(source +
+                    ": the oscillator reference needs effects springs (and optionally damping) only, one "
+                    "free node with an initial velocity, one spring at it along that velocity and any others "
+                    "perpendicular to it, underdamped: " +
+                    what);
+    };
+    for (Effect e : scene.effects.list())
+        if (e != Effect::Springs && e != Effect::Damping)
+            return fail("effect " + std::string(effectName(e)) + " is on");
+    if (!scene.effects.has(Effect::Springs)) return fail("springs are off");
+    const model::FlatModel m = model::flatten(scene);
+    Oscillator r;
+    int free = 0;
+    for (std::uint32_t i = 0; i < m.nodeCount(); ++i)
+        if (m.inverseMasses[i] > 0.0) r.node = i, ++free;
+    if (free != 1) return fail(std::to_string(free) + " free nodes");
+    const glm::dvec3 v = m.velocities[r.node];
+    const double speed = glm::length(v);
+    if (!(speed > 0.0)) return fail("the free node starts at rest (give the object a velocity)");
+    r.start = m.positions[r.node];
+    r.axis = v / speed;
+    int along = 0;
+    double stiffness = 0.0, damping = 0.0;
+    for (const model::FlatSpring& sp : m.springs) {
+        if (sp.a != r.node && sp.b != r.node) continue;
+        const glm::dvec3 d = m.positions[sp.a == r.node ? sp.b : sp.a] - r.start;
+        const double length = glm::length(d), c = glm::dot(d, r.axis) / length;
+        if (std::abs(std::abs(c) - 1.0) <= 1e-12) {
+            ++along;
+            stiffness = sp.stiffness;
+            damping = sp.damping;
+            r.restLength = length;
+        } else if (std::abs(c) > 1e-9) {
+            return fail("a spring at the free node is neither along nor across the velocity (cos " +
+                        std::to_string(c) + ")");
+        }
+    }
+    if (along != 1) return fail(std::to_string(along) + " springs along the velocity");
+    r.o.mass = m.masses[r.node];
+    r.o.stiffness = stiffness;
+    // NodeForce's air damping is -c_air m v, spring damping -c u' along the spring.
+    r.o.damping = damping + (scene.effects.has(Effect::Damping) ? scene.damping * r.o.mass : 0.0);
+    r.o.v0 = speed;
+    if (!(r.o.zeta() < 1.0)) return fail("damping ratio " + std::to_string(r.o.zeta()) + " >= 1");
+    if (!(r.o.amplitude() < r.restLength))
+        return fail("amplitude " + std::to_string(r.o.amplitude()) + " m reaches the spring's pinned end");
+    return r;
+}
+
+/// Fewer frames per period than this and the period and amplitude estimators are not applied.
+constexpr double kMinFramesPerPeriod = 8.0;
+
+/// The run against the closed form after every frame, and the period and amplitude decay read
+/// off the trajectory along the axis (oscillator.hpp).
+void compareOscillator(const Trajectory& t, const Oscillator& ref, RunResult& r) {
+    const double dt = t.dt;
+    std::vector<double> u{0.0}; // the node starts at the rest length
+    double error = 0.0, axisError = 0.0, offAxis = 0.0, energyError = 0.0, largest = 0.0;
+    int grewAt = 0;
+    const double e0 = ref.o.energy(0.0);
+    for (std::size_t f = 0; f < t.positions.size(); ++f) {
+        const double time = double(f + 1) * dt;
+        const glm::dvec3 p = t.positions[f][ref.node];
+        const glm::dvec3 d = p - ref.start;
+        u.push_back(glm::dot(d, ref.axis));
+        error = std::max(error, glm::length(p - ref.position(time)));
+        axisError = std::max(axisError, std::abs(u.back() - ref.o.displacement(time)));
+        offAxis = std::max(offAxis, glm::length(d - ref.axis * u.back()));
+        energyError = std::max(energyError, std::abs(t.energy[f] - ref.o.energy(time)));
+        largest = std::max(largest, std::abs(u.back()));
+        if (grewAt == 0 && !(std::abs(u.back()) <= 2.0 * ref.o.amplitude())) grewAt = static_cast<int>(f + 1);
+    }
+    const double inf = std::numeric_limits<double>::infinity();
+    r.set("max_position_error_m", std::isfinite(error) ? error : inf);
+    r.set("max_energy_error_relative", std::isfinite(energyError) ? energyError / e0 : inf);
+    r.set("max_axis_error_m", std::isfinite(axisError) ? axisError : inf);
+    r.set("max_off_axis_m", std::isfinite(offAxis) ? offAxis : inf);
+    r.set("amplitude_exact_m", ref.o.amplitude());
+    r.set("max_displacement_m", std::isfinite(largest) ? largest : inf);
+    const double exactPeriod = ref.o.period();
+    r.set("period_exact_s", exactPeriod);
+    r.set("frames_per_period", exactPeriod / dt);
+    r.set("amplitude_ratio_exact", ref.o.amplitudeRatioPerPeriod());
+    const double runTime = double(t.positions.size()) * dt;
+    r.set("energy_drift_exact_relative", (ref.o.energy(runTime) - e0) / e0);
+    r.error = r.metric("max_position_error_m");
+    if (grewAt != 0 && r.failure.empty())
+        r.failure =
+            "diverged: the displacement left twice the exact amplitude at frame " + std::to_string(grewAt);
+    if (!r.failure.empty() || exactPeriod / dt < kMinFramesPerPeriod) return;
+    const std::vector<double> crossings = upwardZeroCrossings(u, dt);
+    if (crossings.size() < 3) return; // two full periods at least
+    const double period = meanPeriod(crossings);
+    const std::vector<double> peaks = periodPeaks(u, dt, crossings);
+    const double ratio = meanAmplitudeRatio(peaks);
+    r.set("periods_measured", double(crossings.size() - 1));
+    r.set("period_s", period);
+    r.set("period_error_relative", (period - exactPeriod) / exactPeriod);
+    // The sampling resolution of the measured period: two crossing times, each within the linear
+    // interpolation's bound for the measured curve (its own frequency and decay).
+    const double measuredOmega = 2.0 * std::numbers::pi / period;
+    const double measuredDecay = ratio > 0.0 ? std::max(0.0, -std::log(ratio) / period) : 0.0;
+    r.set("period_resolution_s",
+          2.0 * crossingTimeBound(measuredOmega, measuredDecay, dt) / double(crossings.size() - 1));
+    r.set("amplitude_ratio_per_period", ratio);
+    // Each peak's relative bias is the same function of its sampling phase (the curve repeats
+    // scaled by the ratio), so the ratio is off by at most twice the bound over the periods.
+    r.set("amplitude_ratio_resolution",
+          peaks.size() >= 2
+              ? 2.0 * peakBound(measuredOmega, measuredDecay, dt) * ratio / double(peaks.size() - 1)
+              : kNaN);
+    // Simulated amplitude lost per period minus the exact loss: (1 - ratio) - (1 - exact).
+    r.set("numerical_damping_per_period", ref.o.amplitudeRatioPerPeriod() - ratio);
+}
+
 void integration(const Experiment& x, ExperimentResult& out, const Progress& progress) {
     out.timeLabel = "GPU ms per frame";
     out.errorLabel = "largest node position error (m)";
+    bool coarse = false;
     for (const SceneEntry& s : x.scenes) {
         Trajectory ref;
         double referenceEnergy = 0.0;
+        std::optional<Oscillator> oscillator;
         if (x.reference == IntegrationReference::Ballistic) {
             const Scene scene = buildScene(s, x.configs.front());
             const Ballistic o = ballisticOf(scene, s.source);
@@ -456,6 +623,8 @@ void integration(const Experiment& x, ExperimentResult& out, const Progress& pro
                 ref.energy.push_back(o.energy());
             }
             referenceEnergy = o.energy();
+        } else if (x.reference == IntegrationReference::Oscillator) {
+            oscillator = oscillatorOf(buildScene(s, x.configs.front()), s.source);
         } else {
             ConfigEntry refConfig = x.configs.front();
             Scene base = buildScene(s, refConfig);
@@ -476,21 +645,62 @@ void integration(const Experiment& x, ExperimentResult& out, const Progress& pro
         for (const ConfigEntry& c : x.configs) {
             progress(s.name + " / " + c.name);
             Trajectory t;
-            RunResult r = runScene(x, s, c, recordTrajectory(t));
-            compareTrajectories(t, ref, referenceEnergy, r);
+            RunResult r = runScene(x, s, c, recordTrajectory(t), nullptr, recordStart(t));
+            if (oscillator) {
+                // Every configuration must describe the same oscillator (a config may change the
+                // integrator or the substeps, not the body).
+                const Oscillator o =
+                    oscillatorOf(buildScene(s, c), s.source + " (config \"" + c.name + "\")");
+                if (o.o.mass != oscillator->o.mass || o.o.stiffness != oscillator->o.stiffness ||
+                    o.o.damping != oscillator->o.damping || o.o.v0 != oscillator->o.v0 ||
+                    o.node != oscillator->node)
+                    throw Error(
+                        s.source + " (config \"" + c.name +
+                        "\"): the configuration changes the oscillator (mass, spring, damping or velocity)");
+                compareOscillator(t, *oscillator, r);
+                coarse = coarse || r.metric("frames_per_period") < kMinFramesPerPeriod;
+            } else {
+                compareTrajectories(t, ref, referenceEnergy, r);
+            }
+            addCostAndDrift(t, r);
             r.time = r.gpuMs.median;
             out.runs.push_back(std::move(r));
         }
     }
+    if (x.reference == IntegrationReference::Ballistic)
+        out.notes.push_back(
+            "Ground truth: the closed-form free flight x(t) = x0 + v0 t + g t^2/2 of every node (springs at "
+            "rest), compared after every frame; energy error relative to the constant exact energy.");
+    else if (x.reference == IntegrationReference::Converged)
+        out.notes.push_back(
+            "Ground truth: the same scene at " + std::to_string(x.referenceFactor) +
+            " x the first configuration's substeps (converged reference), compared after every frame.");
+    else {
+        out.notes.push_back(
+            "Ground truth: the damped oscillator m u'' + c u' + k u = 0, u(0) = 0, u'(0) = v0 of the "
+            "one free node along its spring (m its lumped mass, c spring + air damping), compared "
+            "after every frame. max_position_error_m is the node's distance from the closed form, "
+            "max_axis_error_m its part along the spring; max_off_axis_m, the motion across it, is "
+            "the perpendicular springs' second-order pull and float rounding of their length, not "
+            "the integrator.");
+        out.notes.push_back(
+            "Period: mean spacing of the upward zero crossings of the displacement sampled once per frame "
+            "(linear interpolation between frames; period_resolution_s bounds that interpolation's error). "
+            "Amplitude ratio: geometric mean of consecutive per-period peaks (3-point parabola), numerical "
+            "damping = exact ratio e^(-zeta omega T_d) minus simulated ratio = amplitude lost per period "
+            "beyond the physical loss.");
+        if (coarse)
+            out.notes.push_back(
+                "Scenes with fewer than 8 frames per period report no period or amplitude ratio "
+                "(n/a): frame sampling cannot resolve them; their error and energy drift stand.");
+    }
     out.notes.push_back(
-        x.reference == IntegrationReference::Ballistic
-            ? "Ground truth: the closed-form free flight x(t) = x0 + v0 t + g t^2/2 of every node (springs "
-              "at "
-              "rest), compared after every frame; energy error relative to the constant exact energy."
-            : "Ground truth: the same scene at " + std::to_string(x.referenceFactor) +
-                  " x the first configuration's substeps (converged reference), compared after every frame.");
+        "Cost: GPU (and wall) ms per simulated second = ms per frame / dt. Energy drift: total energy "
+        "(kinetic + gravity + springs) after the last frame minus before the first, relative to the "
+        "first (its zero is the scene's: gravity's potential is 0 at y = 0).");
     out.notes.push_back(
-        "Integrator: symplectic Euler is the only one implemented; the axis is the substep count.");
+        "Configurations differ in substeps per frame (and in the integrator where a configuration sets "
+        "one); a run whose state went non-finite is reported as diverged.");
 }
 
 void contact(const Experiment& x, ExperimentResult& out, const Progress& progress) {

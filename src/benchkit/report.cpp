@@ -71,8 +71,8 @@ std::vector<std::string> sceneOrder(const ExperimentResult& r) {
 }
 
 /// The metrics worth a table column for each kind (all of them are in the JSON).
-std::vector<std::pair<std::string, std::string>> tableMetrics(ExperimentKind kind) {
-    switch (kind) {
+std::vector<std::pair<std::string, std::string>> tableMetrics(const Experiment& experiment) {
+    switch (experiment.kind) {
     case ExperimentKind::Scaling:
         return {};
     case ExperimentKind::BroadPhase:
@@ -84,8 +84,19 @@ std::vector<std::pair<std::string, std::string>> tableMetrics(ExperimentKind kin
                 {"false_positives", "false pos."},
                 {"false_negatives", "false neg."}};
     case ExperimentKind::Integration:
+        if (experiment.reference == IntegrationReference::Oscillator)
+            return {{"max_position_error_m", "max error (m)"},
+                    {"period_error_relative", "period error (rel.)"},
+                    {"amplitude_ratio_per_period", "amplitude ratio/period"},
+                    {"numerical_damping_per_period", "numerical damping/period"},
+                    {"energy_drift_relative", "energy drift (rel.)"},
+                    {"gpu_ms_per_simulated_second", "GPU ms/simulated s"},
+                    {"wall_ms_per_simulated_second", "wall ms/simulated s"}};
         return {{"max_position_error_m", "max error (m)"},
-                {"max_energy_error_relative", "energy error (rel.)"}};
+                {"max_energy_error_relative", "energy error (rel.)"},
+                {"energy_drift_relative", "energy drift (rel.)"},
+                {"gpu_ms_per_simulated_second", "GPU ms/simulated s"},
+                {"wall_ms_per_simulated_second", "wall ms/simulated s"}};
     case ExperimentKind::Contact:
         return {{"deepest_penetration_m", "deepest penetration (m)"},
                 {"max_intersecting_pairs", "max intersecting pairs"},
@@ -119,7 +130,7 @@ Table tableOf(const ExperimentResult& r) {
         t.header.push_back(r.timeLabel);
     else
         t.header.push_back("GPU ms/substep");
-    const auto metrics = tableMetrics(r.experiment.kind);
+    const auto metrics = tableMetrics(r.experiment);
     for (const auto& m : metrics) t.header.push_back(m.second);
     for (const RunResult& run : r.runs) {
         std::vector<std::string> row{run.scene, run.config, run.faces ? num(run.faces) : "-",

@@ -237,8 +237,11 @@ Experiment parseExperiment(const json& e, const Where& at, const std::filesystem
             x.reference = IntegrationReference::Converged;
         else if (ref == "ballistic")
             x.reference = IntegrationReference::Ballistic;
+        else if (ref == "oscillator")
+            x.reference = IntegrationReference::Oscillator;
         else
-            (at / "reference").fail("unknown reference \"" + ref + "\" (expected converged or ballistic)");
+            (at / "reference")
+                .fail("unknown reference \"" + ref + "\" (expected converged, ballistic or oscillator)");
         x.referenceFactor = intAt(e, at, "reference_factor", 16, 2, 1024);
     }
     if (e.contains("case_families")) {

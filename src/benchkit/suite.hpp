@@ -42,8 +42,9 @@ struct ConfigEntry {
 
 /// The reference an integration experiment measures trajectories against.
 enum class IntegrationReference {
-    Converged, ///< the same scene at `referenceFactor` times the first configuration's substeps
-    Ballistic, ///< the closed form of free flight under gravity (springs at rest)
+    Converged,  ///< the same scene at `referenceFactor` times the first configuration's substeps
+    Ballistic,  ///< the closed form of free flight under gravity (springs at rest)
+    Oscillator, ///< the closed form of one free node on one spring (damped harmonic oscillator)
 };
 
 /// The `bvh` kind's sizes and limits (docs/benchmarks.md, "The bvh experiment"). Its generated

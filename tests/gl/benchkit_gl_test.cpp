@@ -1,13 +1,17 @@
 // The benchmark's experiments on llvmpipe, checked against what their ground truth must give:
 // every broad phase misses nothing, robust agrees with the exact oracle, the free-flight error
-// of symplectic Euler is the closed form g h T / 2, and the reports carry every run.
+// of symplectic Euler is the closed form g h T / 2, the oscillator's measured period and
+// amplitude decay are symplectic Euler's discrete ones, and the reports carry every run.
 
 #include "benchkit/experiments.hpp"
+#include "benchkit/oscillator.hpp"
 #include "benchkit/report.hpp"
 #include "benchkit/suite.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <glcollide/error.hpp>
 
 #include <cmath>
 #include <string>
@@ -105,6 +109,151 @@ TEST(BenchkitGl, FreeFlightErrorIsTheSymplecticEulerClosedForm) {
         const double h = (1.0 / 60.0) / x.substeps;
         EXPECT_NEAR(x.error, 0.5 * 9.81 * h * T, 0.01 * 0.5 * 9.81 * h * T);
     }
+}
+
+/// The suites' oscillator body: a 2x2 cloth of 3 kg, nodes 0, 1 and 3 pinned, so node 2 (lumped
+/// a third of the area: 1 kg) hangs on the 0.1 m spring to node 0 and a 30 m one to node 3,
+/// started along the first at 0.06 m/s.
+std::string oscillatorScene(const std::string& name, const std::string& springs,
+                            const std::string& effects = "", const std::string& pinned = "[0, 1, 3]") {
+    return R"({"name": ")" + name + R"(", "scene": {"format_version": 1, "effects": ["springs")" + effects +
+           R"(], "time": {"dt": 0.02, "substeps": 1},
+        "objects": [{"generator": {"type": "cloth", "size": [30, 0.1], "resolution": [2, 2]},
+          "transform": {"translate": [15, 0.05, 0]}, "mass": 3, "velocity": [0, 0.06, 0],
+          "springs": {)" +
+           springs + R"(, "bend_stiffness": 0}, "pinned": )" + pinned + "}]}}";
+}
+
+TEST(BenchkitGl, OscillatorPeriodAndDampingAreSymplecticEulersDiscreteOnes) {
+    // Symplectic Euler's frames are samples of the discrete map's own sinusoid: period 2πh/θ with
+    // 2 − 2cos θ = h²ω² undamped (cos θ = (2 − hγ − h²ω²) / (2 sqrt(1 − hγ)) damped), amplitude
+    // factor (1 − hγ)^{π/θ} per period (oscillator.hpp, unit-tested against a double-precision
+    // run of the map). The GPU run must measure exactly those, within the estimators' sampling
+    // bounds (period_resolution_s, amplitude_ratio_resolution, computed by the run) plus 1e-6 for
+    // float: the state's rounding is ~ulp(0.1 m) = 7.5e-9 m against the 9.5 mm amplitude, the 30 m
+    // perpendicular spring shifts the frequency by 3(A/w)²/16 = 2e-8.
+    const ExperimentResult r = runExperiment(
+        only(
+            R"({"name": "o", "kind": "integration", "reference": "oscillator", "frames": 500, "warmup_frames": 0,
+      "scenes": [)" +
+            oscillatorScene("undamped", R"("stiffness": 40, "shear_stiffness": 0)") + ", " +
+            oscillatorScene("damped", R"("stiffness": 40, "damping": 0.2, "shear_stiffness": 0)") + R"(],
+      "configs": [{"name": "1", "patch": {"time": {"substeps": 1}}}, {"name": "2", "patch": {"time": {"substeps": 2}}}]})"),
+        nullptr);
+    ASSERT_EQ(r.runs.size(), 4u);
+    for (const RunResult& x : r.runs) {
+        SCOPED_TRACE(x.scene + " / " + x.config);
+        ASSERT_EQ(x.failure, "");
+        const DampedOscillator o{1.0, 40.0, x.scene == "damped" ? 0.2 : 0.0, 0.0, 0.06};
+        // The free node's mass is the lumped third of 3 kg: the closed form's amplitude v0/ω_d.
+        EXPECT_NEAR(x.metric("amplitude_exact_m"), o.amplitude(), 1e-15);
+        EXPECT_EQ(x.metric("periods_measured"), 10.0);
+        const double h = 0.02 / x.substeps;
+        const double period = symplecticEulerPeriod(o, h);
+        const double tolerance = x.metric("period_resolution_s") + 1e-6 * period;
+        EXPECT_LT(x.metric("period_resolution_s"), 1.1e-5); // 49.7 frames per period, 10 periods
+        EXPECT_NEAR(x.metric("period_s"), period, tolerance);
+        // The test can tell: the continuous period is (hω)²/24 ~ 1.7e-4 .. 6.7e-4 away.
+        EXPECT_GT(std::abs(x.metric("period_exact_s") - period), 10 * tolerance);
+        EXPECT_NEAR(x.metric("period_error_relative"), (x.metric("period_s") - o.period()) / o.period(),
+                    1e-12);
+        const double ratio = symplecticEulerAmplitudeRatioPerPeriod(o, h);
+        EXPECT_NEAR(x.metric("amplitude_ratio_per_period"), ratio,
+                    x.metric("amplitude_ratio_resolution") + 1e-6);
+        EXPECT_NEAR(x.metric("numerical_damping_per_period"),
+                    o.amplitudeRatioPerPeriod() - x.metric("amplitude_ratio_per_period"), 1e-15);
+        if (x.scene == "damped") {
+            EXPECT_GT(o.amplitudeRatioPerPeriod() - ratio, 1.5e-5); // the numerical damping is resolved
+        }
+        EXPECT_LT(x.metric("max_off_axis_m"), 1e-5);
+        EXPECT_GT(x.metric("gpu_ms_per_simulated_second"), 0.0);
+        EXPECT_NEAR(x.metric("gpu_ms_per_simulated_second"), x.gpuMs.median / 0.02, 1e-9);
+        EXPECT_TRUE(std::isfinite(x.metric("energy_drift_relative", std::nan(""))));
+    }
+}
+
+TEST(BenchkitGl, OscillatorPeriodAndDampingAreImplicitEulersDiscreteOnes) {
+    // Implicit Euler (Baraff & Witkin, one Newton step per substep: exact backward Euler on this
+    // linear spring; CG on one free node with its 3x3 block preconditioner converges at once) has
+    // period 2πh/θ, θ = atan(hω) undamped, and amplitude ratio (1 + hγ + h²ω²)^{−π/θ} per period
+    // (oscillator.hpp, unit-tested against a double run of the map): 0.673 at one substep, where
+    // symplectic Euler keeps 1. Same tolerances as symplectic Euler's test. At most 2 CG
+    // iterations: one converges here, and each allowed one costs two dispatches per substep.
+    // Skipped in a build whose scene reader does not know "integrator" yet.
+    const auto experiment = [] {
+        return only(R"({"name": "o", "kind": "integration", "reference": "oscillator", "frames": 500,
+      "warmup_frames": 0, "scenes": [)" +
+                    oscillatorScene("undamped", R"("stiffness": 40, "shear_stiffness": 0)") + ", " +
+                    oscillatorScene("damped", R"("stiffness": 40, "damping": 0.2, "shear_stiffness": 0)") +
+                    R"(], "configs": [
+        {"name": "1", "patch": {"time": {"integrator": "implicit_euler", "substeps": 1, "solver": {"tolerance": 1e-5, "max_iterations": 2}}}},
+        {"name": "4", "patch": {"time": {"integrator": "implicit_euler", "substeps": 4, "solver": {"tolerance": 1e-5, "max_iterations": 2}}}}]})");
+    };
+    ExperimentResult r;
+    try {
+        r = runExperiment(experiment(), nullptr);
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        if (what.find("integrator") != std::string::npos && what.find("unknown key") != std::string::npos)
+            GTEST_SKIP() << "no implicit Euler in this build: " << what;
+        throw;
+    }
+    ASSERT_EQ(r.runs.size(), 4u);
+    for (const RunResult& x : r.runs) {
+        SCOPED_TRACE(x.scene + " / " + x.config);
+        ASSERT_EQ(x.failure, "");
+        const DampedOscillator o{1.0, 40.0, x.scene == "damped" ? 0.2 : 0.0, 0.0, 0.06};
+        const double h = 0.02 / x.substeps;
+        const double period = implicitEulerPeriod(o, h), ratio = implicitEulerAmplitudeRatioPerPeriod(o, h);
+        const double tolerance = x.metric("period_resolution_s") + 1e-6 * period;
+        EXPECT_NEAR(x.metric("period_s"), period, tolerance);
+        EXPECT_GT(std::abs(x.metric("period_exact_s") - period), 10 * tolerance);
+        EXPECT_NEAR(x.metric("amplitude_ratio_per_period"), ratio,
+                    x.metric("amplitude_ratio_resolution") + 1e-6);
+        // Heavy numerical damping: 0.30-0.33 of the amplitude per period at one substep, 0.086-0.095 at four.
+        EXPECT_GT(x.metric("numerical_damping_per_period"), 0.08);
+        EXPECT_LT(x.metric("max_off_axis_m"), 1e-5);
+    }
+}
+
+TEST(BenchkitGl, UnstableOscillatorIsReportedAsDiverged) {
+    // 129,600 N/m on 1 kg: ω = 360 rad/s, h ω = 6 at one substep of 1/60 s, beyond symplectic
+    // Euler's limit 2: the state overflows within frames. 4 substeps (hω = 1.5) stay stable.
+    const ExperimentResult r = runExperiment(
+        only(
+            R"({"name": "o", "kind": "integration", "reference": "oscillator", "frames": 30, "warmup_frames": 0,
+      "scenes": [)" +
+            oscillatorScene("stiff", R"("stiffness": 129600, "shear_stiffness": 0)") + R"(],
+      "configs": [{"name": "1", "patch": {"time": {"substeps": 1, "dt": 0.016666666666666666}}},
+                  {"name": "4", "patch": {"time": {"substeps": 4, "dt": 0.016666666666666666}}}]})"),
+        nullptr);
+    ASSERT_EQ(r.runs.size(), 2u);
+    EXPECT_THAT(r.runs[0].failure, ::testing::StartsWith("diverged: "));
+    EXPECT_EQ(r.runs[1].failure, "");
+    EXPECT_LT(r.runs[1].metric("max_displacement_m"), 2 * r.runs[1].metric("amplitude_exact_m"));
+    EXPECT_LT(r.runs[1].metric("frames_per_period"), 8.0); // too coarse to measure a period:
+    EXPECT_TRUE(std::isnan(r.runs[1].metric("period_s", std::nan(""))));
+}
+
+TEST(BenchkitGl, OscillatorReferenceRejectsOtherBodies) {
+    const auto errorOf = [](const std::string& scene) -> std::string {
+        try {
+            runExperiment(only(R"({"name": "o", "kind": "integration", "reference": "oscillator", "frames": 1,
+              "scenes": [)" + scene +
+                               R"(], "configs": [{"name": "c"}]})"),
+                          nullptr);
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "no error";
+    };
+    const std::string k = R"("stiffness": 40, "shear_stiffness": 0)";
+    EXPECT_THAT(errorOf(oscillatorScene("g", k, R"(, "gravity")")),
+                ::testing::HasSubstr("effect gravity is on"));
+    EXPECT_THAT(errorOf(oscillatorScene("two", k, "", "[0, 1]")), ::testing::HasSubstr("2 free nodes"));
+    // The shear spring from node 2 to pinned node 1 runs diagonally.
+    EXPECT_THAT(errorOf(oscillatorScene("shear", R"("stiffness": 40)")),
+                ::testing::HasSubstr("neither along nor across the velocity"));
 }
 
 TEST(BenchkitGl, ReportsCarryEveryRun) {

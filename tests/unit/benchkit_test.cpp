@@ -1,8 +1,11 @@
 // The benchmark harness without GL: suite files (built-in and shipped ones parse; bad ones fail
-// with a JSON pointer), the order statistics, the log-log slope, and the Google Benchmark JSON.
+// with a JSON pointer), the order statistics, the log-log slope, the Google Benchmark JSON, and
+// the oscillator reference (its closed form, and the period and amplitude estimators on sampled
+// curves whose answers are known).
 
 #include "benchkit/bvh_experiment.hpp"
 #include "benchkit/folded_cloth.hpp"
+#include "benchkit/oscillator.hpp"
 #include "benchkit/report.hpp"
 #include "benchkit/results.hpp"
 #include "benchkit/suite.hpp"
@@ -16,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <set>
 #include <string>
 
@@ -62,6 +66,13 @@ TEST(BenchkitSuite, BuiltInAndShippedSuitesParse) {
                                       [](const Experiment& e) { return e.kind == ExperimentKind::Bvh; });
         ASSERT_NE(bvh, s.experiments.end()) << s.name;
         EXPECT_EQ(bvh->name, "bvh");
+    }
+    // The oscillator reference with its stiff variant in default and full, the quick one in smoke.
+    for (const Suite& s : {smokeSuite(), d, full}) {
+        int oscillators = 0;
+        for (const Experiment& e : s.experiments)
+            oscillators += e.reference == IntegrationReference::Oscillator ? 1 : 0;
+        EXPECT_EQ(oscillators, s.name == "smoke" ? 1 : 2) << s.name;
     }
     const Suite bvh = loadSuite(GLCOLLIDE_SOURCE_DIR "/bench/suites/bvh.json");
     const BvhSpec& spec = bvh.experiments.at(0).bvh;
@@ -271,6 +282,223 @@ TEST(BenchkitReport, GoogleBenchmarkJson) {
     EXPECT_EQ(b[2].at("accuracy_error"), 0.0);
     EXPECT_TRUE(b[2].at("diverged_metric").is_null()); // JSON has no NaN
     EXPECT_EQ(b[3].at("real_time"), 8.0);
+}
+
+// --- the oscillator reference ---------------------------------------------------------------------
+
+/// u'' = −(c u' + k u) / m by classical Runge-Kutta in double: an integration independent of the
+/// closed form. Global error O(h⁴): at hω = 6e-4 about (hω)⁴ ω t / 120 ~ 1e-14 of the amplitude.
+std::pair<double, double> rungeKutta(const DampedOscillator& o, double tEnd, int steps) {
+    const double h = tEnd / steps;
+    double u = o.u0, v = o.v0;
+    const auto a = [&](double x, double y) { return -(o.damping * y + o.stiffness * x) / o.mass; };
+    for (int i = 0; i < steps; ++i) {
+        const double k1u = v, k1v = a(u, v);
+        const double k2u = v + 0.5 * h * k1v, k2v = a(u + 0.5 * h * k1u, v + 0.5 * h * k1v);
+        const double k3u = v + 0.5 * h * k2v, k3v = a(u + 0.5 * h * k2u, v + 0.5 * h * k2v);
+        const double k4u = v + h * k3v, k4v = a(u + h * k3u, v + h * k3v);
+        u += h / 6 * (k1u + 2 * k2u + 2 * k3u + k4u);
+        v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+    }
+    return {u, v};
+}
+
+TEST(BenchkitOscillator, ClosedFormMatchesAnIndependentIntegration) {
+    for (const DampedOscillator& o :
+         {DampedOscillator{1.0, 40.0, 0.0, 0.0, 0.06}, DampedOscillator{1.0, 40.0, 0.2, 0.0, 0.06},
+          DampedOscillator{0.3, 500.0, 1.5, 0.01, -0.4}}) {
+        SCOPED_TRACE(o.damping);
+        EXPECT_DOUBLE_EQ(o.displacement(0.0), o.u0);
+        EXPECT_NEAR(o.velocity(0.0), o.v0, 1e-15);
+        for (double t : {0.37, 1.0, 2.9}) {
+            const auto [u, v] = rungeKutta(o, t, 200000);
+            // RK4's own error is ~1e-14 of the amplitude (see rungeKutta): 1e-10 is rounding room.
+            EXPECT_NEAR(o.displacement(t), u, 1e-10 * o.amplitude());
+            EXPECT_NEAR(o.velocity(t), v, 1e-10 * o.amplitude() * o.omega());
+            // One damped period later the state is the same times e^{−ζω T_d}.
+            EXPECT_NEAR(o.displacement(t + o.period()), o.amplitudeRatioPerPeriod() * o.displacement(t),
+                        1e-12 * o.amplitude());
+        }
+    }
+    // The benchmark's body: k = 40 N/m on m = 1 kg, v0 = 0.06 m/s.
+    const DampedOscillator undamped{1.0, 40.0, 0.0, 0.0, 0.06};
+    EXPECT_DOUBLE_EQ(undamped.period(), 2 * std::numbers::pi / std::sqrt(40.0));
+    EXPECT_DOUBLE_EQ(undamped.amplitude(), 0.06 / std::sqrt(40.0));
+    EXPECT_EQ(undamped.amplitudeRatioPerPeriod(), 1.0);
+    EXPECT_DOUBLE_EQ(undamped.energy(1.234), 0.5 * 1.0 * 0.06 * 0.06); // conserved
+    const DampedOscillator damped{1.0, 40.0, 0.2, 0.0, 0.06};
+    EXPECT_NEAR(damped.zeta(), 0.2 / (2 * std::sqrt(40.0)), 1e-16);
+    EXPECT_NEAR(damped.amplitudeRatioPerPeriod(), 0.9054182356, 1e-10);
+}
+
+/// u_i = A sin(ω i dt + φ) e^{−a i dt}, i = 0 .. n−1.
+std::vector<double> sampled(double a, double omega, double phase, double dt, int n) {
+    std::vector<double> u;
+    for (int i = 0; i < n; ++i) u.push_back(std::exp(-a * i * dt) * std::sin(omega * i * dt + phase));
+    return u;
+}
+
+TEST(BenchkitOscillator, PeriodFromZeroCrossingsWithinTheInterpolationBound) {
+    // Samples of sin(ωt + φ) cross upwards at t = (2πj − φ)/ω exactly. Each linearly interpolated
+    // crossing is within crossingTimeBound (½ max|f''| / min|f'| · dt²/4 over the bracket), so
+    // the mean period is within twice that over the crossings − 1 periods.
+    const double omega = std::sqrt(40.0);
+    for (double framesPerPeriod : {8.0, 20.0, 49.67}) {
+        const double dt = 2 * std::numbers::pi / omega / framesPerPeriod;
+        for (double phase : {0.0, 0.3, 1.7, 4.0}) {
+            SCOPED_TRACE(std::to_string(framesPerPeriod) + " frames per period, phase " +
+                         std::to_string(phase));
+            const std::vector<double> u = sampled(0.0, omega, phase, dt, int(10.3 * framesPerPeriod));
+            const std::vector<double> t = upwardZeroCrossings(u, dt);
+            ASSERT_GE(t.size(), 10u);
+            const double bound = crossingTimeBound(omega, 0.0, dt);
+            const double first = (phase > 0 ? 2 * std::numbers::pi - phase : 0.0) / omega;
+            for (std::size_t j = 0; j < t.size(); ++j)
+                EXPECT_NEAR(t[j], first + double(j) * 2 * std::numbers::pi / omega, bound + 1e-15) << j;
+            EXPECT_NEAR(meanPeriod(t), 2 * std::numbers::pi / omega, 2 * bound / double(t.size() - 1));
+        }
+    }
+    // Damped: the zeros of e^{−at} sin(ω_d t + φ) are those of the sine; the bound includes a.
+    const double a = 0.5, dt = 0.02;
+    const std::vector<double> u = sampled(a, omega, 0.3, dt, 600);
+    const std::vector<double> t = upwardZeroCrossings(u, dt);
+    ASSERT_GE(t.size(), 5u);
+    for (std::size_t j = 0; j < t.size(); ++j)
+        EXPECT_NEAR(t[j], (2 * std::numbers::pi * double(j + 1) - 0.3) / omega,
+                    crossingTimeBound(omega, a, dt));
+    EXPECT_TRUE(std::isnan(meanPeriod({1.0})));
+    EXPECT_TRUE(upwardZeroCrossings({std::nan(""), 1.0, -1.0, std::nan("")}, 1.0).empty());
+    EXPECT_TRUE(std::isinf(crossingTimeBound(omega, 0.0, 2.0 / omega))); // ω dt past π/2: no bound
+}
+
+TEST(BenchkitOscillator, PeaksAndAmplitudeRatioWithinTheParabolaBound) {
+    // Pure sine: every peak is 1, each within peakBound = 3φ⁴/128 (φ = ω dt), the leading term of
+    // the parabola's worst sampling phase (oscillator.hpp; at φ <= 2π/8 the higher terms lower it).
+    const double omega = std::sqrt(40.0);
+    for (double framesPerPeriod : {8.0, 20.0, 49.67}) {
+        const double dt = 2 * std::numbers::pi / omega / framesPerPeriod;
+        for (double phase : {0.0, 0.3, 1.7, 4.0}) {
+            SCOPED_TRACE(std::to_string(framesPerPeriod) + " frames per period, phase " +
+                         std::to_string(phase));
+            const std::vector<double> u = sampled(0.0, omega, phase, dt, int(10.3 * framesPerPeriod));
+            const std::vector<double> peaks = periodPeaks(u, dt, upwardZeroCrossings(u, dt));
+            ASSERT_GE(peaks.size(), 9u);
+            const double bound = peakBound(omega, 0.0, dt);
+            for (double p : peaks) EXPECT_NEAR(p, 1.0, bound);
+            EXPECT_NEAR(meanAmplitudeRatio(peaks), 1.0, 2 * bound / double(peaks.size() - 1));
+        }
+    }
+    // The raw largest sample alone would be off by up to 1 − cos(φ/2) ~ φ²/8: 2.0e-3 at 49.67
+    // frames per period, 300 times the parabola's 6.0e-6 — the refinement is what resolves
+    // amplitude ratios of 1e-5.
+    EXPECT_LT(peakBound(omega, 0.0, 2 * std::numbers::pi / omega / 49.67), 6.1e-6);
+    // Damped: consecutive peaks of e^{−at} sin(ωt + φ) are e^{−a T} apart exactly; each peak's bias
+    // is the same function of its sampling phase plus the decay's aω²dt³/8, so the mean ratio is
+    // within 2 peakBound / (peaks − 1) (10 % over it for the terms beyond leading order, which
+    // here are a²ω²dt⁴/18 ~ 1e-9 against peakBound ~ 1e-5).
+    for (double a : {0.1, 0.5, 2.0}) {
+        for (double phase : {0.0, 0.9, 2.2}) {
+            SCOPED_TRACE("a " + std::to_string(a) + ", phase " + std::to_string(phase));
+            const double dt = 0.02;
+            const std::vector<double> u = sampled(a, omega, phase, dt, 520);
+            const std::vector<double> peaks = periodPeaks(u, dt, upwardZeroCrossings(u, dt));
+            ASSERT_GE(peaks.size(), 8u);
+            const double exact = std::exp(-a * 2 * std::numbers::pi / omega);
+            EXPECT_NEAR(meanAmplitudeRatio(peaks), exact,
+                        1.1 * 2 * peakBound(omega, a, dt) * exact / double(peaks.size() - 1));
+        }
+    }
+    EXPECT_TRUE(std::isnan(meanAmplitudeRatio({1.0})));
+    EXPECT_TRUE(std::isnan(meanAmplitudeRatio({1.0, -0.5})));
+}
+
+/// Symplectic Euler on m u'' + c u' + k u = 0 in double, recording u every `perFrame` steps.
+std::vector<double> symplecticEuler(const DampedOscillator& o, double h, int perFrame, int frames) {
+    double u = o.u0, v = o.v0;
+    std::vector<double> out{u};
+    for (int f = 0; f < frames; ++f) {
+        for (int s = 0; s < perFrame; ++s) {
+            v += h * (-(o.damping * v + o.stiffness * u) / o.mass);
+            u += h * v;
+        }
+        out.push_back(u);
+    }
+    return out;
+}
+
+TEST(BenchkitOscillator, SymplecticEulerPeriodAndDampingAreTheDiscreteMapsOwn) {
+    // The discrete trajectory of symplectic Euler is itself a sampled damped sinusoid (eigenvalues
+    // sqrt(1 − hγ) e^{±iθ}): its measured period and amplitude ratio must be the map's 2πh/θ and
+    // (1 − hγ)^{π/θ} within the estimators' bounds, and differ from the continuous ones by the
+    // known O(h²) amounts. This checks the formulas the GL test uses, independently of the GPU.
+    const double dt = 0.02;
+    for (double c : {0.0, 0.2}) {
+        for (int substeps : {1, 4}) {
+            SCOPED_TRACE("c " + std::to_string(c) + ", substeps " + std::to_string(substeps));
+            const DampedOscillator o{1.0, 40.0, c, 0.0, 0.06};
+            const double h = dt / substeps;
+            const std::vector<double> u = symplecticEuler(o, h, substeps, 500);
+            const std::vector<double> t = upwardZeroCrossings(u, dt);
+            ASSERT_GE(t.size(), 10u);
+            const double period = symplecticEulerPeriod(o, h),
+                         ratio = symplecticEulerAmplitudeRatioPerPeriod(o, h);
+            const double omega = 2 * std::numbers::pi / period, decay = -std::log(ratio) / period;
+            EXPECT_NEAR(meanPeriod(t), period,
+                        2 * crossingTimeBound(omega, decay, dt) / double(t.size() - 1));
+            const std::vector<double> peaks = periodPeaks(u, dt, t);
+            EXPECT_NEAR(meanAmplitudeRatio(peaks), ratio,
+                        1.1 * 2 * peakBound(omega, decay, dt) * ratio / double(peaks.size() - 1));
+            if (c == 0.0) {
+                // 2 − 2cos θ = h²ω²: θ = 2 asin(hω/2), the period short by (hω)²/24 to leading order.
+                const double hw = h * o.omega();
+                EXPECT_NEAR(period, 2 * std::numbers::pi * h / (2 * std::asin(hw / 2)), 1e-15);
+                EXPECT_NEAR(period / o.period() - 1, -hw * hw / 24, 0.1 * hw * hw / 24);
+                EXPECT_EQ(ratio, 1.0); // |λ| = 1: no numerical damping
+            }
+        }
+    }
+    // hω >= 2: no oscillation, the map is unstable.
+    EXPECT_TRUE(std::isnan(
+        symplecticEulerPeriod(DampedOscillator{1.0, 40.0, 0.0, 0.0, 0.06}, 2.0 / std::sqrt(40.0))));
+}
+
+TEST(BenchkitOscillator, ImplicitEulerPeriodAndDampingAreTheDiscreteMapsOwn) {
+    // Backward Euler solved exactly per step (what one Newton step gives on this linear system):
+    // (1 + hγ + h²ω²) v' = v − hω² x, x' = x + h v'. Its frames must show the formulas' period and
+    // amplitude ratio within the estimators' bounds; undamped the period is long by (hω)²/3 and
+    // the ratio ≈ e^{−πhω}: heavy numerical damping at the frame step, unlike symplectic Euler.
+    const double dt = 0.02;
+    for (double c : {0.0, 0.2}) {
+        for (int substeps : {1, 4}) {
+            SCOPED_TRACE("c " + std::to_string(c) + ", substeps " + std::to_string(substeps));
+            const DampedOscillator o{1.0, 40.0, c, 0.0, 0.06};
+            const double h = dt / substeps, gamma = c / o.mass, w2 = o.omega() * o.omega();
+            double u = 0.0, v = o.v0;
+            std::vector<double> samples{u};
+            for (int f = 0; f < 500; ++f) {
+                for (int s = 0; s < substeps; ++s) {
+                    v = (v - h * w2 * u) / (1.0 + h * gamma + h * h * w2);
+                    u += h * v;
+                }
+                samples.push_back(u);
+            }
+            const std::vector<double> t = upwardZeroCrossings(samples, dt);
+            ASSERT_GE(t.size(), 10u);
+            const double period = implicitEulerPeriod(o, h),
+                         ratio = implicitEulerAmplitudeRatioPerPeriod(o, h);
+            const double omega = 2 * std::numbers::pi / period, decay = -std::log(ratio) / period;
+            EXPECT_NEAR(meanPeriod(t), period,
+                        2 * crossingTimeBound(omega, decay, dt) / double(t.size() - 1));
+            const std::vector<double> peaks = periodPeaks(samples, dt, t);
+            EXPECT_NEAR(meanAmplitudeRatio(peaks), ratio,
+                        1.1 * 2 * peakBound(omega, decay, dt) * ratio / double(peaks.size() - 1));
+            if (c == 0.0) {
+                const double hw = h * o.omega();
+                EXPECT_NEAR(period / o.period() - 1, hw * hw / 3, 0.1 * hw * hw / 3);
+                EXPECT_NEAR(std::log(ratio), -std::numbers::pi * hw, 0.1 * std::numbers::pi * hw);
+            }
+        }
+    }
 }
 
 } // namespace
