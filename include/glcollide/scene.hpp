@@ -132,7 +132,7 @@ struct TimeSettings {
     /// frame (see docs/integration.md).
     int substeps = 0;
     ImplicitSolverSettings solver; ///< used by Integrator::ImplicitEuler
-    int frames = 240; ///< frames `glcollide run` simulates by default, > 0
+    int frames = 240;              ///< frames `glcollide run` simulates by default, > 0
 };
 
 /// Where `glcollide render` looks from; a scene without one is framed automatically.

@@ -186,7 +186,8 @@ int runCommand(const RunOptions& options) {
         engine.step();
         const SolverStats& solver = engine.lastStep().solver;
         solverTotals.maxIterations = std::max(solverTotals.maxIterations, solver.maxIterations);
-        solverTotals.maxRelativeResidual = std::max(solverTotals.maxRelativeResidual, solver.maxRelativeResidual);
+        solverTotals.maxRelativeResidual =
+            std::max(solverTotals.maxRelativeResidual, solver.maxRelativeResidual);
         solverTotals.totalIterations += solver.totalIterations;
         solverTotals.unconvergedSubsteps += solver.unconvergedSubsteps;
         const NonFiniteReport& nonFinite = engine.lastStep().nonFinite;

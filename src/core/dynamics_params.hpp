@@ -57,7 +57,7 @@ struct ImplicitParams {
 struct FrameStepParams {
     NodeForceParams external; ///< gravity, air damping, wind
     bool springs = false;
-    NodeUpdateParams update;  ///< h, ground, checkFinite (no forces buffer flag, no contacts)
+    NodeUpdateParams update; ///< h, ground, checkFinite (no forces buffer flag, no contacts)
     std::uint32_t substeps = 1;
 };
 

@@ -39,7 +39,8 @@ void nodeForce(const NodeForceParams& params, const std::vector<std::uint32_t>& 
     }
 }
 
-void springUpdate(const std::vector<model::FlatSpring>& springs, const model::Csr& nodeSprings, NodeState& state) {
+void springUpdate(const std::vector<model::FlatSpring>& springs, const model::Csr& nodeSprings,
+                  NodeState& state) {
     const std::size_t n = state.positions.size();
     state.forces.resize(n, glm::dvec3(0.0));
     for (std::size_t i = 0; i < n; ++i) {

@@ -28,7 +28,8 @@ void nodeForce(const NodeForceParams& params, const std::vector<std::uint32_t>& 
 /// Twin of the spring part of spring_update.comp: Hooke force plus damping along each spring,
 /// gathered per node in CSR order, added to state.forces. The whole pass (external force too) is
 /// nodeForce(params.external, …) followed by this.
-void springUpdate(const std::vector<model::FlatSpring>& springs, const model::Csr& nodeSprings, NodeState& state);
+void springUpdate(const std::vector<model::FlatSpring>& springs, const model::Csr& nodeSprings,
+                  NodeState& state);
 
 /// Twin of node_update.comp: v += h·w·f; x += h·v; then the ground plane.
 void nodeUpdate(const NodeUpdateParams& params, NodeState& state);

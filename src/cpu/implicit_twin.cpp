@@ -51,7 +51,8 @@ Assembly assemble(const ImplicitParams& p, const std::vector<model::FlatSpring>&
                 if (!blk.valid) continue;
                 f += blk.force * blk.u;
                 d += glm::dmat3(blk.alpha) + blk.beta * glm::outerProduct(blk.u, blk.u);
-                const SpringStiffness st = stiffnessOf(s, glm::length(state.positions[j] - state.positions[i]));
+                const SpringStiffness st =
+                    stiffnessOf(s, glm::length(state.positions[j] - state.positions[i]));
                 const glm::dvec3 dv = state.velocities[j] - state.velocities[i];
                 stiffnessTimesVelocity += st.transverse * dv + st.along * glm::dot(blk.u, dv) * blk.u;
             }

@@ -104,11 +104,12 @@ void Engine::Impl::chooseSubsteps() {
                 cpu::stableSubstep(model, false, NodeForceParams{}, 0.9, &plan.contact);
             const int contactSubsteps = cpu::substepsFor(dt, contactLimit);
             if (substeps.substeps < contactSubsteps)
-                warnings.push_back("/time/substeps " + std::to_string(substeps.substeps) +
-                                   " with implicit_euler: the penalty contact response is explicit and needs " +
-                                   std::to_string(contactSubsteps) +
-                                   " substeps per frame to stay stable; use \"response\": \"bridson\" "
-                                   "(velocity-level, stable at any step) or more substeps");
+                warnings.push_back(
+                    "/time/substeps " + std::to_string(substeps.substeps) +
+                    " with implicit_euler: the penalty contact response is explicit and needs " +
+                    std::to_string(contactSubsteps) +
+                    " substeps per frame to stay stable; use \"response\": \"bridson\" "
+                    "(velocity-level, stable at any step) or more substeps");
         }
     } else if (substeps.automatic) {
         if (stable > cpu::kMaxSubsteps) {
@@ -211,9 +212,9 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
     d.plan.nodeUpdateParams.checkFinite = options.checkFinite;
     d.chooseSubsteps();
     d.allocate();
-    d.plan.frameStep = options.frameStep && d.plan.nodeUpdate && !d.plan.implicitSolve && !d.plan.collisions &&
-                       (d.plan.nodeForce || d.plan.springUpdate) && d.buffers.nodeCount <= kFrameStepMaxNodes &&
-                       d.heavyNodes.empty();
+    d.plan.frameStep = options.frameStep && d.plan.nodeUpdate && !d.plan.implicitSolve &&
+                       !d.plan.collisions && (d.plan.nodeForce || d.plan.springUpdate) &&
+                       d.buffers.nodeCount <= kFrameStepMaxNodes && d.heavyNodes.empty();
     if (d.plan.frameStep) {
         FrameStepParams& f = d.frameStepParams;
         f.external = d.plan.nodeForceParams;
@@ -478,10 +479,9 @@ std::vector<glm::dvec3> Engine::readVelocities() const {
 EnergyReport Engine::energy() const {
     const Impl& d = *m_impl;
     const bool gravity = d.scene.effects.has(Effect::Gravity);
-    const cpu::Energy e =
-        cpu::energy(readPositions(), readVelocities(), d.model.masses, d.model.inverseMasses,
-                    gravity ? &d.scene.gravity : nullptr,
-                    d.scene.effects.has(Effect::Springs) ? &d.model.springs : nullptr);
+    const cpu::Energy e = cpu::energy(readPositions(), readVelocities(), d.model.masses,
+                                      d.model.inverseMasses, gravity ? &d.scene.gravity : nullptr,
+                                      d.scene.effects.has(Effect::Springs) ? &d.model.springs : nullptr);
     return {e.kinetic, e.gravitational + e.elastic};
 }
 

@@ -22,11 +22,11 @@ struct DeviceBuffers {
     gl::Buffer springs;           ///< GpuSpring (SpringUpdate)
     gl::Buffer nodeSpringOffsets; ///< uint[nodeCount + 1] (SpringUpdate)
     gl::Buffer nodeSpringList;    ///< uint[2 * springCount] (SpringUpdate)
-    gl::Buffer heavyNodes;        ///< uint[]: nodes with more than kHeavyRow springs (SpringUpdate, ImplicitSolve)
-    gl::Buffer nodeFaceOffsets;   ///< uint[nodeCount + 1] (NodeForce with wind)
-    gl::Buffer nodeFaceList;      ///< uint[3 * faceCount] (NodeForce with wind)
-    gl::Buffer contactForces;     ///< ivec4 fixed point (collisions: ContactResponse → NodeUpdate)
-    gl::Buffer health;            ///< GpuHealth (NodeUpdate with EngineOptions::checkFinite)
+    gl::Buffer heavyNodes; ///< uint[]: nodes with more than kHeavyRow springs (SpringUpdate, ImplicitSolve)
+    gl::Buffer nodeFaceOffsets; ///< uint[nodeCount + 1] (NodeForce with wind)
+    gl::Buffer nodeFaceList;    ///< uint[3 * faceCount] (NodeForce with wind)
+    gl::Buffer contactForces;   ///< ivec4 fixed point (collisions: ContactResponse → NodeUpdate)
+    gl::Buffer health;          ///< GpuHealth (NodeUpdate with EngineOptions::checkFinite)
 
     /// Labels of the allocated buffers, in declaration order.
     [[nodiscard]] std::vector<std::string> allocatedLabels() const;

@@ -35,8 +35,8 @@ std::vector<std::string> externalForceDefines(const NodeForceParams& c) {
     return d;
 }
 
-void bindExternalForce(const gl::ComputeProgram& program, const DeviceBuffers& b, const NodeForceParams& params,
-                       const NodeForceParams& compiled, const char* pass) {
+void bindExternalForce(const gl::ComputeProgram& program, const DeviceBuffers& b,
+                       const NodeForceParams& params, const NodeForceParams& compiled, const char* pass) {
     if (compiled.wind) {
         bindRequired(b.faces, GLC_BIND_FACES, pass, "faces");
         bindRequired(b.nodeFaceOffsets, GLC_BIND_NODE_FACE_OFFSETS, pass, "nodeFaceOffsets");

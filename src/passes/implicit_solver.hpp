@@ -52,7 +52,9 @@ class ImplicitSolverPass {
     [[nodiscard]] const gl::Buffer& preconditioned() const { return m_preconditioned; }
     [[nodiscard]] const gl::Buffer& blockInverse() const { return m_blockInverse; }
     [[nodiscard]] const gl::Buffer& product() const { return m_product; }
-    [[nodiscard]] const gl::Buffer& direction(int parity) const { return parity ? m_direction1 : m_direction0; }
+    [[nodiscard]] const gl::Buffer& direction(int parity) const {
+        return parity ? m_direction1 : m_direction0;
+    }
 
     /// Dispatches of one velocity update: 1 + 2·maxIterations + 1.
     [[nodiscard]] std::uint32_t dispatchesPerSubstep() const;

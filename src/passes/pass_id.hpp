@@ -29,9 +29,8 @@ enum class PassId : std::uint8_t {
 inline constexpr std::size_t kPassCount = 13;
 
 inline constexpr std::array<const char*, kPassCount> kPassNames = {
-    "NodeForce",   "SpringUpdate", "BBUpdate",     "BBCollision",     "BvhBuild",  "BvhRefit",
-    "BvhTraverse", "TriTri",       "FeaturePairs", "ContactResponse", "ImplicitSolve", "NodeUpdate",
-    "FrameStep"};
+    "NodeForce", "SpringUpdate", "BBUpdate",        "BBCollision",   "BvhBuild",   "BvhRefit", "BvhTraverse",
+    "TriTri",    "FeaturePairs", "ContactResponse", "ImplicitSolve", "NodeUpdate", "FrameStep"};
 
 constexpr const char* passName(PassId id) {
     return kPassNames[static_cast<std::size_t>(id)];

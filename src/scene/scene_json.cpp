@@ -122,7 +122,8 @@ ImplicitSolverSettings parseSolver(const Ctx& c, const json& j, const Ptr& p) {
     ImplicitSolverSettings s;
     if (const json* v = find(j, "tolerance")) {
         s.tolerance = positive(c, *v, p / "tolerance");
-        if (s.tolerance >= 1.0) c.fail(p / "tolerance", "expected a relative residual in (0, 1), got " + shown(*v));
+        if (s.tolerance >= 1.0)
+            c.fail(p / "tolerance", "expected a relative residual in (0, 1), got " + shown(*v));
     }
     if (const json* v = find(j, "max_iterations"))
         s.maxIterations = integer(c, *v, p / "max_iterations", 1, 1024);
@@ -136,8 +137,7 @@ TimeSettings parseTime(const Ctx& c, const json& j, const Ptr& p) {
     if (const json* v = find(j, "integrator")) {
         const std::optional<Integrator> kind = integratorFromName(string(c, *v, p / "integrator"));
         if (!kind)
-            c.fail(p / "integrator",
-                   "expected \"symplectic_euler\" or \"implicit_euler\", got " + shown(*v));
+            c.fail(p / "integrator", "expected \"symplectic_euler\" or \"implicit_euler\", got " + shown(*v));
         t.integrator = *kind;
     }
     if (const json* v = find(j, "solver")) {

@@ -41,17 +41,19 @@ TEST(EngineGl, PassesAndBuffersFollowTheEffects) {
         {R"(["springs"])",
          "",
          {"SpringUpdate", "NodeUpdate"},
-         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList", "heavyNodes"}},
+         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList",
+          "heavyNodes"}},
         {R"(["gravity", "springs", "damping"])",
          R"("damping": 0.1,)",
          {"SpringUpdate", "NodeUpdate"}, // SpringUpdate adds gravity and damping in its dispatch
-         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList", "heavyNodes"}},
+         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList",
+          "heavyNodes"}},
         {R"(["ground"])", "", {"NodeUpdate"}, {"positions", "velocities", "faces"}},
         {R"(["wind", "springs"])",
          R"("wind": {"velocity": [1, 0, 0], "drag": 1},)",
          {"SpringUpdate", "NodeUpdate"},
-         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList", "heavyNodes",
-          "nodeFaceOffsets", "nodeFaceList"}},
+         {"positions", "velocities", "faces", "forces", "springs", "nodeSpringOffsets", "nodeSpringList",
+          "heavyNodes", "nodeFaceOffsets", "nodeFaceList"}},
     };
     for (const Case& c : cases) {
         Engine engine(sceneWith(c.effects, c.extra), {.frameStep = false}); // the per-substep passes
@@ -65,15 +67,15 @@ TEST(EngineGl, PassesAndBuffersFollowTheEffects) {
 }
 
 TEST(EngineGl, ImplicitEulerReplacesSpringUpdateWithTheSolver) {
-    const Names solverBuffers = {"solverResidual", "solverPreconditioned", "solverDirection0", "solverDirection1",
-                                 "solverProduct",  "solverBlockInverse",   "solverPartialsR",  "solverPartialsPq",
-                                 "solverState"};
+    const Names solverBuffers = {"solverResidual",   "solverPreconditioned", "solverDirection0",
+                                 "solverDirection1", "solverProduct",        "solverBlockInverse",
+                                 "solverPartialsR",  "solverPartialsPq",     "solverState"};
     const std::string implicit = R"("time": {"integrator": "implicit_euler"},)";
     {
         Engine engine(sceneWith(R"(["gravity", "springs", "damping"])", implicit + R"("damping": 0.1,)"));
         EXPECT_EQ(engine.pipeline(), (Names{"ImplicitSolve", "NodeUpdate"}));
-        Names buffers = {"positions",      "velocities", "faces", "springs", "nodeSpringOffsets",
-                         "nodeSpringList", "heavyNodes", "health"};
+        Names buffers = {"positions",         "velocities",     "faces",      "springs",
+                         "nodeSpringOffsets", "nodeSpringList", "heavyNodes", "health"};
         buffers.insert(buffers.end(), solverBuffers.begin(), solverBuffers.end());
         EXPECT_EQ(engine.allocatedBuffers(), buffers);
         EXPECT_EQ(engine.substepInfo().substeps, 1); // "auto" means one substep per frame
@@ -87,7 +89,7 @@ TEST(EngineGl, ImplicitEulerReplacesSpringUpdateWithTheSolver) {
         // Setup (with gravity and damping), 64 × (direction + update), the last check, NodeUpdate.
         EXPECT_EQ(engine.lastStep().dispatchesPerSubstep, 1.0 + 2.0 * 64 + 1.0 + 1.0);
     }
-    {   // Gravity alone: no springs, the system is M·Δv = h·f.
+    { // Gravity alone: no springs, the system is M·Δv = h·f.
         Engine engine(sceneWith(R"(["gravity"])", implicit));
         EXPECT_EQ(engine.pipeline(), (Names{"ImplicitSolve", "NodeUpdate"}));
         engine.step();
@@ -149,7 +151,7 @@ TEST(EngineGl, CollisionEffectsAddTheirPassesAndBuffers) {
     Engine engine(sceneWith(R"(["collisions", "springs"])"));
     EXPECT_EQ(engine.pipeline(), (Names{"SpringUpdate", "BBUpdate", "BBCollision", "TriTri", "FeaturePairs",
                                         "ContactResponse", "NodeUpdate"}));
-    Names buffers = {"positions",         "velocities",     "faces",         "forces", "springs",
+    Names buffers = {"positions",         "velocities",     "faces",      "forces",        "springs",
                      "nodeSpringOffsets", "nodeSpringList", "heavyNodes", "contactForces", "health"};
     buffers.insert(buffers.end(), collisionBuffers.begin(), collisionBuffers.end());
     EXPECT_EQ(engine.allocatedBuffers(), buffers);

@@ -38,7 +38,8 @@ double conditionBound(const ImplicitParams& p, const RandomModel& m) {
         double row = mass;
         for (std::uint32_t k = m.nodeSprings.offsets[i]; k < m.nodeSprings.offsets[i + 1]; ++k) {
             const model::FlatSpring& s = m.springs[m.nodeSprings.items[k]];
-            row += 2.0 * (p.h * s.damping + p.h * p.h * s.stiffness); // |α| + |β| ≤ h·c + h²·k, twice (i and j)
+            row +=
+                2.0 * (p.h * s.damping + p.h * p.h * s.stiffness); // |α| + |β| ≤ h·c + h²·k, twice (i and j)
         }
         largest = std::max(largest, row);
     }
@@ -104,7 +105,8 @@ TEST_P(ImplicitGl, SolveMatchesExactSolution) {
 
     std::vector<glm::dvec3> reference = m.state.velocities;
     if (n <= 200) {
-        const std::vector<glm::dvec3> dv = cpu::implicitVelocityChangeDense(p, m.springs, m.nodeSprings, m.state);
+        const std::vector<glm::dvec3> dv =
+            cpu::implicitVelocityChangeDense(p, m.springs, m.nodeSprings, m.state);
         for (std::size_t i = 0; i < n; ++i) reference[i] += dv[i];
     } else { // the twin's PCG, converged much further than the GPU's tolerance
         cpu::NodeState twin = m.state;
@@ -132,7 +134,8 @@ RandomModel star(std::uint32_t leaves) {
     RandomModel m;
     auto add = [&](glm::dvec3 x, double w) {
         m.state.positions.push_back(glm::dvec3(glm::vec3(x)));
-        m.state.velocities.push_back(glm::dvec3(glm::vec3(zeroOne(rng) - 0.5, zeroOne(rng) - 0.5, zeroOne(rng) - 0.5)));
+        m.state.velocities.push_back(
+            glm::dvec3(glm::vec3(zeroOne(rng) - 0.5, zeroOne(rng) - 0.5, zeroOne(rng) - 0.5)));
         m.state.forces.push_back(glm::dvec3(0.0));
         m.state.inverseMasses.push_back(w);
     };
@@ -140,7 +143,8 @@ RandomModel star(std::uint32_t leaves) {
     const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
     for (std::uint32_t i = 0; i < leaves; ++i) { // Fibonacci sphere
         const double y = 1.0 - 2.0 * (i + 0.5) / leaves, r = std::sqrt(1.0 - y * y);
-        add(glm::dvec3(r * std::cos(golden * i), y, r * std::sin(golden * i)), i % 10 == 0 ? 0.0 : toFloat(1.0 / 0.001));
+        add(glm::dvec3(r * std::cos(golden * i), y, r * std::sin(golden * i)),
+            i % 10 == 0 ? 0.0 : toFloat(1.0 / 0.001));
     }
     for (std::uint32_t i = 1; i <= leaves; ++i) {
         const std::uint32_t next = i % leaves + 1;

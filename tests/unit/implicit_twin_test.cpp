@@ -72,7 +72,8 @@ TEST(ImplicitTwin, CompressedSpringKeepsTheSystemPositiveDefinite) {
     s.state.velocities[1] = glm::dvec3(0.0, 3.0, 0.0);
     const ImplicitParams p = params(1.0 / 60.0);
     const std::vector<glm::dvec3> dv = cpu::implicitVelocityChangeDense(p, s.springs, s.rows, s.state);
-    for (const glm::dvec3& d : dv) EXPECT_TRUE(std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z));
+    for (const glm::dvec3& d : dv)
+        EXPECT_TRUE(std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z));
     // Transverse: no stiffness after the clamp, so the y velocity is untouched.
     EXPECT_NEAR(dv[1].y, 0.0, 1e-12);
     cpu::NodeState twin = s.state;
