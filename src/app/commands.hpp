@@ -20,7 +20,7 @@ struct RunOptions {
     std::string device;    ///< EGL device selector; empty: env or auto
     bool quiet = false;    ///< no progress on stderr
     bool gpuTiming = true;
-    bool frameStep = true; ///< EngineOptions::frameStep
+    bool frameStep = false; ///< EngineOptions::frameStep
 };
 
 int runCommand(const RunOptions& options);

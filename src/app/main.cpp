@@ -28,9 +28,10 @@ int main(int argc, char** argv) {
     runCmd->add_flag("--quiet", run.quiet, "No progress on stderr");
     bool noTiming = false;
     runCmd->add_flag("--no-gpu-timing", noTiming, "Do not time passes (no wait for the GPU each frame)");
-    bool noFrameStep = false;
-    runCmd->add_flag("--no-frame-step", noFrameStep,
-                     "Dispatch every substep's passes even where one FrameStep dispatch could run the frame");
+    bool frameStep = false;
+    runCmd->add_flag("--frame-step", frameStep,
+                     "Run a small collision-free scene's whole frame in one FrameStep dispatch "
+                     "(EngineOptions::frameStep)");
 
     glcollide::app::InfoOptions info;
     CLI::App* infoCmd =
@@ -103,7 +104,7 @@ int main(int argc, char** argv) {
     try {
         if (runCmd->parsed()) {
             run.gpuTiming = !noTiming;
-            run.frameStep = !noFrameStep;
+            run.frameStep = frameStep;
             return glcollide::app::runCommand(run);
         }
         if (infoCmd->parsed()) return glcollide::app::infoCommand(info);

@@ -10,22 +10,28 @@ src=$2
 # run with no scene: the built-in default scene, exporting OBJ and stats.
 "$bin" run --frames 4 --export "$work/obj" --every 2 --stats "$work/stats.json" --quiet >"$work/out.txt" 2>"$work/err.txt"
 check "default run exits 0" test $? -eq 0
-check "pipeline printed (a small scene runs a frame in one FrameStep dispatch)" grep -q "pipeline (per substep): FrameStep" "$work/out.txt"
+check "pipeline printed" grep -q "pipeline (per substep): SpringUpdate NodeUpdate" "$work/out.txt"
 check "frames 0,2,4 exported" test -f "$work/obj/frame_000000.obj" -a -f "$work/obj/frame_000002.obj" -a -f "$work/obj/frame_000004.obj"
 check "frame 1 not exported (--every 2)" test ! -f "$work/obj/frame_000001.obj"
 check "OBJ has 1024 vertices" test "$(grep -c '^v ' "$work/obj/frame_000004.obj")" -eq 1024
 check "OBJ has 1922 faces" test "$(grep -c '^f ' "$work/obj/frame_000004.obj")" -eq 1922
 check "stats has 4 frames" test "$(grep -c '"frame":' "$work/stats.json")" -eq 4
-for key in kinetic_energy_J potential_energy_J total_energy_J wall_ms dispatches_per_substep gpu_ms FrameStep; do
+for key in kinetic_energy_J potential_energy_J total_energy_J wall_ms dispatches_per_substep gpu_ms SpringUpdate NodeUpdate; do
   check "stats has $key" grep -q "\"$key\"" "$work/stats.json"
 done
 check "no progress with --quiet" test ! -s "$work/err.txt"
+
+# --frame-step: the same frames from one FrameStep dispatch per frame.
+"$bin" run --frames 4 --frame-step --quiet --stats "$work/fs.json" >"$work/out3.txt" 2>&1
+check "frame-step run exits 0" test $? -eq 0
+check "frame-step pipeline" grep -q "pipeline (per substep): FrameStep" "$work/out3.txt"
+check "frame-step: one dispatch per frame" grep -q "0.0151515 dispatches per substep" "$work/out3.txt"
 
 # PLY export of a tet scene with ground.
 "$bin" run "$src/scenes/falling_tet_body.json" --frames 2 --export "$work/ply" --format ply --quiet >"$work/out2.txt" 2>&1
 check "tet scene exits 0" test $? -eq 0
 check "PLY header" grep -q "^element face" "$work/ply/frame_000002.ply"
-check "ground scene pipeline" grep -q "pipeline (per substep): FrameStep" "$work/out2.txt"
+check "ground scene pipeline" grep -q "pipeline (per substep): SpringUpdate NodeUpdate" "$work/out2.txt"
 
 # --broad-phase: two colliding spheres under the octree and the BVH find the same candidate and
 # intersecting pairs in every frame (both exact: the same float face boxes).

@@ -100,7 +100,7 @@ TEST(EngineGl, ImplicitEulerReplacesSpringUpdateWithTheSolver) {
 TEST(EngineGl, SmallScenesRunAFrameInOneDispatchWithTheSameResult) {
     // The default scene (1024 nodes, 66 substeps): FrameStep against SpringUpdate + NodeUpdate.
     Scene scene = defaultScene();
-    Engine fused(scene), perSubstep(scene, {.frameStep = false});
+    Engine fused(scene, {.frameStep = true}), perSubstep(scene);
     EXPECT_EQ(fused.pipeline(), (Names{"FrameStep"}));
     EXPECT_EQ(perSubstep.pipeline(), (Names{"SpringUpdate", "NodeUpdate"}));
     for (int frame = 0; frame < 3; ++frame) {
@@ -117,9 +117,10 @@ TEST(EngineGl, SmallScenesRunAFrameInOneDispatchWithTheSameResult) {
     for (std::size_t i = 0; i < a.size(); ++i)
         ASSERT_LE(glm::length(a[i] - b[i]), 8.0 * 3 * substeps * 1.5 * 0x1p-24) << "node " << i;
     // Collisions, implicit Euler, large scenes and heavy rows keep the per-substep passes.
-    Engine collisions(sceneWith(R"(["springs", "collisions"])"));
+    Engine collisions(sceneWith(R"(["springs", "collisions"])"), {.frameStep = true});
     EXPECT_NE(collisions.pipeline().front(), "FrameStep");
-    Engine implicit(sceneWith(R"(["springs"])", R"("time": {"integrator": "implicit_euler"},)"));
+    Engine implicit(sceneWith(R"(["springs"])", R"("time": {"integrator": "implicit_euler"},)"),
+                    {.frameStep = true});
     EXPECT_EQ(implicit.pipeline(), (Names{"ImplicitSolve", "NodeUpdate"}));
 }
 
