@@ -22,6 +22,21 @@ SpringStiffness stiffnessOf(const model::FlatSpring& s, double length) {
     return {s.stiffness * t, s.stiffness * (1.0 - t)};
 }
 
+/// Calls f(j, block) for every spring of node i that has a direction, in row order (none without
+/// the springs effect): the one walk of a row that assembly and the product share.
+template <typename F>
+void forEachSpringBlock(const ImplicitParams& p, const std::vector<model::FlatSpring>& springs,
+                        const model::Csr& rows, const NodeState& state, std::size_t i, F&& f) {
+    if (!p.springs) return;
+    for (std::uint32_t k = rows.offsets[i]; k < rows.offsets[i + 1]; ++k) {
+        const model::FlatSpring& s = springs[rows.items[k]];
+        const std::uint32_t j = s.a == i ? s.b : s.a;
+        const SpringBlock blk = springBlock(s, state.positions[i], state.positions[j], state.velocities[i],
+                                            state.velocities[j], p.h);
+        if (blk.valid) f(j, blk);
+    }
+}
+
 /// The assembled per-node pieces of the system: right-hand side and diagonal blocks.
 struct Assembly {
     std::vector<glm::dvec3> b;
@@ -42,20 +57,13 @@ Assembly assemble(const ImplicitParams& p, const std::vector<model::FlatSpring>&
         glm::dvec3 f = state.forces[i];
         glm::dvec3 stiffnessTimesVelocity(0.0);
         glm::dmat3 d(massFactor(p) / w);
-        if (p.springs)
-            for (std::uint32_t k = rows.offsets[i]; k < rows.offsets[i + 1]; ++k) {
-                const model::FlatSpring& s = springs[rows.items[k]];
-                const std::uint32_t j = s.a == i ? s.b : s.a;
-                const SpringBlock blk = springBlock(s, state.positions[i], state.positions[j],
-                                                    state.velocities[i], state.velocities[j], p.h);
-                if (!blk.valid) continue;
-                f += blk.force * blk.u;
-                d += glm::dmat3(blk.alpha) + blk.beta * glm::outerProduct(blk.u, blk.u);
-                const SpringStiffness st =
-                    stiffnessOf(s, glm::length(state.positions[j] - state.positions[i]));
-                const glm::dvec3 dv = state.velocities[j] - state.velocities[i];
-                stiffnessTimesVelocity += st.transverse * dv + st.along * glm::dot(blk.u, dv) * blk.u;
-            }
+        forEachSpringBlock(p, springs, rows, state, i, [&](std::uint32_t j, const SpringBlock& blk) {
+            f += blk.force * blk.u;
+            d += glm::dmat3(blk.alpha) + blk.beta * glm::outerProduct(blk.u, blk.u);
+            const glm::dvec3 dv = state.velocities[j] - state.velocities[i];
+            stiffnessTimesVelocity +=
+                blk.transverseStiffness * dv + blk.alongStiffness * glm::dot(blk.u, dv) * blk.u;
+        });
         a.b[i] = p.h * f + p.h * p.h * stiffnessTimesVelocity;
         a.diagonal[i] = d;
     }
@@ -72,17 +80,11 @@ std::vector<glm::dvec3> multiply(const ImplicitParams& p, const std::vector<mode
         const double w = state.inverseMasses[i];
         if (w <= 0.0) continue;
         glm::dvec3 sum = (massFactor(p) / w) * x[i];
-        if (p.springs)
-            for (std::uint32_t k = rows.offsets[i]; k < rows.offsets[i + 1]; ++k) {
-                const model::FlatSpring& s = springs[rows.items[k]];
-                const std::uint32_t j = s.a == i ? s.b : s.a;
-                const SpringBlock blk = springBlock(s, state.positions[i], state.positions[j],
-                                                    state.velocities[i], state.velocities[j], p.h);
-                if (!blk.valid) continue;
-                const glm::dvec3 xj = state.inverseMasses[j] > 0.0 ? x[j] : glm::dvec3(0.0);
-                const glm::dvec3 d = x[i] - xj;
-                sum += blk.alpha * d + blk.beta * glm::dot(blk.u, d) * blk.u;
-            }
+        forEachSpringBlock(p, springs, rows, state, i, [&](std::uint32_t j, const SpringBlock& blk) {
+            const glm::dvec3 xj = state.inverseMasses[j] > 0.0 ? x[j] : glm::dvec3(0.0);
+            const glm::dvec3 d = x[i] - xj;
+            sum += blk.alpha * d + blk.beta * glm::dot(blk.u, d) * blk.u;
+        });
         q[i] = sum;
     }
     return q;
@@ -104,6 +106,8 @@ SpringBlock springBlock(const model::FlatSpring& s, const glm::dvec3& xi, const 
     if (length <= 0.0) return b; // coincident ends: no direction, as in SpringUpdate
     b.u = d / length;
     const SpringStiffness st = stiffnessOf(s, length);
+    b.transverseStiffness = st.transverse;
+    b.alongStiffness = st.along;
     b.alpha = h * h * st.transverse;
     b.beta = h * s.damping + h * h * st.along;
     b.force = s.stiffness * (length - s.restLength) + s.damping * glm::dot(vj - vi, b.u);

@@ -21,11 +21,13 @@ namespace glcollide::cpu {
 
 /// The 3×3 block h·C_s + h²·K_s of one spring between i and j, as α·I + β·u uᵀ.
 struct SpringBlock {
-    glm::dvec3 u{0.0};  ///< unit direction from i to j
-    double alpha = 0;   ///< h²·k·max(0, 1 − L/l)
-    double beta = 0;    ///< h·c + h²·k·(1 − max(0, 1 − L/l))
-    double force = 0;   ///< k(l − L) + c·u·(v_j − v_i): the force on i along u
-    bool valid = false; ///< false for coincident ends (no direction: no force, no block)
+    glm::dvec3 u{0.0};              ///< unit direction from i to j
+    double alpha = 0;               ///< h²·k·max(0, 1 − L/l)
+    double beta = 0;                ///< h·c + h²·k·(1 − max(0, 1 − L/l))
+    double force = 0;               ///< k(l − L) + c·u·(v_j − v_i): the force on i along u
+    double transverseStiffness = 0; ///< k·max(0, 1 − L/l)
+    double alongStiffness = 0;      ///< k − transverseStiffness (K_s = kT·I + kA·u uᵀ)
+    bool valid = false;             ///< false for coincident ends (no direction: no force, no block)
 };
 SpringBlock springBlock(const model::FlatSpring& s, const glm::dvec3& xi, const glm::dvec3& xj,
                         const glm::dvec3& vi, const glm::dvec3& vj, double h);
