@@ -124,6 +124,19 @@ TEST(EngineGl, SmallScenesRunAFrameInOneDispatchWithTheSameResult) {
     EXPECT_EQ(implicit.pipeline(), (Names{"ImplicitSolve", "NodeUpdate"}));
 }
 
+TEST(EngineGl, ImplicitEulerWarnsWhenPenaltyContactsNeedMoreSubsteps) {
+    // Penalty contacts enter the implicit step explicitly (docs/integration.md): at 10⁶ N/m on
+    // nodes of ~6 g one substep per frame is beyond their explicit limit; Bridson's are not limited.
+    const std::string implicit = R"("time": {"integrator": "implicit_euler"},)";
+    Engine penalty(
+        sceneWith(R"(["springs", "collisions"])", implicit + R"("collision": {"stiffness": 1e6},)"));
+    ASSERT_EQ(penalty.warnings().size(), 1u);
+    EXPECT_NE(penalty.warnings()[0].find("penalty contact"), std::string::npos) << penalty.warnings()[0];
+    Engine bridson(sceneWith(R"(["springs", "collisions"])",
+                             implicit + R"("collision": {"stiffness": 1e6, "response": "bridson"},)"));
+    EXPECT_TRUE(bridson.warnings().empty());
+}
+
 TEST(EngineGl, EveryShippedSceneComposesAndSteps) {
     const std::filesystem::path dir = std::filesystem::path(GLCOLLIDE_SOURCE_DIR) / "scenes";
     int scenes = 0;
