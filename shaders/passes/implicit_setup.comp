@@ -1,12 +1,12 @@
 #version 430 core
-// glcollide-features: GLC_SPRINGS GLC_GRAVITY GLC_DAMPING GLC_WIND GLC_CONTACTS
+// glcollide-features: GLC_SPRINGS GLC_GRAVITY GLC_DAMPING GLC_WIND
 // ImplicitSetup — assembles one implicit Euler substep's system A·Δv = b per node (Baraff &
 // Witkin 1998, one Newton step of backward Euler) and starts the conjugate gradients at Δv = 0:
 //   b = h·f + h²·Σ K_s (v_j − v_i),   P = m(1 + h·c_air)·I + Σ (h·C_s + h²·K_s)  (A's diagonal block)
 //   r = b,  z = P⁻¹·r,  p = z,  per-group partial sums of r·z and r·r.
-// f is the external force (gravity, air damping, wind: common/external_force.glsl), the springs'
-// force (GLC_SPRINGS) and the contact force of ContactResponse (GLC_CONTACTS, cleared here). Pinned nodes (w = 0) get
-// zeros everywhere: their Δv stays 0. Twin: cpu::implicitVelocityUpdate.
+// f is the external force (gravity, air damping, wind: common/external_force.glsl) and the springs'
+// force (GLC_SPRINGS); contacts come after the solve (ContactResponse, then NodeUpdate). Pinned
+// nodes (w = 0) get zeros everywhere: their Δv stays 0. Twin: cpu::implicitVelocityUpdate.
 #include "common/layout.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
@@ -20,10 +20,6 @@ layout(std430, binding = GLC_BIND_SPRINGS) readonly buffer SpringsBuf { GpuSprin
 layout(std430, binding = GLC_BIND_NODE_SPRING_LIST) readonly buffer NodeSpringListBuf { uint g_nodeSpringList[]; };
 #endif
 #include "common/external_force.glsl"
-#ifdef GLC_CONTACTS
-layout(std430, binding = GLC_BIND_CONTACT_FORCES) buffer ContactForcesBuf { ivec4 g_contactForces[]; };
-uniform float u_contactForceScale; // fixed-point units per N
-#endif
 layout(std430, binding = GLC_BIND_SOLVER_RESIDUAL) writeonly buffer ResidualBuf { vec4 g_residual[]; };
 layout(std430, binding = GLC_BIND_SOLVER_PRECONDITIONED) writeonly buffer PreconditionedBuf { vec4 g_preconditioned[]; };
 layout(std430, binding = GLC_BIND_SOLVER_DIRECTION_OUT) writeonly buffer DirectionOutBuf { vec4 g_direction[]; };
@@ -67,10 +63,6 @@ void main() {
         vec4 inverseA = vec4(0.0);
         vec2 inverseB = vec2(0.0);
         vec3 f = sum0.xyz + externalForce(i);
-#ifdef GLC_CONTACTS
-        f += vec3(g_contactForces[i].xyz) / u_contactForceScale;
-        g_contactForces[i] = ivec4(0);
-#endif
         if (w > 0.0) {
             float m = u_massFactor / w;
             vec4 a = sum2 + vec4(m, 0.0, 0.0, m);

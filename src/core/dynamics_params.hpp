@@ -47,8 +47,6 @@ struct ImplicitParams {
     double airDamping = 0.0;        ///< 1/s: the air damping c (f = −c·m·v) of `external`, 0 when off
     bool springs = false;           ///< the springs effect is on
     NodeForceParams external;       ///< gravity, air damping, wind: added in the setup dispatch
-    bool contacts = false;          ///< add (and clear) the fixed-point contact forces of ContactResponse
-    double contactForceScale = 1.0; ///< fixed-point units per N of the contact forces
     double tolerance = 1.0e-4;      ///< stop when ‖r‖ ≤ tolerance·‖b‖
     int maxIterations = 64;         ///< CG iteration cap
 };

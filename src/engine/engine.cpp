@@ -303,6 +303,9 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             collision->detect(buffers, options.gpuTiming ? &timer : nullptr);
         CollisionStats& c = stats.collision;
         addSubstepCounts(counts, c);
+        // Implicit Euler solves the springs first: the contact response then sees (and stops) the
+        // velocities the solve produced, and NodeUpdate applies it directly (docs/integration.md).
+        if (implicitSolve) run(*implicitSolve, plan.implicitParams);
         // detect() cleared the response's contact counter; it is read after the last substep.
         run(*contact,
             passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects()},
@@ -313,7 +316,7 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
                                            sizeof c.contacts, &c.contacts);
         }
     }
-    if (implicitSolve) run(*implicitSolve, plan.implicitParams);
+    if (implicitSolve && !collision) run(*implicitSolve, plan.implicitParams);
     if (nodeUpdate) run(*nodeUpdate, plan.nodeUpdateParams, static_cast<std::uint32_t>(index));
 }
 

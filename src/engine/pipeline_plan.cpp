@@ -18,9 +18,13 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
         for (PassId id : passes::broadPhasePasses(collision.broadPhase)) p.push_back(id);
         p.push_back(PassId::TriTri);
         p.push_back(PassId::FeaturePairs);
+        // Implicit Euler: the springs' solve comes before the contact response, which then acts on
+        // the solved velocities (and NodeUpdate adds it).
+        if (implicitSolve) p.push_back(PassId::ImplicitSolve);
         p.push_back(PassId::ContactResponse);
+    } else if (implicitSolve) {
+        p.push_back(PassId::ImplicitSolve);
     }
-    if (implicitSolve) p.push_back(PassId::ImplicitSolve);
     if (nodeUpdate) p.push_back(PassId::NodeUpdate);
     return p;
 }
@@ -86,14 +90,11 @@ PipelinePlan planPipeline(const Scene& scene) {
         ip.springs = plan.springUpdate;
         ip.external = nf; // the setup dispatch adds the external force: no NodeForce pass
         ip.airDamping = nf.damping ? nf.dampingCoefficient : 0.0;
-        ip.contacts = plan.collisions;
-        ip.contactForceScale = plan.contact.forceScale;
         ip.tolerance = scene.time.solver.tolerance;
         ip.maxIterations = scene.time.solver.maxIterations;
         plan.springUpdate = false; // the solver gathers the springs itself
         plan.nodeForce = false;
-        nu.forces = false;
-        nu.contacts = false;
+        nu.forces = false; // v is the solve's; NodeUpdate adds the contact forces (if any) and moves x
     }
     nu.contactForceScale = plan.contact.forceScale;
     nu.ground = fx.has(Effect::Ground);

@@ -14,7 +14,6 @@ namespace {
 std::vector<std::string> solverDefines(const ImplicitParams& c, bool setup) {
     std::vector<std::string> d = setup ? externalForceDefines(c.external) : std::vector<std::string>{};
     if (c.springs) d.emplace_back("GLC_SPRINGS");
-    if (setup && c.contacts) d.emplace_back("GLC_CONTACTS");
     return d;
 }
 
@@ -76,7 +75,6 @@ void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& 
         bindRequired(b.springs, GLC_BIND_SPRINGS, kName, "springs");
         bindRequired(b.nodeSpringList, GLC_BIND_NODE_SPRING_LIST, kName, "nodeSpringList");
     }
-    if (m_config.contacts) bindRequired(b.contactForces, GLC_BIND_CONTACT_FORCES, kName, "contactForces");
     m_residual.bindStorage(GLC_BIND_SOLVER_RESIDUAL);
     m_preconditioned.bindStorage(GLC_BIND_SOLVER_PRECONDITIONED);
     m_product.bindStorage(GLC_BIND_SOLVER_PRODUCT);
@@ -87,7 +85,6 @@ void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& 
     directions[0]->bindStorage(GLC_BIND_SOLVER_DIRECTION_OUT);
     m_setup.set("u_h", h);
     m_setup.set("u_massFactor", massFactor);
-    if (m_config.contacts) m_setup.set("u_contactForceScale", static_cast<float>(params.contactForceScale));
     dispatchLayout(m_setup);
 
     const auto maxIterations = static_cast<std::uint32_t>(params.maxIterations);
