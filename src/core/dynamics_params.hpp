@@ -43,12 +43,12 @@ struct NodeUpdateParams {
 /// solved by block-Jacobi preconditioned conjugate gradients (docs/integration.md). Positions
 /// then move by NodeUpdate without forces (x += h·v, ground).
 struct ImplicitParams {
-    double h = 0.0;                 ///< s, substep length
-    double airDamping = 0.0;        ///< 1/s: the air damping c (f = −c·m·v) of `external`, 0 when off
-    bool springs = false;           ///< the springs effect is on
-    NodeForceParams external;       ///< gravity, air damping, wind: added in the setup dispatch
-    double tolerance = 1.0e-4;      ///< stop when ‖r‖ ≤ tolerance·‖b‖
-    int maxIterations = 64;         ///< CG iteration cap
+    double h = 0.0;            ///< s, substep length
+    double airDamping = 0.0;   ///< 1/s: the air damping c (f = −c·m·v) of `external`, 0 when off
+    bool springs = false;      ///< the springs effect is on
+    NodeForceParams external;  ///< gravity, air damping, wind: added in the setup dispatch
+    double tolerance = 1.0e-4; ///< stop when ‖r‖ ≤ tolerance·‖b‖
+    int maxIterations = 64;    ///< CG iteration cap
 };
 
 /// FrameStep: a whole frame of symplectic Euler substeps in one dispatch of one work group.
