@@ -15,6 +15,7 @@
 #include "passes/contact_response.hpp"
 #include "passes/dynamics_passes.hpp"
 #include "passes/implicit_solver.hpp"
+#include "passes/row_layout.hpp"
 
 #include <glcollide/error.hpp>
 #include <glcollide/gl_info.hpp>
@@ -85,8 +86,7 @@ struct Engine::Impl {
 
 void Engine::Impl::chooseSubsteps() {
     const double dt = scene.time.dt;
-    const bool springs = scene.effects.has(Effect::Springs);
-    const cpu::StabilityLimit limit = cpu::stableSubstep(model, springs, plan.nodeForceParams, 0.9,
+    const cpu::StabilityLimit limit = cpu::stableSubstep(model, plan.springs, plan.nodeForceParams, 0.9,
                                                          plan.collisions ? &plan.contact : nullptr);
     const int stable = cpu::substepsFor(dt, limit);
     substeps.stableSubsteps = stable;
@@ -146,8 +146,7 @@ void Engine::Impl::allocate() {
     buffers.faces = gl::makeBuffer("faces", m.faceIndices);
     if (plan.nodeForce || plan.springUpdate)
         buffers.forces = gl::Buffer("forces", m.nodeCount() * sizeof(glm::vec4));
-    const bool needSprings = plan.springUpdate || (plan.implicitSolve && plan.implicitParams.springs);
-    if (needSprings) {
+    if (plan.springs) {
         std::vector<gpu::GpuSpring> springs;
         springs.reserve(m.springs.size());
         for (const model::FlatSpring& s : m.springs)
@@ -159,10 +158,10 @@ void Engine::Impl::allocate() {
         buffers.springs = gl::makeBuffer("springs", springs);
         buffers.nodeSpringList = gl::makeBuffer("nodeSpringList", m.nodeSprings.items);
     }
-    if (needSprings || plan.implicitSolve) {
+    if (plan.springs || plan.implicitSolve) {
         // Without springs every row is empty (the solver still reads the row lengths).
         const std::vector<std::uint32_t> offsets =
-            needSprings ? m.nodeSprings.offsets : std::vector<std::uint32_t>(m.nodeCount() + 1, 0u);
+            plan.springs ? m.nodeSprings.offsets : std::vector<std::uint32_t>(m.nodeCount() + 1, 0u);
         buffers.nodeSpringOffsets = gl::makeBuffer("nodeSpringOffsets", offsets);
         heavyNodes = passes::heavyRowNodes(offsets);
         buffers.heavyNodes = gl::makeBuffer("heavyNodes", heavyNodes);
@@ -482,9 +481,9 @@ std::vector<glm::dvec3> Engine::readVelocities() const {
 EnergyReport Engine::energy() const {
     const Impl& d = *m_impl;
     const bool gravity = d.scene.effects.has(Effect::Gravity);
-    const cpu::Energy e = cpu::energy(readPositions(), readVelocities(), d.model.masses,
-                                      d.model.inverseMasses, gravity ? &d.scene.gravity : nullptr,
-                                      d.scene.effects.has(Effect::Springs) ? &d.model.springs : nullptr);
+    const cpu::Energy e =
+        cpu::energy(readPositions(), readVelocities(), d.model.masses, d.model.inverseMasses,
+                    gravity ? &d.scene.gravity : nullptr, d.plan.springs ? &d.model.springs : nullptr);
     return {e.kinetic, e.gravitational + e.elastic};
 }
 

@@ -40,7 +40,6 @@ std::vector<std::string> PipelinePlan::buffers() const {
     if (!nodeUpdate) return b;
     b = {"positions", "velocities", "faces"};
     if (nodeForce || springUpdate) b.emplace_back("forces");
-    const bool springs = springUpdate || (implicitSolve && implicitParams.springs);
     if (springs) b.emplace_back("springs");
     if (springs || implicitSolve) b.emplace_back("nodeSpringOffsets");
     if (springs) b.emplace_back("nodeSpringList");
@@ -76,7 +75,8 @@ PipelinePlan planPipeline(const Scene& scene) {
     plan.collision = scene.collision;
     plan.contact = contactParams(scene.collision);
     const bool external = nf.gravity || nf.damping || nf.wind;
-    plan.springUpdate = plan.nodeUpdate && fx.has(Effect::Springs);
+    plan.springs = plan.nodeUpdate && fx.has(Effect::Springs);
+    plan.springUpdate = plan.springs;
     // With springs, SpringUpdate adds the external force in its own dispatch (one fewer per substep).
     plan.nodeForce = plan.nodeUpdate && external && !plan.springUpdate;
     plan.springUpdateParams.external = nf;
@@ -87,7 +87,7 @@ PipelinePlan planPipeline(const Scene& scene) {
     if (scene.time.integrator == Integrator::ImplicitEuler && plan.nodeUpdate) {
         plan.implicitSolve = true;
         ImplicitParams& ip = plan.implicitParams;
-        ip.springs = plan.springUpdate;
+        ip.springs = plan.springs;
         ip.external = nf; // the setup dispatch adds the external force: no NodeForce pass
         ip.airDamping = nf.damping ? nf.dampingCoefficient : 0.0;
         ip.tolerance = scene.time.solver.tolerance;

@@ -15,6 +15,7 @@ namespace glcollide::engine {
 
 struct PipelinePlan {
     bool nodeForce = false;
+    bool springs = false; ///< the springs effect: SpringUpdate or the implicit solver gathers them
     bool springUpdate = false;
     bool nodeUpdate = false;
     NodeForceParams nodeForceParams;

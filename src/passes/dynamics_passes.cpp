@@ -1,6 +1,7 @@
 #include "passes/dynamics_passes.hpp"
 
 #include "core/gpu_layout.hpp"
+#include "passes/row_layout.hpp"
 
 #include <epoxy/gl.h>
 
@@ -68,18 +69,10 @@ void SpringUpdatePass::dispatch(const DeviceBuffers& b, const SpringUpdateParams
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
     bindRequired(b.springs, GLC_BIND_SPRINGS, kName, "springs");
     bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
-    bindRequired(b.nodeSpringOffsets, GLC_BIND_NODE_SPRING_OFFSETS, kName, "nodeSpringOffsets");
     bindRequired(b.nodeSpringList, GLC_BIND_NODE_SPRING_LIST, kName, "nodeSpringList");
-    bindRequired(b.heavyNodes, GLC_BIND_HEAVY_NODES, kName, "heavyNodes");
-    // One group per GLC_WORKGROUP_SIZE nodes, then one per heavy node (common/row_gather.glsl).
-    const std::uint32_t lightGroups = (b.nodeCount + GLC_WORKGROUP_SIZE - 1) / GLC_WORKGROUP_SIZE;
-    const auto heavyCount = static_cast<std::uint32_t>(b.heavyNodes.bytes() / sizeof(std::uint32_t));
-    m_program.use();
-    m_program.set("u_nodeCount", b.nodeCount);
-    m_program.set("u_lightGroups", lightGroups);
-    m_program.set("u_heavyCount", heavyCount);
-    m_program.dispatch1D((lightGroups + heavyCount) * GLC_WORKGROUP_SIZE, GLC_WORKGROUP_SIZE);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    const RowLayout layout = RowLayout::of(b);
+    layout.bind(m_program, b, kName);
+    layout.dispatch(m_program);
 }
 
 NodeUpdatePass::NodeUpdatePass(const NodeUpdateParams& config)

@@ -21,17 +21,9 @@ constexpr std::size_t kVec4 = 4 * sizeof(float);
 
 } // namespace
 
-std::vector<std::uint32_t> heavyRowNodes(const std::vector<std::uint32_t>& rowOffsets) {
-    std::vector<std::uint32_t> heavy;
-    for (std::size_t i = 0; i + 1 < rowOffsets.size(); ++i)
-        if (rowOffsets[i + 1] - rowOffsets[i] > kHeavyRow) heavy.push_back(static_cast<std::uint32_t>(i));
-    return heavy;
-}
-
 ImplicitSolverPass::ImplicitSolverPass(const ImplicitParams& config, std::uint32_t nodeCount,
                                        std::uint32_t heavyCount)
-    : m_config(config), m_nodeCount(nodeCount),
-      m_lightGroups((nodeCount + GLC_WORKGROUP_SIZE - 1) / GLC_WORKGROUP_SIZE), m_heavyCount(heavyCount),
+    : m_config(config), m_nodeCount(nodeCount), m_layout(nodeCount, heavyCount),
       m_setup("implicit_setup", solverDefines(config, true)),
       m_direction("implicit_cg_direction", solverDefines(config, false)), m_update("implicit_cg_update", {}),
       m_residual("solverResidual", nodeCount * kVec4),
@@ -39,28 +31,17 @@ ImplicitSolverPass::ImplicitSolverPass(const ImplicitParams& config, std::uint32
       m_direction0("solverDirection0", nodeCount * kVec4),
       m_direction1("solverDirection1", nodeCount * kVec4), m_product("solverProduct", nodeCount * kVec4),
       m_blockInverse("solverBlockInverse", std::size_t{6} * nodeCount * sizeof(float)),
-      m_partialsR("solverPartialsR", std::size_t{m_lightGroups + heavyCount} * 2 * sizeof(float)),
-      m_partialsPq("solverPartialsPq", std::size_t{m_lightGroups + heavyCount} * sizeof(float)),
+      m_partialsR("solverPartialsR", std::size_t{m_layout.groups()} * 2 * sizeof(float)),
+      m_partialsPq("solverPartialsPq", std::size_t{m_layout.groups()} * sizeof(float)),
       m_state("solverState", sizeof(gpu::GpuSolverState)) {
     resetStatistics();
 }
 
 void ImplicitSolverPass::bindLayout(const gl::ComputeProgram& program, const DeviceBuffers& b) const {
-    bindRequired(b.nodeSpringOffsets, GLC_BIND_NODE_SPRING_OFFSETS, kName, "nodeSpringOffsets");
-    bindRequired(b.heavyNodes, GLC_BIND_HEAVY_NODES, kName, "heavyNodes");
     m_partialsR.bindStorage(GLC_BIND_SOLVER_PARTIALS_R);
     m_partialsPq.bindStorage(GLC_BIND_SOLVER_PARTIALS_PQ);
     m_state.bindStorage(GLC_BIND_SOLVER_STATE);
-    program.use();
-    program.set("u_nodeCount", m_nodeCount);
-    program.set("u_lightGroups", m_lightGroups);
-    program.set("u_heavyCount", m_heavyCount);
-}
-
-void ImplicitSolverPass::dispatchLayout(const gl::ComputeProgram& program) const {
-    // One group per GLC_WORKGROUP_SIZE nodes, then one per heavy node (row_gather.glsl).
-    program.dispatch1D((m_lightGroups + m_heavyCount) * GLC_WORKGROUP_SIZE, GLC_WORKGROUP_SIZE);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    m_layout.bind(program, b, kName);
 }
 
 void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& params) const {
@@ -85,7 +66,7 @@ void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& 
     directions[0]->bindStorage(GLC_BIND_SOLVER_DIRECTION_OUT);
     m_setup.set("u_h", h);
     m_setup.set("u_massFactor", massFactor);
-    dispatchLayout(m_setup);
+    m_layout.dispatch(m_setup);
 
     const auto maxIterations = static_cast<std::uint32_t>(params.maxIterations);
     const float tolerance2 = static_cast<float>(params.tolerance * params.tolerance);
@@ -99,11 +80,11 @@ void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& 
         m_direction.set("u_iteration", k);
         m_direction.set("u_maxIterations", maxIterations);
         m_direction.set("u_tolerance2", tolerance2);
-        dispatchLayout(m_direction);
+        m_layout.dispatch(m_direction);
         if (k == maxIterations) break; // that dispatch only checked the residual
         bindLayout(m_update, b);
         m_update.set("u_iteration", k);
-        dispatchLayout(m_update);
+        m_layout.dispatch(m_update);
     }
 }
 

@@ -14,6 +14,7 @@
 #include "gl/program.hpp"
 #include "passes/device_buffers.hpp"
 #include "passes/pass_id.hpp"
+#include "passes/row_layout.hpp"
 
 #include <cstdint>
 #include <string>
@@ -60,21 +61,17 @@ class ImplicitSolverPass {
     [[nodiscard]] std::uint32_t dispatchesPerSubstep() const;
 
   private:
+    /// The row layout's bindings and uniforms plus the partial sums and the state.
     void bindLayout(const gl::ComputeProgram& program, const DeviceBuffers& b) const;
-    void dispatchLayout(const gl::ComputeProgram& program) const;
 
     ImplicitParams m_config;
     std::uint32_t m_nodeCount = 0;
-    std::uint32_t m_lightGroups = 0;
-    std::uint32_t m_heavyCount = 0;
+    RowLayout m_layout;
     gl::ComputeProgram m_setup;
     gl::ComputeProgram m_direction;
     gl::ComputeProgram m_update;
     gl::Buffer m_residual, m_preconditioned, m_direction0, m_direction1, m_product, m_blockInverse;
     gl::Buffer m_partialsR, m_partialsPq, m_state;
 };
-
-/// Nodes whose spring row is longer than kHeavyRow, ascending.
-std::vector<std::uint32_t> heavyRowNodes(const std::vector<std::uint32_t>& rowOffsets);
 
 } // namespace glcollide::passes

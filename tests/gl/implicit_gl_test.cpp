@@ -12,6 +12,7 @@
 #include "cpu/implicit_twin.hpp"
 #include "passes/dynamics_passes.hpp"
 #include "passes/implicit_solver.hpp"
+#include "passes/row_layout.hpp"
 #include "support/random_dynamics_model.hpp"
 
 #include <gtest/gtest.h>

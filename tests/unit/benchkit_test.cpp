@@ -426,6 +426,19 @@ std::vector<double> symplecticEuler(const DampedOscillator& o, double h, int per
     return out;
 }
 
+/// The estimators, run on `samples` (one per frame of dt) of a discrete map's trajectory, find the
+/// map's own period and amplitude ratio per period within their bounds (the ratio's 10 % over
+/// 2 peakBound / (peaks − 1) for the terms beyond leading order, as in PeaksAndAmplitudeRatio...).
+void expectEstimatorsFind(const std::vector<double>& samples, double dt, double period, double ratio) {
+    const std::vector<double> t = upwardZeroCrossings(samples, dt);
+    ASSERT_GE(t.size(), 10u);
+    const double omega = 2 * std::numbers::pi / period, decay = -std::log(ratio) / period;
+    EXPECT_NEAR(meanPeriod(t), period, 2 * crossingTimeBound(omega, decay, dt) / double(t.size() - 1));
+    const std::vector<double> peaks = periodPeaks(samples, dt, t);
+    EXPECT_NEAR(meanAmplitudeRatio(peaks), ratio,
+                1.1 * 2 * peakBound(omega, decay, dt) * ratio / double(peaks.size() - 1));
+}
+
 TEST(BenchkitOscillator, SymplecticEulerPeriodAndDampingAreTheDiscreteMapsOwn) {
     // The discrete trajectory of symplectic Euler is itself a sampled damped sinusoid (eigenvalues
     // sqrt(1 − hγ) e^{±iθ}): its measured period and amplitude ratio must be the map's 2πh/θ and
@@ -438,16 +451,9 @@ TEST(BenchkitOscillator, SymplecticEulerPeriodAndDampingAreTheDiscreteMapsOwn) {
             const DampedOscillator o{1.0, 40.0, c, 0.0, 0.06};
             const double h = dt / substeps;
             const std::vector<double> u = symplecticEuler(o, h, substeps, 500);
-            const std::vector<double> t = upwardZeroCrossings(u, dt);
-            ASSERT_GE(t.size(), 10u);
             const double period = symplecticEulerPeriod(o, h),
                          ratio = symplecticEulerAmplitudeRatioPerPeriod(o, h);
-            const double omega = 2 * std::numbers::pi / period, decay = -std::log(ratio) / period;
-            EXPECT_NEAR(meanPeriod(t), period,
-                        2 * crossingTimeBound(omega, decay, dt) / double(t.size() - 1));
-            const std::vector<double> peaks = periodPeaks(u, dt, t);
-            EXPECT_NEAR(meanAmplitudeRatio(peaks), ratio,
-                        1.1 * 2 * peakBound(omega, decay, dt) * ratio / double(peaks.size() - 1));
+            expectEstimatorsFind(u, dt, period, ratio);
             if (c == 0.0) {
                 // 2 − 2cos θ = h²ω²: θ = 2 asin(hω/2), the period short by (hω)²/24 to leading order.
                 const double hw = h * o.omega();
@@ -482,16 +488,9 @@ TEST(BenchkitOscillator, ImplicitEulerPeriodAndDampingAreTheDiscreteMapsOwn) {
                 }
                 samples.push_back(u);
             }
-            const std::vector<double> t = upwardZeroCrossings(samples, dt);
-            ASSERT_GE(t.size(), 10u);
             const double period = implicitEulerPeriod(o, h),
                          ratio = implicitEulerAmplitudeRatioPerPeriod(o, h);
-            const double omega = 2 * std::numbers::pi / period, decay = -std::log(ratio) / period;
-            EXPECT_NEAR(meanPeriod(t), period,
-                        2 * crossingTimeBound(omega, decay, dt) / double(t.size() - 1));
-            const std::vector<double> peaks = periodPeaks(samples, dt, t);
-            EXPECT_NEAR(meanAmplitudeRatio(peaks), ratio,
-                        1.1 * 2 * peakBound(omega, decay, dt) * ratio / double(peaks.size() - 1));
+            expectEstimatorsFind(samples, dt, period, ratio);
             if (c == 0.0) {
                 const double hw = h * o.omega();
                 EXPECT_NEAR(period / o.period() - 1, hw * hw / 3, 0.1 * hw * hw / 3);

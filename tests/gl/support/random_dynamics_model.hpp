@@ -8,7 +8,7 @@
 #include "gl/handles.hpp"
 #include "model/flat_model.hpp"
 #include "passes/device_buffers.hpp"
-#include "passes/implicit_solver.hpp"
+#include "passes/row_layout.hpp"
 
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
