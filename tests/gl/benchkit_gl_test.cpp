@@ -179,7 +179,6 @@ TEST(BenchkitGl, OscillatorPeriodAndDampingAreImplicitEulersDiscreteOnes) {
     // (oscillator.hpp, unit-tested against a double run of the map): 0.673 at one substep, where
     // symplectic Euler keeps 1. Same tolerances as symplectic Euler's test. At most 2 CG
     // iterations: one converges here, and each allowed one costs two dispatches per substep.
-    // Skipped in a build whose scene reader does not know "integrator" yet.
     const auto experiment = [] {
         return only(R"({"name": "o", "kind": "integration", "reference": "oscillator", "frames": 500,
       "warmup_frames": 0, "scenes": [)" +
@@ -189,15 +188,7 @@ TEST(BenchkitGl, OscillatorPeriodAndDampingAreImplicitEulersDiscreteOnes) {
         {"name": "1", "patch": {"time": {"integrator": "implicit_euler", "substeps": 1, "solver": {"tolerance": 1e-5, "max_iterations": 2}}}},
         {"name": "4", "patch": {"time": {"integrator": "implicit_euler", "substeps": 4, "solver": {"tolerance": 1e-5, "max_iterations": 2}}}}]})");
     };
-    ExperimentResult r;
-    try {
-        r = runExperiment(experiment(), nullptr);
-    } catch (const Error& e) {
-        const std::string what = e.what();
-        if (what.find("integrator") != std::string::npos && what.find("unknown key") != std::string::npos)
-            GTEST_SKIP() << "no implicit Euler in this build: " << what;
-        throw;
-    }
+    const ExperimentResult r = runExperiment(experiment(), nullptr);
     ASSERT_EQ(r.runs.size(), 4u);
     for (const RunResult& x : r.runs) {
         SCOPED_TRACE(x.scene + " / " + x.config);
