@@ -61,6 +61,12 @@
 #define GLC_BIND_SOLVER_STATE 46          // GpuSolverState
 #define GLC_BIND_HEAVY_NODES 47           // uint[]: nodes with more than GLC_HEAVY_ROW springs, ascending
 
+// One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
+// host-state guard saves and restores exactly those, and start-up refuses a device with fewer
+// GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
+// every kernel lies below it. Add a binding above, then raise this.
+#define GLC_BINDING_COUNT 48
+
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
 // feature shared by several faces is never counted twice.

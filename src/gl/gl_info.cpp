@@ -2,6 +2,8 @@
 
 #include "glcollide/error.hpp"
 
+#include "core/gpu_layout.hpp"
+
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -88,6 +90,14 @@ GlInfo queryGlInfo() {
 
 void requireGl43() {
     checkCurrentContext();
+    // GL 4.3 promises only 8 storage bindings; the engine's buffers sit at fixed points up to
+    // GLC_BINDING_COUNT-1 (layout.glsl), so a device with fewer cannot run it.
+    const int bindings = getInt(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS);
+    if (bindings < GLC_BINDING_COUNT)
+        throw Error("the device offers " + std::to_string(bindings) +
+                    " shader storage buffer bindings (GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, renderer \"" +
+                    glString(GL_RENDERER) + "\"); glcollide binds buffers at 0 .. " +
+                    std::to_string(GLC_BINDING_COUNT - 1));
 }
 
 } // namespace glcollide

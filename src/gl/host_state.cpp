@@ -6,9 +6,6 @@
 
 namespace glcollide::gl {
 
-static_assert(GLC_BIND_EDGE_EDGE_PAIRS + 1 == kStorageBindingCount,
-              "kStorageBindingCount must cover every binding of shaders/common/layout.glsl");
-
 namespace {
 
 std::uint32_t getName(GLenum binding) {

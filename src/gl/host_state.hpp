@@ -3,14 +3,17 @@
 // that a glcollide entry point may change are saved on entry and put back on exit. One guard per
 // public Engine call, at the engine boundary; passes bind freely inside it.
 
+#include "core/gpu_layout.hpp"
+
 #include <array>
 #include <cstdint>
 
 namespace glcollide::gl {
 
 /// Indexed GL_SHADER_STORAGE_BUFFER binding points glcollide's shaders use: 0 ...
-/// GLC_BIND_EDGE_EDGE_PAIRS in shaders/common/layout.glsl (checked in host_state.cpp).
-inline constexpr std::uint32_t kStorageBindingCount = 38;
+/// GLC_BINDING_COUNT-1 of shaders/common/layout.glsl (tests/gl/layout_gl_test.cpp checks that no
+/// kernel binds above).
+inline constexpr std::uint32_t kStorageBindingCount = GLC_BINDING_COUNT;
 
 /// Saves, on construction, the context state that glcollide's GL calls can change, and restores
 /// it on destruction (also when an exception unwinds through it):

@@ -15,6 +15,7 @@
 #include <epoxy/gl.h>
 
 #include <fstream>
+#include <algorithm>
 #include <array>
 #include <map>
 #include <sstream>
@@ -95,7 +96,7 @@ std::vector<gl::ComputeProgram> allPrograms() {
 }
 
 TEST(LayoutGl, EveryBlockOfEveryShaderUsesTheSharedBinding) {
-    int blocksSeen = 0;
+    int blocksSeen = 0, highestBinding = -1;
     for (const gl::ComputeProgram& program : allPrograms()) {
         GLint count = 0;
         glGetProgramInterfaceiv(program.name(), GL_SHADER_STORAGE_BLOCK, GL_ACTIVE_RESOURCES, &count);
@@ -109,10 +110,13 @@ TEST(LayoutGl, EveryBlockOfEveryShaderUsesTheSharedBinding) {
                                    &property, 1, nullptr, &binding);
             ASSERT_TRUE(kExpectedBindings.count(name)) << program.shaderName() << ": unknown block " << name;
             EXPECT_EQ(binding, kExpectedBindings.at(name)) << program.shaderName() << ": " << name;
+            highestBinding = std::max(highestBinding, binding);
             ++blocksSeen;
         }
     }
     EXPECT_GE(blocksSeen, 14); // 6 + 6 + 3 blocks in the three full variants
+    // The host-state guard saves and restores bindings 0 .. GLC_BINDING_COUNT-1: exactly the used ones.
+    EXPECT_EQ(highestBinding + 1, GLC_BINDING_COUNT);
 }
 
 TEST(LayoutGl, NodeArraysHaveVec4StrideForDrawing) {
