@@ -89,7 +89,7 @@ for m in "${mutants[@]}"; do
     survivors=$((survivors + 1))
   else
     failed=$(grep -E '^\s+[0-9]+ - ' "$scratch/ctest.log" | sed 's/^ *[0-9]* - //' | paste -sd ',' | cut -c1-160)
-    verdict="killed by ${failed:-the build's tests}"
+    verdict="killed by ${failed:-the named tests}"
   fi
   git -C "$tree" apply -R --unidiff-zero "$source_dir/$m"
   printf '%-44s %s\n' "$name" "$verdict"
