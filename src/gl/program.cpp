@@ -9,12 +9,20 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <regex>
 #include <sstream>
 
 namespace glcollide::gl {
 namespace {
+
+std::string hex(std::uint32_t value) {
+    std::ostringstream out;
+    out << std::hex << value;
+    return out.str();
+}
 
 const embedded::EmbeddedShader& findShader(std::string_view name) {
     for (std::size_t i = 0; i < embedded::kShaderCount; ++i)
@@ -124,6 +132,7 @@ void ComputeProgram::build(const std::string& source, const std::vector<std::str
         cache.store(m_handle.name(), m_shaderName, key);
     }
     labelObject(GL_PROGRAM, m_handle.name(), "glcollide/" + m_shaderName);
+    readActiveUniforms();
     if (SetupStats* sink = activeSetupStats()) {
         if (sink->cacheFolder.empty() && cache.location().enabled)
             sink->cacheFolder = cache.location().folder.string();
@@ -167,15 +176,44 @@ void ComputeProgram::use() const {
     glUseProgram(name());
 }
 
+void ComputeProgram::readActiveUniforms() {
+    m_uniforms.clear();
+    GLint count = 0;
+    glGetProgramInterfaceiv(name(), GL_UNIFORM, GL_ACTIVE_RESOURCES, &count);
+    const GLenum properties[] = {GL_LOCATION, GL_TYPE, GL_NAME_LENGTH};
+    for (GLint i = 0; i < count; ++i) {
+        GLint values[3] = {-1, 0, 0};
+        glGetProgramResourceiv(name(), GL_UNIFORM, static_cast<GLuint>(i), 3, properties, 3, nullptr, values);
+        if (values[0] < 0) continue; // a block member: set through its buffer, not here
+        std::string text(static_cast<std::size_t>(std::max(values[2], 1)), '\0');
+        glGetProgramResourceName(name(), GL_UNIFORM, static_cast<GLuint>(i), values[2], nullptr, text.data());
+        text.resize(std::strlen(text.c_str()));
+        m_uniforms.push_back({std::move(text), values[0], static_cast<GLenum>(values[1])});
+    }
+}
+
+const ComputeProgram::ActiveUniform* ComputeProgram::find(const char* uniform, std::uint32_t type) const {
+    for (const ActiveUniform& u : m_uniforms) {
+        if (u.name != uniform) continue;
+        if (u.type != type)
+            throw Error("program '" + m_shaderName + "': uniform " + u.name + " has GL type 0x" +
+                        hex(u.type) + ", set with a value of GL type 0x" + hex(type));
+        return &u;
+    }
+    return nullptr;
+}
+
 void ComputeProgram::set(const char* uniform, float value) const {
-    glProgramUniform1f(name(), glGetUniformLocation(name(), uniform), value);
+    if (const ActiveUniform* u = find(uniform, GL_FLOAT)) glProgramUniform1f(name(), u->location, value);
 }
 void ComputeProgram::set(const char* uniform, std::uint32_t value) const {
-    glProgramUniform1ui(name(), glGetUniformLocation(name(), uniform), value);
+    if (const ActiveUniform* u = find(uniform, GL_UNSIGNED_INT))
+        glProgramUniform1ui(name(), u->location, value);
 }
 void ComputeProgram::set(const char* uniform, const glm::dvec3& value) const {
-    glProgramUniform3f(name(), glGetUniformLocation(name(), uniform), static_cast<float>(value.x),
-                       static_cast<float>(value.y), static_cast<float>(value.z));
+    if (const ActiveUniform* u = find(uniform, GL_FLOAT_VEC3))
+        glProgramUniform3f(name(), u->location, static_cast<float>(value.x), static_cast<float>(value.y),
+                           static_cast<float>(value.z));
 }
 
 void ComputeProgram::dispatch1D(std::uint32_t invocations, std::uint32_t groupSize) const {

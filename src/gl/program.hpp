@@ -40,8 +40,12 @@ class ComputeProgram {
     [[nodiscard]] GLname name() const { return m_handle.name(); }
     [[nodiscard]] const std::string& shaderName() const { return m_shaderName; }
     void use() const;
-    /// Uniform setters on this program (glProgramUniform*). An unknown or optimised-away
-    /// uniform is ignored, as GL does for location -1.
+    /// Uniform setters on this program (glProgramUniform*). The program's active uniforms, their
+    /// locations and types, are read once when it is built; a setter finds the name among them
+    /// (no driver call) and throws Error when the value's type is not the uniform's (a float set
+    /// as uint would reinterpret the bits on some drivers and be dropped by others). A name that is
+    /// not active (unknown, or optimised away in this variant) is ignored, as GL does for
+    /// location -1.
     void set(const char* uniform, float value) const;
     void set(const char* uniform, std::uint32_t value) const;
     void set(const char* uniform, const glm::dvec3& value) const;
@@ -62,8 +66,18 @@ class ComputeProgram {
     compileAndLink(const std::string& source, const std::function<std::string(const std::string&)>& mapLog,
                    bool retrievable) const;
 
+    struct ActiveUniform {
+        std::string name;
+        std::int32_t location;
+        std::uint32_t type; // GLenum: GL_FLOAT, GL_UNSIGNED_INT, GL_FLOAT_VEC3, ...
+    };
+    void readActiveUniforms();
+    /// The active uniform `uniform` of type `type`, or nullptr when it is not active.
+    [[nodiscard]] const ActiveUniform* find(const char* uniform, std::uint32_t type) const;
+
     Handle<deleteProgram> m_handle;
     std::string m_shaderName;
+    std::vector<ActiveUniform> m_uniforms;
 };
 
 /// Compute dispatches issued through ComputeProgram since the process started (GL is used from one

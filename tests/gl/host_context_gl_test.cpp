@@ -262,7 +262,8 @@ TEST_P(HostBindings, SurviveEveryEngineCall) {
     expectSame(m_state, "after destruction");
 }
 
-INSTANTIATE_TEST_SUITE_P(BroadPhases, HostBindings, ::testing::Values("octree", "masked", "all_pairs", "bvh"));
+INSTANTIATE_TEST_SUITE_P(BroadPhases, HostBindings,
+                         ::testing::Values("octree", "masked", "all_pairs", "bvh"));
 
 TEST_F(HostBindings, SurviveAConstructorThatThrows) {
     // 129 objects x 8^3 leaf boxes exceed the masked broad phase's 65535: the collision detection
