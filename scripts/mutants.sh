@@ -41,12 +41,23 @@ header() { # header FIELD FILE: the value of "# FIELD:" in a mutant's header
   sed -n "s/^# $1: *//p" "$2" | head -n 1
 }
 
-# A fresh copy of the tracked and untracked-but-not-ignored files; tar keeps modification times,
-# so the kept build recompiles only what changed since the last run.
-rm -rf "$tree"
+# The scratch copy of the tracked and untracked-but-not-ignored files is updated by content: a
+# file is copied (with a new modification time) only when it differs, so the kept build
+# recompiles exactly what changed since the last run. Copying modification times instead would
+# hide a change made while an earlier scratch build was running.
 mkdir -p "$tree" "$build"
-git -C "$source_dir" ls-files -z --cached --others --exclude-standard |
-  (cd "$source_dir" && tar --null -T - -cf -) | (cd "$tree" && tar -xf -)
+git -C "$source_dir" ls-files -z --cached --others --exclude-standard >"$scratch/files"
+while IFS= read -r -d '' f; do
+  [ -f "$source_dir/$f" ] || continue # deleted in the work tree, not yet in the index
+  if ! cmp -s "$source_dir/$f" "$tree/$f"; then
+    mkdir -p "$tree/$(dirname "$f")"
+    cp "$source_dir/$f" "$tree/$f"
+  fi
+done <"$scratch/files"
+# Files that left the source tree leave the copy too.
+(cd "$tree" && find . -type f -printf '%P\0') | while IFS= read -r -d '' f; do
+  [ -e "$source_dir/$f" ] || rm -f "$tree/$f"
+done
 
 cmake -S "$tree" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo >"$scratch/configure.log" 2>&1 ||
   { cat "$scratch/configure.log" >&2; exit 1; }
