@@ -99,7 +99,7 @@ for m in "${mutants[@]}"; do
     verdict="SURVIVED: every test matching '$kills' passed"
     survivors=$((survivors + 1))
   else
-    failed=$(grep -E '^\s+[0-9]+ - ' "$scratch/ctest.log" | sed 's/^ *[0-9]* - //' | paste -sd ',' | cut -c1-160)
+    failed=$(grep -E '^\s+[0-9]+ - ' "$scratch/ctest.log" | sed -E 's/^\s*[0-9]+ - //; s/ \(Failed\)$//' | paste -sd ',' | cut -c1-160)
     verdict="killed by ${failed:-the named tests}"
   fi
   git -C "$tree" apply -R --unidiff-zero "$source_dir/$m"

@@ -69,6 +69,7 @@ struct Engine::Impl {
     FrameStepParams frameStepParams;
     std::optional<passes::CollisionDetection> collision;
     std::optional<passes::ContactResponsePass> contact;
+    std::vector<engine::Stage> stages;   ///< what a substep runs, in order (PipelinePlan::stages)
     std::vector<passes::PassId> passIds; ///< the substep's passes in order; stats.passes follows it
     std::vector<std::string> passNames;
     gl::GpuTimer timer{passes::kPassCount}; // one section per pass: passes::passIndex(id)
@@ -246,6 +247,7 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
                 d.warnings.push_back(d.setup.robustSelfCheck.message);
         }
     }
+    d.stages = d.plan.stages();
     d.passIds = d.plan.passIds();
     for (passes::PassId id : d.passIds) d.passNames.emplace_back(passes::passName(id));
     d.stats.substeps = d.substeps.substeps;
@@ -294,29 +296,43 @@ void addSubstepCounts(const passes::CollisionCounts& counts, CollisionStats& c) 
 }
 } // namespace
 
+/// One substep: the plan's stages in the plan's order (PipelinePlan::stages states it).
 void Engine::Impl::substep(int index, bool lastOfFrame) {
-    if (nodeForce) run(*nodeForce, plan.nodeForceParams);
-    if (springUpdate) run(*springUpdate, plan.springUpdateParams);
-    if (collision) {
-        const passes::CollisionCounts counts =
-            collision->detect(buffers, options.gpuTiming ? &timer : nullptr);
-        CollisionStats& c = stats.collision;
-        addSubstepCounts(counts, c);
-        // Implicit Euler solves the springs first: the contact response then sees (and stops) the
-        // velocities the solve produced, and NodeUpdate applies it directly (docs/integration.md).
-        if (implicitSolve) run(*implicitSolve, plan.implicitParams);
-        // detect() cleared the response's contact counter; it is read after the last substep.
-        run(*contact,
-            passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects()},
-            plan.contact);
-        if (lastOfFrame) {
-            glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-            collision->counters().download(offsetof(gpu::GpuCollisionCounters, contactCount),
-                                           sizeof c.contacts, &c.contacts);
+    using engine::Stage;
+    for (Stage stage : stages) {
+        switch (stage) {
+        case Stage::NodeForce:
+            run(*nodeForce, plan.nodeForceParams);
+            break;
+        case Stage::SpringUpdate:
+            run(*springUpdate, plan.springUpdateParams);
+            break;
+        case Stage::CollisionDetection:
+            addSubstepCounts(collision->detect(buffers, options.gpuTiming ? &timer : nullptr),
+                             stats.collision);
+            break;
+        case Stage::ImplicitSolve:
+            run(*implicitSolve, plan.implicitParams);
+            break;
+        case Stage::ContactResponse:
+            run(*contact,
+                passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects()},
+                plan.contact);
+            // detect() cleared the response's contact counter; it is read after the last substep.
+            if (lastOfFrame) {
+                glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+                collision->counters().download(offsetof(gpu::GpuCollisionCounters, contactCount),
+                                               sizeof stats.collision.contacts, &stats.collision.contacts);
+            }
+            break;
+        case Stage::NodeUpdate:
+            run(*nodeUpdate, plan.nodeUpdateParams, static_cast<std::uint32_t>(index));
+            break;
+        case Stage::FrameStep:
+            run(*frameStep, frameStepParams);
+            break; // every substep of the frame
         }
     }
-    if (implicitSolve && !collision) run(*implicitSolve, plan.implicitParams);
-    if (nodeUpdate) run(*nodeUpdate, plan.nodeUpdateParams, static_cast<std::uint32_t>(index));
 }
 
 void Engine::Impl::readSolverStats() {
@@ -362,10 +378,9 @@ void Engine::step() {
     const std::uint64_t dispatchesBefore = gl::dispatchCount();
     {
         gl::DebugGroup frame("glcollide::Engine::step");
-        if (d.frameStep)
-            d.run(*d.frameStep, d.frameStepParams);
-        else
-            for (int s = 0; s < d.substeps.substeps; ++s) d.substep(s, s + 1 == d.substeps.substeps);
+        // FrameStep runs the frame's substeps in its one dispatch.
+        const int calls = d.frameStep ? 1 : d.substeps.substeps;
+        for (int s = 0; s < calls; ++s) d.substep(s, s + 1 == calls);
     }
     d.stats.dispatchesPerSubstep =
         static_cast<double>(gl::dispatchCount() - dispatchesBefore) / d.substeps.substeps;

@@ -6,26 +6,53 @@
 
 namespace glcollide::engine {
 
+std::vector<Stage> PipelinePlan::stages() const {
+    if (frameStep) return {Stage::FrameStep};
+    std::vector<Stage> s;
+    if (nodeForce) s.push_back(Stage::NodeForce);
+    if (springUpdate) s.push_back(Stage::SpringUpdate);
+    // Contacts are found at the start of the substep.
+    if (collisions) s.push_back(Stage::CollisionDetection);
+    // Implicit Euler: the springs' solve comes before the contact response, which then acts on
+    // the solved velocities (and NodeUpdate adds it: Bridson et al. 2002's order).
+    if (implicitSolve) s.push_back(Stage::ImplicitSolve);
+    if (collisions) s.push_back(Stage::ContactResponse);
+    if (nodeUpdate) s.push_back(Stage::NodeUpdate);
+    return s;
+}
+
 std::vector<passes::PassId> PipelinePlan::passIds() const {
     using passes::PassId;
     std::vector<PassId> p;
-    if (frameStep) return {PassId::FrameStep};
-    if (nodeForce) p.push_back(PassId::NodeForce);
-    if (springUpdate) p.push_back(PassId::SpringUpdate);
-    if (collisions) {
-        // The broad phase's passes come from its factory entry; TriTri tests its candidates;
-        // FeaturePairs expands them into the feature pairs ContactResponse reads.
-        for (PassId id : passes::broadPhasePasses(collision.broadPhase)) p.push_back(id);
-        p.push_back(PassId::TriTri);
-        p.push_back(PassId::FeaturePairs);
-        // Implicit Euler: the springs' solve comes before the contact response, which then acts on
-        // the solved velocities (and NodeUpdate adds it).
-        if (implicitSolve) p.push_back(PassId::ImplicitSolve);
-        p.push_back(PassId::ContactResponse);
-    } else if (implicitSolve) {
-        p.push_back(PassId::ImplicitSolve);
+    for (Stage stage : stages()) {
+        switch (stage) {
+        case Stage::NodeForce:
+            p.push_back(PassId::NodeForce);
+            break;
+        case Stage::SpringUpdate:
+            p.push_back(PassId::SpringUpdate);
+            break;
+        case Stage::CollisionDetection:
+            // The broad phase's passes come from its factory entry; TriTri tests its candidates;
+            // FeaturePairs expands them into the feature pairs ContactResponse reads.
+            for (PassId id : passes::broadPhasePasses(collision.broadPhase)) p.push_back(id);
+            p.push_back(PassId::TriTri);
+            p.push_back(PassId::FeaturePairs);
+            break;
+        case Stage::ImplicitSolve:
+            p.push_back(PassId::ImplicitSolve);
+            break;
+        case Stage::ContactResponse:
+            p.push_back(PassId::ContactResponse);
+            break;
+        case Stage::NodeUpdate:
+            p.push_back(PassId::NodeUpdate);
+            break;
+        case Stage::FrameStep:
+            p.push_back(PassId::FrameStep);
+            break;
+        }
     }
-    if (nodeUpdate) p.push_back(PassId::NodeUpdate);
     return p;
 }
 

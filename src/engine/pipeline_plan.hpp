@@ -8,10 +8,24 @@
 
 #include <glcollide/scene.hpp>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace glcollide::engine {
+
+/// One call the engine makes per substep, each on one pass object. The substep's order is written
+/// once, in PipelinePlan::stages(); the engine runs the list and the pass list (timers,
+/// statistics) is derived from it.
+enum class Stage : std::uint8_t {
+    NodeForce,          ///< external forces alone (scenes without springs)
+    SpringUpdate,       ///< spring forces plus the external force
+    CollisionDetection, ///< broad phase, TriTri and FeaturePairs (their own PassIds)
+    ImplicitSolve,      ///< implicit Euler: the springs' linear solve, v += Δv
+    ContactResponse,    ///< contact forces or impulses on the feature pairs
+    NodeUpdate,         ///< velocities and positions, pins, ground
+    FrameStep           ///< a whole frame of SpringUpdate + NodeUpdate in one dispatch (once per frame)
+};
 
 struct PipelinePlan {
     bool nodeForce = false;
@@ -36,7 +50,10 @@ struct PipelinePlan {
     CollisionSettings collision;
     ContactParams contact;
 
-    /// The passes a substep dispatches, in order.
+    /// What a substep runs, in order: the one place that states the substep's order.
+    [[nodiscard]] std::vector<Stage> stages() const;
+    /// The passes a substep dispatches, in order (stages() with the collision detection expanded
+    /// into its passes).
     [[nodiscard]] std::vector<passes::PassId> passIds() const;
     /// Their names (passes::passName).
     [[nodiscard]] std::vector<std::string> passes() const;
