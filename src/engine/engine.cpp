@@ -78,7 +78,9 @@ struct Engine::Impl {
     std::vector<std::uint32_t> heavyNodes; ///< nodes with more than kHeavyRow springs
 
     void chooseSubsteps();
+    gl::Buffer makeBuffer(passes::BufferId id);
     void allocate();
+    void makePass(engine::Stage stage);
     void substep(int index, bool lastOfFrame);
     void readHealth();
     void readSolverStats();
@@ -136,18 +138,25 @@ void Engine::Impl::chooseSubsteps() {
     plan.contact.substep = substeps.substepLength;
 }
 
-void Engine::Impl::allocate() {
+/// The initial contents of the engine's buffer `id` (PipelinePlan::bufferIds decides which exist).
+gl::Buffer Engine::Impl::makeBuffer(passes::BufferId id) {
+    using passes::BufferId;
     const model::FlatModel& m = model;
-    buffers.nodeCount = static_cast<std::uint32_t>(m.nodeCount());
-    buffers.faceCount = static_cast<std::uint32_t>(m.faceCount());
-    buffers.springCount = static_cast<std::uint32_t>(m.springs.size());
-    if (!plan.nodeUpdate) return;
-    buffers.positions = gl::makeBuffer("positions", packNodes(m.positions, &m.inverseMasses));
-    buffers.velocities = gl::makeBuffer("velocities", packNodes(m.velocities, nullptr));
-    buffers.faces = gl::makeBuffer("faces", m.faceIndices);
-    if (plan.nodeForce || plan.springUpdate)
-        buffers.forces = gl::Buffer("forces", m.nodeCount() * sizeof(glm::vec4));
-    if (plan.springs) {
+    const char* label = passes::bufferLabel(id);
+    // Without springs every row is empty (the implicit solver still reads the row lengths).
+    const auto springRowOffsets = [&] {
+        return plan.springs ? m.nodeSprings.offsets : std::vector<std::uint32_t>(m.nodeCount() + 1, 0u);
+    };
+    switch (id) {
+    case BufferId::Positions:
+        return gl::makeBuffer(label, packNodes(m.positions, &m.inverseMasses));
+    case BufferId::Velocities:
+        return gl::makeBuffer(label, packNodes(m.velocities, nullptr));
+    case BufferId::Faces:
+        return gl::makeBuffer(label, m.faceIndices);
+    case BufferId::Forces:
+        return gl::Buffer(label, m.nodeCount() * sizeof(glm::vec4));
+    case BufferId::Springs: {
         std::vector<gpu::GpuSpring> springs;
         springs.reserve(m.springs.size());
         for (const model::FlatSpring& s : m.springs)
@@ -156,28 +165,34 @@ void Engine::Impl::allocate() {
         for (std::size_t o = 0; o < m.objects.size(); ++o)
             for (std::uint32_t k = 0; k < m.objects[o].springCount; ++k)
                 springs[m.objects[o].firstSpring + k].object = static_cast<std::uint32_t>(o);
-        buffers.springs = gl::makeBuffer("springs", springs);
-        buffers.nodeSpringList = gl::makeBuffer("nodeSpringList", m.nodeSprings.items);
+        return gl::makeBuffer(label, springs);
     }
-    if (plan.springs || plan.implicitSolve) {
-        // Without springs every row is empty (the solver still reads the row lengths).
-        const std::vector<std::uint32_t> offsets =
-            plan.springs ? m.nodeSprings.offsets : std::vector<std::uint32_t>(m.nodeCount() + 1, 0u);
-        buffers.nodeSpringOffsets = gl::makeBuffer("nodeSpringOffsets", offsets);
-        heavyNodes = passes::heavyRowNodes(offsets);
-        buffers.heavyNodes = gl::makeBuffer("heavyNodes", heavyNodes);
-    }
-    if (plan.nodeForceParams.wind) { // NodeForce, SpringUpdate or ImplicitSetup gathers the faces
-        buffers.nodeFaceOffsets = gl::makeBuffer("nodeFaceOffsets", m.nodeFaces.offsets);
-        buffers.nodeFaceList = gl::makeBuffer("nodeFaceList", m.nodeFaces.items);
-    }
-    if (plan.nodeUpdateParams.checkFinite) {
+    case BufferId::NodeSpringOffsets:
+        return gl::makeBuffer(label, springRowOffsets());
+    case BufferId::NodeSpringList:
+        return gl::makeBuffer(label, m.nodeSprings.items);
+    case BufferId::HeavyNodes:
+        heavyNodes = passes::heavyRowNodes(springRowOffsets());
+        return gl::makeBuffer(label, heavyNodes);
+    case BufferId::NodeFaceOffsets:
+        return gl::makeBuffer(label, m.nodeFaces.offsets);
+    case BufferId::NodeFaceList:
+        return gl::makeBuffer(label, m.nodeFaces.items);
+    case BufferId::ContactForces:
+        return gl::makeBuffer(label, std::vector<glm::ivec4>(m.nodeCount(), glm::ivec4(0)));
+    case BufferId::Health: {
         const gpu::GpuHealth none{GLC_HEALTH_NONE, GLC_HEALTH_NONE, 0u, 0u};
-        buffers.health = gl::Buffer("health", sizeof none, &none);
+        return gl::Buffer(label, sizeof none, &none);
     }
-    if (plan.collisions)
-        buffers.contactForces =
-            gl::makeBuffer("contactForces", std::vector<glm::ivec4>(m.nodeCount(), glm::ivec4(0)));
+    }
+    throw Error("engine: no initial contents for buffer " + std::string(label));
+}
+
+void Engine::Impl::allocate() {
+    buffers.nodeCount = static_cast<std::uint32_t>(model.nodeCount());
+    buffers.faceCount = static_cast<std::uint32_t>(model.faceCount());
+    buffers.springCount = static_cast<std::uint32_t>(model.springs.size());
+    for (passes::BufferId id : plan.bufferIds()) buffers[id] = makeBuffer(id);
 }
 
 template <typename Pass, typename... Args> void Engine::Impl::run(const Pass& pass, Args&&... args) {
@@ -215,45 +230,63 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
     d.plan.frameStep = options.frameStep && d.plan.nodeUpdate && !d.plan.implicitSolve &&
                        !d.plan.collisions && (d.plan.nodeForce || d.plan.springUpdate) &&
                        d.buffers.nodeCount <= kFrameStepMaxNodes && d.heavyNodes.empty();
-    if (d.plan.frameStep) {
-        FrameStepParams& f = d.frameStepParams;
-        f.external = d.plan.nodeForceParams;
-        f.springs = d.plan.springUpdate;
-        f.update = d.plan.nodeUpdateParams;
-        f.substeps = static_cast<std::uint32_t>(d.substeps.substeps);
-        d.frameStep.emplace(f);
-        d.plan.nodeForce = d.plan.springUpdate = d.plan.nodeUpdate = false; // FrameStep does their work
-    }
-    if (d.plan.nodeForce) d.nodeForce.emplace(d.plan.nodeForceParams);
-    if (d.plan.springUpdate) d.springUpdate.emplace(d.plan.springUpdateParams);
-    if (d.plan.nodeUpdate) d.nodeUpdate.emplace(d.plan.nodeUpdateParams);
-    if (d.plan.implicitSolve)
-        d.implicitSolve.emplace(d.plan.implicitParams, d.buffers.nodeCount,
-                                static_cast<std::uint32_t>(d.heavyNodes.size()));
-    if (d.plan.collisions) {
-        passes::CollisionConfig config;
-        config.betweenObjects = d.plan.betweenObjects;
-        config.selfCollisions = d.plan.selfCollisions;
-        config.settings = d.plan.collision;
-        config.substepsPerFrame = static_cast<std::uint32_t>(d.substeps.substeps);
-        d.collision.emplace(config, d.model);
-        d.contact.emplace();
-        // Robust precision promises the oracle's answers; check that this device delivers them
-        // before relying on it (once per device, driver and shader; docs/narrow-phase.md).
-        if (d.plan.collision.precision == TriTriPrecision::Robust) {
-            d.setup.robustSelfCheck =
-                engine::runRobustSelfCheck(engine::effectiveSelfCheckMode(options.robustSelfCheck));
-            if (!d.setup.robustSelfCheck.message.empty())
-                d.warnings.push_back(d.setup.robustSelfCheck.message);
-        }
-    }
     d.stages = d.plan.stages();
+    for (engine::Stage stage : d.stages) d.makePass(stage);
     d.passIds = d.plan.passIds();
     for (passes::PassId id : d.passIds) d.passNames.emplace_back(passes::passName(id));
     d.stats.substeps = d.substeps.substeps;
     d.stats.collisions = d.plan.collisions;
     for (const std::string& name : d.passNames) d.stats.passes.push_back({name, 0.0});
     m_impl = std::move(impl);
+}
+
+/// Builds the pass object that runs `stage` (its programs; the collision detection's tables and
+/// lists, and the robust self-check where robust precision is used).
+void Engine::Impl::makePass(engine::Stage stage) {
+    using engine::Stage;
+    switch (stage) {
+    case Stage::NodeForce:
+        nodeForce.emplace(plan.nodeForceParams);
+        break;
+    case Stage::SpringUpdate:
+        springUpdate.emplace(plan.springUpdateParams);
+        break;
+    case Stage::ImplicitSolve:
+        implicitSolve.emplace(plan.implicitParams, buffers.nodeCount,
+                              static_cast<std::uint32_t>(heavyNodes.size()));
+        break;
+    case Stage::ContactResponse:
+        contact.emplace();
+        break;
+    case Stage::NodeUpdate:
+        nodeUpdate.emplace(plan.nodeUpdateParams);
+        break;
+    case Stage::FrameStep: {
+        FrameStepParams& f = frameStepParams;
+        f.external = plan.nodeForceParams;
+        f.springs = plan.springUpdate;
+        f.update = plan.nodeUpdateParams;
+        f.substeps = static_cast<std::uint32_t>(substeps.substeps);
+        frameStep.emplace(f);
+        break;
+    }
+    case Stage::CollisionDetection: {
+        passes::CollisionConfig config;
+        config.betweenObjects = plan.betweenObjects;
+        config.selfCollisions = plan.selfCollisions;
+        config.settings = plan.collision;
+        config.substepsPerFrame = static_cast<std::uint32_t>(substeps.substeps);
+        collision.emplace(config, model);
+        // Robust precision promises the oracle's answers; check that this device delivers them
+        // before relying on it (once per device, driver and shader; docs/narrow-phase.md).
+        if (plan.collision.precision == TriTriPrecision::Robust) {
+            setup.robustSelfCheck =
+                engine::runRobustSelfCheck(engine::effectiveSelfCheckMode(options.robustSelfCheck));
+            if (!setup.robustSelfCheck.message.empty()) warnings.push_back(setup.robustSelfCheck.message);
+        }
+        break;
+    }
+    }
 }
 
 Engine::~Engine() {

@@ -62,21 +62,32 @@ std::vector<std::string> PipelinePlan::passes() const {
     return names;
 }
 
-std::vector<std::string> PipelinePlan::buffers() const {
-    std::vector<std::string> b;
+std::vector<passes::BufferId> PipelinePlan::bufferIds() const {
+    using passes::BufferId;
+    std::vector<BufferId> b;
+    // Without NodeUpdate nothing moves: a scene of static bodies needs no buffer of its own.
     if (!nodeUpdate) return b;
-    b = {"positions", "velocities", "faces"};
-    if (nodeForce || springUpdate) b.emplace_back("forces");
-    if (springs) b.emplace_back("springs");
-    if (springs || implicitSolve) b.emplace_back("nodeSpringOffsets");
-    if (springs) b.emplace_back("nodeSpringList");
-    if (springs || implicitSolve) b.emplace_back("heavyNodes");
-    if (nodeForceParams.wind && (nodeForce || springUpdate || implicitSolve)) {
-        b.emplace_back("nodeFaceOffsets");
-        b.emplace_back("nodeFaceList");
+    b = {BufferId::Positions, BufferId::Velocities, BufferId::Faces};
+    if (nodeForce || springUpdate) b.push_back(BufferId::Forces); // FrameStep: the same as theirs
+    if (springs) b.push_back(BufferId::Springs);
+    // Without springs the solver still reads the (empty) row lengths.
+    if (springs || implicitSolve) b.push_back(BufferId::NodeSpringOffsets);
+    if (springs) b.push_back(BufferId::NodeSpringList);
+    if (springs || implicitSolve) b.push_back(BufferId::HeavyNodes);
+    // NodeForce, SpringUpdate, FrameStep or ImplicitSetup gathers the faces' wind drag.
+    if (nodeForceParams.wind) {
+        b.push_back(BufferId::NodeFaceOffsets);
+        b.push_back(BufferId::NodeFaceList);
     }
-    if (collisions) b.emplace_back("contactForces");
+    if (collisions) b.push_back(BufferId::ContactForces);
+    if (nodeUpdateParams.checkFinite) b.push_back(BufferId::Health);
     return b;
+}
+
+std::vector<std::string> PipelinePlan::buffers() const {
+    std::vector<std::string> labels;
+    for (passes::BufferId id : bufferIds()) labels.emplace_back(passes::bufferLabel(id));
+    return labels;
 }
 
 PipelinePlan planPipeline(const Scene& scene) {

@@ -4,6 +4,7 @@
 
 #include "core/contact_params.hpp"
 #include "core/dynamics_params.hpp"
+#include "passes/device_buffers.hpp"
 #include "passes/pass_id.hpp"
 
 #include <glcollide/scene.hpp>
@@ -57,8 +58,11 @@ struct PipelinePlan {
     [[nodiscard]] std::vector<passes::PassId> passIds() const;
     /// Their names (passes::passName).
     [[nodiscard]] std::vector<std::string> passes() const;
-    /// Labels of the engine's own buffers (DeviceBuffers declaration order); the collision
-    /// detection's lists and tables follow them in Engine::allocatedBuffers().
+    /// The engine's own buffers the scene needs (DeviceBuffers declaration order): the one place
+    /// that decides them; Engine allocates exactly these. The collision detection's lists and
+    /// tables and the solver's vectors follow them in Engine::allocatedBuffers().
+    [[nodiscard]] std::vector<passes::BufferId> bufferIds() const;
+    /// Their labels (passes::bufferLabel).
     [[nodiscard]] std::vector<std::string> buffers() const;
 };
 

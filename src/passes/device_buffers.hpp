@@ -4,11 +4,33 @@
 
 #include "gl/handles.hpp"
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace glcollide::passes {
+
+/// The engine's own buffers, in declaration order of DeviceBuffers (the plan lists the ones a
+/// scene needs by id; the engine allocates exactly those).
+enum class BufferId : std::uint8_t {
+    Positions,
+    Velocities,
+    Faces,
+    Forces,
+    Springs,
+    NodeSpringOffsets,
+    NodeSpringList,
+    HeavyNodes,
+    NodeFaceOffsets,
+    NodeFaceList,
+    ContactForces,
+    Health
+};
+inline constexpr std::size_t kBufferIdCount = 12;
+
+/// The buffer's label: its GL object label and its name in `run`'s output and --stats.
+const char* bufferLabel(BufferId id);
 
 struct DeviceBuffers {
     std::uint32_t nodeCount = 0;
@@ -27,6 +49,10 @@ struct DeviceBuffers {
     gl::Buffer nodeFaceList;    ///< uint[3 * faceCount] (NodeForce with wind)
     gl::Buffer contactForces;   ///< ivec4 fixed point (collisions: ContactResponse → NodeUpdate)
     gl::Buffer health;          ///< GpuHealth (NodeUpdate with EngineOptions::checkFinite)
+
+    /// The buffer `id` names.
+    [[nodiscard]] gl::Buffer& operator[](BufferId id);
+    [[nodiscard]] const gl::Buffer& operator[](BufferId id) const;
 
     /// Labels of the allocated buffers, in declaration order.
     [[nodiscard]] std::vector<std::string> allocatedLabels() const;

@@ -49,6 +49,25 @@ TEST(PipelinePlan, PassesFollowEffects) {
     EXPECT_FALSE(plan.nodeUpdateParams.forces);
     EXPECT_TRUE(plan.nodeUpdateParams.ground);
     EXPECT_EQ(plan.buffers(), (std::vector<std::string>{"positions", "velocities", "faces"}));
+    plan.nodeUpdateParams.checkFinite = true; // EngineOptions::checkFinite: NodeUpdate records health
+    EXPECT_EQ(plan.buffers(), (std::vector<std::string>{"positions", "velocities", "faces", "health"}));
+}
+
+TEST(PipelinePlan, StagesStateTheSubstepOrderOnce) {
+    using engine::Stage;
+    Scene scene = defaultScene();
+    scene.effects = {Effect::Gravity, Effect::Springs, Effect::Collisions};
+    engine::PipelinePlan plan = engine::planPipeline(scene);
+    EXPECT_EQ(plan.stages(), (std::vector<Stage>{Stage::SpringUpdate, Stage::CollisionDetection,
+                                                 Stage::ContactResponse, Stage::NodeUpdate}));
+    scene.time.integrator = Integrator::ImplicitEuler;
+    plan = engine::planPipeline(scene);
+    // The springs' solve comes after detection and before the response, which acts on its velocities.
+    EXPECT_EQ(plan.stages(), (std::vector<Stage>{Stage::CollisionDetection, Stage::ImplicitSolve,
+                                                 Stage::ContactResponse, Stage::NodeUpdate}));
+    plan.frameStep = true; // FrameStep replaces the whole substep
+    EXPECT_EQ(plan.stages(), std::vector<Stage>{Stage::FrameStep});
+    EXPECT_EQ(plan.passes(), std::vector<std::string>{"FrameStep"});
 }
 
 TEST(PipelinePlan, EmptySceneRunsNothing) {
