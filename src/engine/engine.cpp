@@ -220,6 +220,9 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
         f.springs = d.plan.springUpdate;
         f.update = d.plan.nodeUpdateParams;
         f.substeps = static_cast<std::uint32_t>(d.substeps.substeps);
+        f.substepsPerDispatch = passes::frameStepSubstepsPerDispatch(
+            d.buffers.nodeCount, f.springs ? &d.model.nodeSprings : nullptr,
+            f.external.wind ? &d.model.nodeFaces : nullptr);
         d.frameStep.emplace(f);
         d.plan.nodeForce = d.plan.springUpdate = d.plan.nodeUpdate = false; // FrameStep does their work
     }
