@@ -1,7 +1,8 @@
 // The implicit Euler solver on the GPU (shaders/passes/implicit_*.comp) against independent
 // answers: an exact dense solve of the same linear system (cpu::implicitVelocityChangeDense), the
 // double-precision twin of the same PCG (cpu::implicitVelocityUpdate) where the dense solve is too
-// large, and the closed form of backward Euler on one spring.
+// large, and the system itself (the true residual). Backward Euler's closed form on one spring is
+// in physics_gl_test.cpp.
 //
 // What is checked. The solver stops when its recursively updated float residual r satisfies
 // ‖r‖ ≤ tol·‖b‖. The tests check the answer itself against the system: the true residual
