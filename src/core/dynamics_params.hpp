@@ -53,7 +53,8 @@ struct ImplicitParams {
 
 /// The largest scene FrameStep takes: one work group of 1024 invocations walks every node twice
 /// per substep, which beats two dispatches per substep only while a dispatch's launch costs more
-/// than the nodes' work (measured on llvmpipe: docs/integration.md, "Fewer dispatches").
+/// than the nodes' work (docs/integration.md, "Fewer dispatches"; not yet measured in a committed
+/// run).
 inline constexpr std::uint32_t kFrameStepMaxNodes = 4096;
 /// Substeps one FrameStep dispatch runs at most (a frame with more takes several dispatches).
 inline constexpr std::uint32_t kFrameStepSubstepsPerDispatch = 1024;
