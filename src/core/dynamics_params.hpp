@@ -51,20 +51,24 @@ struct ImplicitParams {
     int maxIterations = 64;    ///< CG iteration cap
 };
 
+/// The largest scene FrameStep takes: one work group of 1024 invocations walks every node twice
+/// per substep, which beats two dispatches per substep only while a dispatch's launch costs more
+/// than the nodes' work (docs/integration.md, "Fewer dispatches"; not yet measured in a committed
+/// run).
+inline constexpr std::uint32_t kFrameStepMaxNodes = 4096;
+/// Substeps one FrameStep dispatch runs at most (a frame with more takes several dispatches).
+inline constexpr std::uint32_t kFrameStepSubstepsPerDispatch = 1024;
+
 /// FrameStep: a whole frame of symplectic Euler substeps in one dispatch of one work group.
 struct FrameStepParams {
     NodeForceParams external; ///< gravity, air damping, wind
     bool springs = false;
     NodeUpdateParams update; ///< h, ground, checkFinite (no forces buffer flag, no contacts)
     std::uint32_t substeps = 1;
+    /// Substeps per dispatch: kFrameStepSubstepsPerDispatch, or fewer where an invocation would
+    /// loop too often (passes::frameStepSubstepsPerDispatch).
+    std::uint32_t substepsPerDispatch = kFrameStepSubstepsPerDispatch;
 };
-
-/// The largest scene FrameStep takes: one work group of 1024 invocations walks every node twice
-/// per substep, which beats two dispatches per substep only while a dispatch's launch costs more
-/// than the nodes' work (measured on llvmpipe: docs/integration.md, "Fewer dispatches").
-inline constexpr std::uint32_t kFrameStepMaxNodes = 4096;
-/// Substeps one FrameStep dispatch runs at most (a frame with more takes several dispatches).
-inline constexpr std::uint32_t kFrameStepSubstepsPerDispatch = 1024;
 
 /// Nodes with more springs than this are gathered by a whole work group (GLC_HEAVY_ROW).
 inline constexpr std::uint32_t kHeavyRow = 64;

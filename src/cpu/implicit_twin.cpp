@@ -209,6 +209,19 @@ std::vector<glm::dvec3> implicitVelocityChangeDense(const ImplicitParams& params
     return dv;
 }
 
+std::vector<glm::dvec3> implicitRightHandSide(const ImplicitParams& params,
+                                              const std::vector<model::FlatSpring>& springs,
+                                              const model::Csr& nodeSprings, const NodeState& state) {
+    return assemble(params, springs, nodeSprings, state).b;
+}
+
+std::vector<glm::dvec3> implicitSystemProduct(const ImplicitParams& params,
+                                              const std::vector<model::FlatSpring>& springs,
+                                              const model::Csr& nodeSprings, const NodeState& state,
+                                              const std::vector<glm::dvec3>& x) {
+    return multiply(params, springs, nodeSprings, state, x);
+}
+
 double implicitRightHandSideNorm(const ImplicitParams& params, const std::vector<model::FlatSpring>& springs,
                                  const model::Csr& nodeSprings, const NodeState& state) {
     const Assembly a = assemble(params, springs, nodeSprings, state);

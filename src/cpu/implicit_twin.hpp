@@ -52,6 +52,19 @@ std::vector<glm::dvec3> implicitVelocityChangeDense(const ImplicitParams& params
                                                     const std::vector<model::FlatSpring>& springs,
                                                     const model::Csr& nodeSprings, const NodeState& state);
 
+/// The right-hand side b of the system, per node (0 for pinned nodes), as the twin assembles it.
+std::vector<glm::dvec3> implicitRightHandSide(const ImplicitParams& params,
+                                              const std::vector<model::FlatSpring>& springs,
+                                              const model::Csr& nodeSprings, const NodeState& state);
+
+/// A·x, the matrix-free product the twin's PCG uses (pinned entries of x are ignored, pinned rows of
+/// the result are 0). With implicitRightHandSide a test evaluates the true residual b − A·Δv of any
+/// Δv, e.g. the GPU's, in double.
+std::vector<glm::dvec3> implicitSystemProduct(const ImplicitParams& params,
+                                              const std::vector<model::FlatSpring>& springs,
+                                              const model::Csr& nodeSprings, const NodeState& state,
+                                              const std::vector<glm::dvec3>& x);
+
 /// ‖b‖₂ of the system (for the error bound ‖Δv − Δv*‖ ≤ tol·‖b‖ / min mass of the tests).
 double implicitRightHandSideNorm(const ImplicitParams& params, const std::vector<model::FlatSpring>& springs,
                                  const model::Csr& nodeSprings, const NodeState& state);

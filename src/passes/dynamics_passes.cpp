@@ -110,6 +110,23 @@ std::vector<std::string> frameStepDefines(const FrameStepParams& c) {
 }
 } // namespace
 
+std::uint32_t frameStepSubstepsPerDispatch(std::uint32_t nodeCount, const model::Csr* nodeSprings,
+                                           const model::Csr* nodeFaces) {
+    constexpr std::uint64_t kLoopBudget = 32768; // half of llvmpipe's 65,535: how it counts may differ
+    const auto rowLength = [](const model::Csr* rows, std::uint32_t i) -> std::uint64_t {
+        return rows ? rows->offsets[i + 1] - rows->offsets[i] : 0u;
+    };
+    std::uint64_t busiest = 0; // loop iterations per substep of the busiest invocation
+    for (std::uint32_t lane = 0; lane < GLC_FRAME_STEP_GROUP && lane < nodeCount; ++lane) {
+        std::uint64_t iterations = 1 + 2; // the substep loop; the two node loops' last tests
+        for (std::uint32_t i = lane; i < nodeCount; i += GLC_FRAME_STEP_GROUP)
+            iterations += 2 + (rowLength(nodeSprings, i) + 1) + (rowLength(nodeFaces, i) + 1);
+        busiest = std::max(busiest, iterations);
+    }
+    const std::uint64_t fits = busiest == 0 ? kFrameStepSubstepsPerDispatch : kLoopBudget / busiest;
+    return static_cast<std::uint32_t>(std::clamp<std::uint64_t>(fits, 1, kFrameStepSubstepsPerDispatch));
+}
+
 FrameStepPass::FrameStepPass(const FrameStepParams& config)
     : m_config(config), m_program("frame_step", frameStepDefines(config)) {}
 
@@ -133,10 +150,12 @@ void FrameStepPass::dispatch(const DeviceBuffers& b, const FrameStepParams& para
         m_program.set("u_friction", static_cast<float>(params.update.friction));
     }
     // At most kFrameStepSubstepsPerDispatch substeps per dispatch, so no single dispatch runs long
-    // enough to meet a display driver's watchdog.
-    for (std::uint32_t first = 0; first < params.substeps; first += kFrameStepSubstepsPerDispatch) {
+    // enough to meet a display driver's watchdog, and fewer where llvmpipe's loop limiter would
+    // end the invocations early (frameStepSubstepsPerDispatch).
+    const std::uint32_t perDispatch = std::max(1u, params.substepsPerDispatch);
+    for (std::uint32_t first = 0; first < params.substeps; first += perDispatch) {
         m_program.set("u_firstSubstep", first);
-        m_program.set("u_substeps", std::min(kFrameStepSubstepsPerDispatch, params.substeps - first));
+        m_program.set("u_substeps", std::min(perDispatch, params.substeps - first));
         gl::ComputeProgram::dispatch(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }

@@ -6,6 +6,7 @@
 
 #include "core/dynamics_params.hpp"
 #include "gl/program.hpp"
+#include "model/flat_model.hpp"
 #include "passes/device_buffers.hpp"
 #include "passes/pass_id.hpp"
 
@@ -57,6 +58,16 @@ class NodeUpdatePass {
 
 /// Every substep of a frame in one dispatch (shaders/passes/frame_step.comp): for small scenes
 /// without collisions and without heavy rows.
+/// Substeps one FrameStep dispatch may run (at most kFrameStepSubstepsPerDispatch) so that none of
+/// its invocations loops more than 2^15 times in all: llvmpipe ends an invocation's loops silently
+/// after 65,535 iterations in total (gallivm's loop limiter, as in octree_expand.comp), which cut
+/// a frame of 4,096 nodes short beyond ~800 substeps. Counted per invocation (every
+/// GLC_FRAME_STEP_GROUP-th node) with one more iteration per loop than it runs: the substep loop,
+/// per node the two node loops, its springs (`nodeSprings`, null without springs) and its faces
+/// (`nodeFaces`, null without wind).
+std::uint32_t frameStepSubstepsPerDispatch(std::uint32_t nodeCount, const model::Csr* nodeSprings,
+                                           const model::Csr* nodeFaces);
+
 class FrameStepPass {
   public:
     static constexpr PassId kId = PassId::FrameStep;

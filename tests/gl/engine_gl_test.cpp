@@ -9,8 +9,13 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace glcollide {
 namespace {
@@ -122,6 +127,76 @@ TEST(EngineGl, SmallScenesRunAFrameInOneDispatchWithTheSameResult) {
     Engine implicit(sceneWith(R"(["springs"])", R"("time": {"integrator": "implicit_euler"},)"),
                     {.frameStep = true});
     EXPECT_EQ(implicit.pipeline(), (Names{"ImplicitSolve", "NodeUpdate"}));
+}
+
+/// A cloth of nx × ny nodes, tilted 60° with its lowest row 1 cm above the ground, thrown sideways
+/// and down into the wind at `substeps` substeps per frame: springs, gravity, damping, wind and
+/// the ground all act in the frame, and every node moves by centimetres.
+Scene thrownClothInTheWind(int nx, int ny, int substeps) {
+    const std::string json = R"({"format_version": 1, "name": "thrown cloth",
+      "effects": ["gravity", "springs", "damping", "wind", "ground"],
+      "time": {"substeps": )" +
+                             std::to_string(substeps) +
+                             R"(}, "damping": 0.1,
+      "wind": {"velocity": [2, 0, 4], "drag": 1},
+      "ground": {"height": 0, "restitution": 0.3, "friction": 0.5},
+      "objects": [{"name": "cloth", "generator": {"type": "cloth", "size": [1, 1], "resolution": [)" +
+                             std::to_string(nx) + ", " + std::to_string(ny) + R"(]},
+                   "transform": {"translate": [0, 0.26, 0], "rotate_deg": [60, 0, 0]},
+                   "velocity": [3, -2, 1], "angular_velocity": [0, 4, 0], "mass": 0.1,
+                   "springs": {"stiffness": 1000, "damping": 0.001}}]})";
+    return parseScene(json, ".", "thrown cloth");
+}
+
+// FrameStep's one work group of GLC_FRAME_STEP_GROUP = 1024 invocations takes every 1024th node,
+// and a dispatch runs at most kFrameStepSubstepsPerDispatch = 1024 substeps, fewer where
+// llvmpipe's loop limiter would end its invocations early. The default scene (1024 nodes, 66
+// substeps) exercises neither stride nor split: these scenes have 1,025 and 4,096 (the largest
+// FrameStep takes) nodes and 1,100 substeps per frame. This test found the loop limit: a
+// 4,096-node frame beyond ~800 substeps in one dispatch was cut short (positions 2.6 cm off).
+TEST(EngineGl, FrameStepMatchesThePerSubstepPassesBeyondOneWorkGroup) {
+    constexpr int kSubsteps = 1100;
+    for (const auto& [nx, ny] : {std::pair{25, 41}, std::pair{64, 64}}) {
+        const Scene scene = thrownClothInTheWind(nx, ny, kSubsteps);
+        Engine fused(scene, {.frameStep = true}), perSubstep(scene);
+        const std::string what = std::to_string(nx * ny) + " nodes";
+        ASSERT_EQ(fused.nodeCount(), static_cast<std::uint32_t>(nx * ny)) << what;
+        EXPECT_EQ(fused.pipeline(), (Names{"FrameStep"})) << what;
+        EXPECT_EQ(perSubstep.pipeline(), (Names{"SpringUpdate", "NodeUpdate"})) << what;
+        EXPECT_TRUE(fused.warnings().empty())
+            << what << ": 1,100 substeps are above the stability rule's count";
+        const std::vector<glm::dvec3> start = perSubstep.readPositions();
+        fused.step();
+        perSubstep.step();
+        // Several dispatches (1,024 substeps at most each, fewer for llvmpipe's loop limit), still
+        // far fewer than two per substep.
+        const double dispatches = fused.lastStep().dispatchesPerSubstep * kSubsteps;
+        EXPECT_GE(dispatches, 2.0) << what;
+        EXPECT_LE(dispatches, 8.0) << what;
+        const std::vector<glm::dvec3> a = fused.readPositions(), b = perSubstep.readPositions();
+        // The same shared GLSL in the same order (SpringUpdate's spring + external sum and
+        // FrameStep's external + spring are one commutative float addition), so llvmpipe gives
+        // identical bits. Another compiler may contract a·b + c into a fused multiply-add in one
+        // program and not the other: u = 2^-24 relative per rounding, so per substep at most a few
+        // u of the coordinates (< 0.7 m here) in each of three components; linear over the
+        // substeps of one frame at a stable step, with a margin of 8 (the bound of
+        // SmallScenesRunAFrameInOneDispatchWithTheSameResult): 1.1 mm.
+        const double tolerance = 8.0 * 3 * kSubsteps * 0.7 * 0x1p-24;
+        double largest = 0.0, smallestMove = 1e30;
+        int grounded = 0;
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            largest = std::max(largest, glm::length(a[i] - b[i]));
+            smallestMove = std::min(smallestMove, glm::length(b[i] - start[i]));
+            if (b[i].y == 0.0) ++grounded;
+        }
+        std::printf("%s: %.0f dispatches; FrameStep vs the per-substep passes: largest difference %.3g m "
+                    "(tolerance %.3g m); every node moved at least %.3g m, %d on the ground\n",
+                    what.c_str(), dispatches, largest, tolerance, smallestMove, grounded);
+        EXPECT_LE(largest, tolerance) << what;
+        // The comparison sees a node FrameStep leaves behind: every node moves by far more.
+        EXPECT_GT(smallestMove, 10.0 * tolerance) << what;
+        EXPECT_GT(grounded, 0) << what << ": the ground must act in the frame";
+    }
 }
 
 TEST(EngineGl, ImplicitEulerWarnsWhenPenaltyContactsNeedMoreSubsteps) {

@@ -9,9 +9,11 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <vector>
 
 namespace glcollide {
 namespace {
@@ -222,10 +224,15 @@ TEST(PhysicsGl, ImplicitEulerSpringMassFollowsTheBackwardEulerClosedForm) {
     EXPECT_LT(std::abs(y), 0.05 * 1e-5);
 }
 
+// The cloth starts horizontal, pinned at two corners, and swings down at one implicit substep per
+// frame (symplectic Euler would need 815). The solves must converge: the 64-iteration default cap
+// stopped every substep at ‖r‖/‖b‖ up to 4.4·10⁻² (issue 21), so this scene raises the cap to the
+// format's largest, 1024 (measured: 139–721 iterations per substep over the first second).
 TEST(PhysicsGl, ImplicitHangingClothWithStiffness1e5IsStableAtOneSubstepPerFrame) {
     const std::string json = R"({
       "format_version": 1, "name": "stiff hanging cloth", "effects": ["gravity", "springs", "damping"],
-      "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 1, "frames": 1},
+      "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 1, "frames": 1,
+               "solver": {"tolerance": 1e-4, "max_iterations": 1024}},
       "damping": 0.1,
       "objects": [{"name": "cloth", "generator": {"type": "cloth", "size": [1, 1], "resolution": [32, 32]},
                    "transform": {"translate": [0, 1.5, 0], "rotate_deg": [90, 0, 0]}, "mass": 0.3,
@@ -235,20 +242,37 @@ TEST(PhysicsGl, ImplicitHangingClothWithStiffness1e5IsStableAtOneSubstepPerFrame
     Engine engine(scene);
     ASSERT_GT(engine.substepInfo().stableSubsteps, 500) << "symplectic Euler would need hundreds";
     const double e0 = engine.energy().total();
-    double lowest = 10.0, highest = e0;
-    for (int frame = 1; frame <= 180; ++frame) { // 3 s
+    constexpr int kFrames = 60; // 1 s: the swing down, the energy's peak and its fall below the start
+    std::vector<double> energy{e0};
+    for (int frame = 1; frame <= kFrames; ++frame) {
         engine.step();
         ASSERT_FALSE(engine.lastStep().nonFinite.found) << "frame " << frame;
-        highest = std::max(highest, engine.energy().total());
+        const SolverStats& solver = engine.lastStep().solver;
+        ASSERT_EQ(solver.unconvergedSubsteps, 0u) << "frame " << frame << ": stopped at the cap";
+        ASSERT_LE(solver.maxRelativeResidual, scene.time.solver.tolerance) << "frame " << frame;
+        energy.push_back(engine.energy().total());
     }
-    // One linearised step of backward Euler is dissipative for the linear system, not for the
-    // rotating stiff springs of a swinging cloth: while it swings down the linearisation stretches
-    // them and the total energy rises by up to ~20 % (measured on llvmpipe; docs/integration.md).
-    // Bounded, not growing: below twice the start throughout, and below the start once it settles.
-    EXPECT_LT(highest, 2.0 * e0);
-    EXPECT_LT(engine.energy().total(), e0);
+    const double highest = *std::max_element(energy.begin(), energy.end());
+    std::printf("energy: start %.4f J, highest %.4f J (%+.1f %%), after 0.5 s %.4f J, after 1 s %.4f J\n", e0,
+                highest, 100.0 * (highest / e0 - 1.0), energy[kFrames / 2], energy[kFrames]);
+    // One linearised step of backward Euler dissipates energy for the linear system, not for the
+    // rotating stiff springs of a swinging cloth: the step moves their ends along the linearised
+    // (tangential) direction, which stretches them, and at 10⁵ N/m a small stretch holds much
+    // energy. So the total energy rises while the cloth swings down; measured on llvmpipe with
+    // these converged solves: +36.7 % at frame 5 (+14.6 % when every solve stopped at 64
+    // iterations: a capped solve damps more). The bound is that measurement plus 13 % of the start
+    // for another device's rounding (a converged answer is fixed by the system to within the
+    // tolerance, 10⁻⁴ relative); a step that amplifies leaves it within frames.
+    EXPECT_LT(highest, 1.5 * e0);
+    // Independent of that number, it is not growing: below the start at the end (measured 3.04 J
+    // against 4.41 J), and never again above the energy it had after 0.5 s in the second half
+    // (measured: 4.40 J after 0.5 s, 3.04 J after 1 s, falling but for rises of a few mJ).
+    EXPECT_LT(energy[kFrames], e0);
+    EXPECT_LT(*std::max_element(energy.begin() + kFrames / 2 + 1, energy.end()), energy[kFrames / 2]);
+    double lowest = 10.0;
     for (const glm::dvec3& x : engine.readPositions()) lowest = std::min(lowest, x.y);
-    // Stiff structural springs: the 1 m cloth hangs from y = 1.5 m and stretches little.
+    // Stiff structural springs: the 1 m cloth hangs from y = 1.5 m and stretches little (measured
+    // lowest node after 1 s: 0.548 m, still swinging).
     EXPECT_GT(lowest, 1.5 - 1.1);
     EXPECT_LT(lowest, 1.5 - 0.9);
 }
