@@ -58,9 +58,11 @@ struct EngineOptions {
     /// Run all substeps of a frame in one dispatch (FrameStep) when the scene qualifies: symplectic
     /// Euler, no collision effect, forces to integrate, at most 4096 nodes and no node with more
     /// than 64 springs. Same arithmetic as SpringUpdate + NodeUpdate, one dispatch per frame instead
-    /// of two per substep. Off by default: on llvmpipe, where one work group runs on one core, it
-    /// measured 10 % slower per substep; on a GPU, where a small scene's substep is launch-bound, it
-    /// is expected to be faster but is not measured yet (docs/integration.md, "Fewer dispatches").
+    /// of two per substep (more for frames long enough to reach llvmpipe's loop limit). Off by
+    /// default: on llvmpipe its one work group runs on one core, the per-substep passes on all, so
+    /// it is not expected to win there; on a GPU, where a small scene's substep is launch-bound, it
+    /// is expected to be faster. Neither is measured in a committed result yet
+    /// (docs/integration.md, "Fewer dispatches").
     bool frameStep = false;
 };
 
