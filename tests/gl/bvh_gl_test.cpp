@@ -11,10 +11,10 @@
 // at 1, L-1, L+1 and a large prime number of faces, and with capacity 1 on every list.
 
 #include "core/gpu_layout.hpp"
-#include "gl/handles.hpp"
-#include "gl/program.hpp"
 #include "cpu/bvh_twin.hpp"
 #include "cpu/collision_twin.hpp"
+#include "gl/handles.hpp"
+#include "gl/program.hpp"
 #include "model/face_box.hpp"
 #include "model/flat_model.hpp"
 #include "passes/broad_phase/radix_sort.hpp"
