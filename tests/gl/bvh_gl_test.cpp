@@ -5,13 +5,16 @@
 //    the twin's refit (exact float min/max), and the traversal's node visits against the twin's;
 //  * refit equals rebuild on the same positions; the rebuild cadence in frames;
 //  * traversal that resumes across dispatches (a budget of 1, 3 and 16 node visits per dispatch)
-//    loses no pair; candidates of a folded cloth equal the brute force and the octree's.
+//    loses no pair; candidates of a folded cloth equal the brute force and the octree's;
+//  * scenes full of equal Morton codes (the tie rule): the twin's tree, the brute force's pairs.
 // The parameterised soups of collision_detection_gl_test.cpp run the BVH through every pair rule,
 // at 1, L-1, L+1 and a large prime number of faces, and with capacity 1 on every list.
 
 #include "core/gpu_layout.hpp"
 #include "cpu/bvh_twin.hpp"
 #include "cpu/collision_twin.hpp"
+#include "gl/handles.hpp"
+#include "gl/program.hpp"
 #include "model/face_box.hpp"
 #include "model/flat_model.hpp"
 #include "passes/broad_phase/radix_sort.hpp"
@@ -27,7 +30,10 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <limits>
+#include <numeric>
 #include <random>
+#include <string>
 
 namespace glcollide {
 namespace {
@@ -159,6 +165,51 @@ Scene foldedCloth(std::uint32_t cells, std::uint32_t layers, double spacing) {
     return s;
 }
 
+/// `base` `copies` times over, every copy its own object at the same positions: every face
+/// centroid, hence every Morton code, appears `copies` times.
+Scene coincidentCopies(const Scene& base, std::uint32_t copies) {
+    Scene s;
+    const auto nodes = static_cast<std::uint32_t>(base.model.positions.size());
+    const auto faces = static_cast<std::uint32_t>(base.model.faceCount());
+    for (std::uint32_t c = 0; c < copies; ++c) {
+        s.model.positions.insert(s.model.positions.end(), base.model.positions.begin(),
+                                 base.model.positions.end());
+        for (std::uint32_t i : base.model.faceIndices) s.model.faceIndices.push_back(c * nodes + i);
+        for (model::ObjectRange r : base.model.objects) {
+            r.firstNode += c * nodes;
+            r.firstFace += c * faces;
+            s.model.objects.push_back(r);
+        }
+    }
+    finish(s);
+    return s;
+}
+
+/// Adds an object of `count` separate triangles (no shared nodes) that share one vertex box, the
+/// cube of half-side `halfSide` at `centre`: two opposite corners of the cube and a third vertex
+/// inside it, different for each. Their centroids (the box's centre) are bitwise equal, so all of
+/// them get one Morton code, and every two of them are a candidate pair.
+void addSameCentroidTriangles(Scene& s, std::uint32_t count, const glm::dvec3& centre, double halfSide,
+                              std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> inside(-0.9 * halfSide, 0.9 * halfSide);
+    model::ObjectRange r;
+    r.firstNode = static_cast<std::uint32_t>(s.model.positions.size());
+    r.firstFace = static_cast<std::uint32_t>(s.model.faceCount());
+    r.nodeCount = 3 * count;
+    r.faceCount = count;
+    for (std::uint32_t k = 0; k < count; ++k) {
+        const std::uint32_t first = r.firstNode + 3 * k;
+        s.model.positions.push_back(centre - glm::dvec3(halfSide));
+        s.model.positions.push_back(centre + glm::dvec3(halfSide));
+        s.model.positions.push_back(centre + glm::dvec3(inside(rng), inside(rng), inside(rng)));
+        s.model.faceIndices.insert(s.model.faceIndices.end(), {first, first + 1, first + 2});
+    }
+    s.model.objects.push_back(r);
+    s.current.clear();
+    finish(s);
+}
+
 passes::DeviceBuffers upload(const Scene& s) {
     return test::collisionBuffers(s.current, s.model.faceIndices);
 }
@@ -197,6 +248,53 @@ Tree readTree(const passes::CollisionDetection& d, std::uint32_t faces) {
     t.links = download<glm::uvec4>(d.broadPhaseBuffer("bvhLinks"), 2 * std::size_t{faces} - 1);
     t.boxes = download<gpu::GpuBox>(d.broadPhaseBuffer("bvhBoxes"), 2 * std::size_t{faces} - 1);
     return t;
+}
+
+/// bvh_hierarchy.comp alone, on sorted keys and their faces given by the test: its links.
+std::vector<glm::uvec4> hierarchyKernel(const std::vector<std::uint32_t>& sortedKeys,
+                                        const std::vector<std::uint32_t>& sortedFaces) {
+    const auto n = static_cast<std::uint32_t>(sortedKeys.size());
+    passes::RadixSort sorted(n); // only its buffers: the kernel reads the sorted pairs there
+    sorted.load(sortedKeys, sortedFaces);
+    sorted.bindForReading();
+    const gl::Buffer links =
+        gl::makeBuffer("bvhLinks", std::vector<glm::uvec4>(2 * std::size_t{n} - 1, glm::uvec4(0)));
+    links.bindStorage(GLC_BIND_BVH_LINKS);
+    const gl::ComputeProgram hierarchy("bvh_hierarchy");
+    hierarchy.set("u_faceCount", n);
+    hierarchy.use();
+    hierarchy.dispatch1D(n, GLC_WORKGROUP_SIZE);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    return download<glm::uvec4>(links, 2 * std::size_t{n} - 1);
+}
+
+/// The number of nodes whose links differ between two trees (0: equal); a count, not the whole
+/// vectors, in a failure message.
+std::size_t nodesWithOtherLinks(const std::vector<glm::uvec4>& got, const std::vector<glm::uvec4>& want) {
+    if (got.size() != want.size()) return std::max(got.size(), want.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < got.size(); ++i) differing += got[i] != want[i] ? 1 : 0;
+    return differing;
+}
+
+/// The scene's Morton codes as the twin computes them, sorted stably, with their faces.
+std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t>> twinSortedKeys(const Scene& s) {
+    const auto faces = static_cast<std::uint32_t>(s.model.faceCount());
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (std::uint32_t f = 0; f < faces; ++f) {
+        lo = glm::min(lo, cpu::faceCentroid(s.model.faceIndices, s.current, f));
+        hi = glm::max(hi, cpu::faceCentroid(s.model.faceIndices, s.current, f));
+    }
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    for (std::uint32_t f = 0; f < faces; ++f)
+        pairs.emplace_back(cpu::mortonCode(cpu::faceCentroid(s.model.faceIndices, s.current, f), lo, hi), f);
+    std::stable_sort(pairs.begin(), pairs.end(), [](auto a, auto b) { return a.first < b.first; });
+    std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t>> sorted;
+    for (auto [key, face] : pairs) {
+        sorted.first.push_back(key);
+        sorted.second.push_back(face);
+    }
+    return sorted;
 }
 
 void expectBoxesEqualTwinRefit(const Tree& t, const Scene& s, const std::vector<glm::vec3>& at,
@@ -270,6 +368,76 @@ TEST(BvhGl, NodeVisitsEqualTheTwinTraversal) {
     EXPECT_EQ(d.readCandidates(), twin);
     EXPECT_EQ(counts.bvhNodeVisits, visits);
     EXPECT_EQ(counts.bvhRounds, 1u);
+}
+
+// Equal Morton codes: the tree tells them apart by their sorted index (the tie rule of
+// bvh_hierarchy.comp's delta), which only shows where codes repeat; the random strips above have
+// (almost) none. The kernel alone first, on sorted random keys with few distinct values (runs of
+// equal keys up to the whole input), at 1, 2, 3, L-1, L+1 and two primes of leaves (L = 128, the
+// work group): its links are the twin's, whose tie rule tests/unit/bvh_twin_test.cpp checks
+// against the definition of a radix tree.
+TEST(BvhGl, HierarchyKernelEqualsTheTwinOnKeysFullOfTies) {
+    for (std::uint32_t n : {1u, 2u, 3u, 127u, 129u, 1009u, 4099u})
+        for (std::uint32_t distinct : {1u, 2u, 7u, n / 4 + 1}) {
+            std::mt19937 rng(n * 31 + distinct);
+            std::uniform_int_distribution<std::uint32_t> value(0, distinct - 1);
+            std::vector<std::uint32_t> keys(n), faces(n);
+            for (std::uint32_t& k : keys) k = value(rng) * 7919u % (1u << 30); // 30-bit codes
+            std::sort(keys.begin(), keys.end());
+            std::iota(faces.begin(), faces.end(), 0u);
+            std::shuffle(faces.begin(), faces.end(), rng);
+            EXPECT_EQ(nodesWithOtherLinks(hierarchyKernel(keys, faces), cpu::twinHierarchy(keys, faces)), 0u)
+                << n << " keys, " << distinct << " distinct values";
+        }
+}
+
+// The same through the whole broad phase, on two scenes full of equal codes: two coincident
+// copies of a strip (every code twice), and a strip beside 300 triangles with one centroid (one
+// run of 300 equal codes). The GPU's tree on its own keys is the twin's, and the candidates are
+// the brute force's.
+TEST(BvhGl, EqualMortonCodesGiveTheTwinsTreeAndEveryPair) {
+    struct Case {
+        std::string name;
+        Scene scene;
+        std::size_t minTies; // sorted positions whose key equals the previous one, at least
+        std::size_t minRun;  // the longest run of one key, at least
+    };
+    std::vector<Case> cases;
+    cases.push_back(
+        {"two coincident copies of a 509-face strip", coincidentCopies(strips(509, 1, 23), 2), 509, 2});
+    Scene sameCentroid = strips(300, 1, 29);
+    addSameCentroidTriangles(sameCentroid, 300, glm::dvec3(0.5), 0.02, 31);
+    cases.push_back({"300 triangles with one centroid beside a strip", std::move(sameCentroid), 299, 300});
+    const cpu::PairRules rules{true, true};
+    for (const Case& c : cases) {
+        const Scene& s = c.scene;
+        const auto faces = static_cast<std::uint32_t>(s.model.faceCount());
+        // A tree built with a wrong tie rule can have no finite walk, and the traversal would rerun
+        // with ever more rounds and never return: check the kernel on this scene's codes (the
+        // twin's, within a cell of the GPU's) before the whole broad phase runs.
+        const auto [twinKeys, twinFaces] = twinSortedKeys(s);
+        ASSERT_EQ(nodesWithOtherLinks(hierarchyKernel(twinKeys, twinFaces),
+                                      cpu::twinHierarchy(twinKeys, twinFaces)),
+                  0u)
+            << c.name;
+        const passes::DeviceBuffers buffers = upload(s);
+        passes::CollisionDetection d(bvhConfig(rules), s.model);
+        d.detect(buffers, nullptr);
+        const Tree t = readTree(d, faces);
+        std::size_t ties = 0, run = 1, longestRun = 1;
+        for (std::uint32_t i = 1; i < faces; ++i) {
+            run = t.keys[i] == t.keys[i - 1] ? run + 1 : 1;
+            ties += run > 1 ? 1 : 0;
+            longestRun = std::max(longestRun, run);
+        }
+        // The scene really is full of equal keys, or the test would test nothing.
+        EXPECT_GE(ties, c.minTies) << c.name;
+        EXPECT_GE(longestRun, c.minRun) << c.name;
+        EXPECT_EQ(nodesWithOtherLinks(t.links, cpu::twinHierarchy(t.keys, t.faces)), 0u) << c.name;
+        const Pairs want = bruteForce(s, s.current, rules);
+        EXPECT_GT(want.size(), std::size_t{faces}) << c.name; // coincident faces all meet
+        EXPECT_EQ(d.readCandidates(), want) << c.name;
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
