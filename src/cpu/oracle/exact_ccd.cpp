@@ -189,8 +189,9 @@ int signAt(const Poly& q, Root& r) {
     const Poly qRoots = squarefree(q);
     const Sturm s = degree(qRoots) >= 1 ? sturmSequence(qRoots) : Sturm{};
     while (!r.exact) {
-        const bool clean = s.empty() || (signAtRational(qRoots, r.lo) != 0 &&
-                                         signAtRational(qRoots, r.hi) != 0 && rootsBetween(s, r.lo, r.hi) == 0);
+        const bool clean =
+            s.empty() || (signAtRational(qRoots, r.lo) != 0 && signAtRational(qRoots, r.hi) != 0 &&
+                          rootsBetween(s, r.lo, r.hi) == 0);
         if (clean) return signAtRational(q, r.lo);
         bisect(r);
     }
@@ -360,7 +361,8 @@ ExactCcdResult exactEdgeEdgeCcd(const RationalCcdQuery& q) {
 
 RationalCcdQuery rationalQuery(const std::array<glm::dvec3, 8>& points) {
     RationalCcdQuery q;
-    for (std::size_t i = 0; i < 8; ++i) q[i] = {mpq_class(points[i].x), mpq_class(points[i].y), mpq_class(points[i].z)};
+    for (std::size_t i = 0; i < 8; ++i)
+        q[i] = {mpq_class(points[i].x), mpq_class(points[i].y), mpq_class(points[i].z)};
     return q;
 }
 
@@ -386,8 +388,10 @@ std::vector<SampleCcdQuery> readSampleCcdQueries(const std::string& path) {
         }
         if (fields.size() != 7) fail("expected 7 fields, found " + std::to_string(fields.size()));
         const int row8 = (lineNumber - 1) % 8;
-        if (row8 == 0) queries.push_back({{}, fields[6] != 0});
-        else if ((fields[6] != 0) != queries.back().truth) fail("ground truth differs within a query");
+        if (row8 == 0)
+            queries.push_back({{}, fields[6] != 0});
+        else if ((fields[6] != 0) != queries.back().truth)
+            fail("ground truth differs within a query");
         RationalPoint point;
         mpq_class* coords[3] = {&point.x, &point.y, &point.z};
         for (int k = 0; k < 3; ++k) {
