@@ -453,6 +453,55 @@ CCD_TEST(NeverMissesARandomNearDegenerateMotion) {
     EXPECT_GT(contacts, static_cast<int>(qs.size()) / 10);
 }
 
+// The error bound of the argument (docs/ccd.md, "Error bound") holds for the corner values as this
+// build evaluates them (in the relaxed build: contracted, reassociated, flushed): random
+// normalized points with heavy cancellation, random dyadic t, u, v of every level, each corner
+// value against its exact rational value. Also prints how much of the bound is used.
+CCD_TEST(CornerValuesStayWithinTheErrorBound) {
+    std::mt19937 rng(21);
+    // Magnitudes just above 0.5 (where an ulp is largest relative to the value) make roundings
+    // weigh most against the bound.
+    std::uniform_real_distribution<float> coord(0.5f, 0.52f), offset(-1e-3f, 1e-3f);
+    std::uniform_int_distribution<int> level(0, GLC_CCD_MAX_LEVEL), sign(0, 1);
+    const float gamma = GLC_CCD_ROUNDINGS * shader::GLC_CCD_UNIT_ROUNDOFF /
+                        (1.0f - GLC_CCD_ROUNDINGS * shader::GLC_CCD_UNIT_ROUNDOFF);
+    auto dyadic = [&] {
+        const int l = level(rng);
+        std::uniform_int_distribution<long> k(0, 1L << l);
+        const float value = std::ldexp(static_cast<float>(k(rng)), -l); // exact: at most 25 bits, in [0, 1]
+        return sign(rng) ? value : std::ldexp(value, -level(rng));      // half of them small: a small bound
+    };
+    double worst = 0;
+    for (int i = 0; i < 50000; ++i) {
+        const bool edgeEdge = i % 2 == 1;
+        // Nearly equal points (cancellation), signs mixed, largest magnitude near 1.
+        const vec3 base(sign(rng) ? coord(rng) : -coord(rng), sign(rng) ? coord(rng) : -coord(rng),
+                        coord(rng));
+        std::array<vec3, 8> p;
+        for (auto& v : p) v = base + vec3(offset(rng), offset(rng), offset(rng));
+        const float t = dyadic(), u = dyadic(), v = dyadic();
+        const vec3 f =
+            shader::glcCcdF(edgeEdge, shader::glcCcdAt(p[0], p[4], t), shader::glcCcdAt(p[1], p[5], t),
+                            shader::glcCcdAt(p[2], p[6], t), shader::glcCcdAt(p[3], p[7], t), u, v);
+        const vec3 m0 = max(abs(p[0]), abs(p[4])), m1 = max(abs(p[1]), abs(p[5])),
+                   m2 = max(abs(p[2]), abs(p[6])), m3 = max(abs(p[3]), abs(p[7]));
+        const vec3 bound = gamma * shader::glcCcdMonomialSum(edgeEdge, m0, m1, m2, m3, t, u, v);
+        for (int axis = 0; axis < 3; ++axis) {
+            auto at = [&](int k) {
+                const mpq_class x0(p[k][axis]), x1(p[k + 4][axis]);
+                return mpq_class(x0 + mpq_class(t) * (x1 - x0));
+            };
+            const mpq_class P = at(0), A = at(1), B = at(2), C = at(3), U(u), V(v);
+            const mpq_class exact = edgeEdge ? mpq_class((P + U * (A - P)) - (B + V * (C - B)))
+                                             : mpq_class(P - A - U * (B - A) - V * (C - A));
+            const mpq_class error = abs(mpq_class(f[axis]) - exact);
+            EXPECT_LE(error, mpq_class(bound[axis])) << "query " << i << " axis " << axis;
+            worst = std::max(worst, error.get_d() / bound[axis]);
+        }
+    }
+    std::printf("largest corner error: %.4f of the error bound\n", worst);
+}
+
 struct Tally {
     int queries = 0, contacts = 0, falseNegatives = 0, falsePositives = 0, capped = 0;
     int truthFalseNegatives = 0, truthFalsePositives = 0;
