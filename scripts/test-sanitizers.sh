@@ -19,8 +19,10 @@ export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$supp/ubsan.supp"
 # Keep Mesa's driver loaded until the leak check so its allocations are named (lsan.supp).
 mesa_driver=$(ls /usr/lib/*/dri/swrast_dri.so 2>/dev/null | head -1 || true)
+# The "long" label (whole cloth-scene runs, minutes each) runs in the normal build only: it checks
+# physics, which the sanitizers do not change, and would take several times longer here.
 LD_PRELOAD="${mesa_driver}${LD_PRELOAD:+:$LD_PRELOAD}" \
-  ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" 2>&1 | tee "$build_dir/ctest.log"
+  ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" -LE long 2>&1 | tee "$build_dir/ctest.log"
 scripts/check-skips.sh "$build_dir/ctest.log" || [ "${GLCOLLIDE_FAIL_ON_SKIP:-0}" != 1 ]
 # Repeatable fuzzing: 30,000 inputs per target from seed 1 (about 1-10 s each on llvmpipe's 2-core
 # machine); FUZZ_SECONDS is a safety net: a target it stops before its 30,000 runs fails.

@@ -81,7 +81,18 @@ void BvhBroadPhase::addStages(StageChain& chain, AppendLists& lists) {
                {GLC_LIST_CANDIDATES},
                [this, &lists] { traverse(lists); },
                [this, &lists] {
-                   if (lists.bvhUnfinished() == 0) return false;
+                   const std::uint32_t unfinished = lists.bvhUnfinished();
+                   if (unfinished == 0) return false;
+                   // A stackless traversal of a valid tree visits each of its 2n - 1 nodes at
+                   // most once per query: a query unfinished after that many visits is walking a
+                   // malformed tree (links with a cycle) and would rerun for ever.
+                   const std::uint64_t nodes = 2ull * m_faceCount - 1ull;
+                   if (std::uint64_t(m_rounds) * m_visitsPerRound >= nodes)
+                       throw Error("collision: bvh traversal: " + std::to_string(unfinished) +
+                                   " queries unfinished after " +
+                                   std::to_string(std::uint64_t(m_rounds) * m_visitsPerRound) +
+                                   " node visits each, more than the tree's " + std::to_string(nodes) +
+                                   " nodes: the hierarchy's links are malformed (a driver or engine bug)");
                    m_rounds *= 2;
                    return true;
                }});
