@@ -53,10 +53,18 @@ vec3 glcOrient3dEstimate(vec3 a, vec3 b, vec3 c, vec3 d) {
     return vec3(det, permanent, m);
 }
 
+// The evaluation the filter decides from: glcOrient3dEstimate in every shader. A test seam: the
+// C++ view (src/cpu/shader_library.hpp) defines it first, so that tests can feed the decision
+// below the float evaluations other conforming compilers could produce (a worst-case rounding, a
+// rewriting). No shader defines it: GLSL builds have no variant here.
+#ifndef GLC_ORIENT3D_ESTIMATE
+#define GLC_ORIENT3D_ESTIMATE glcOrient3dEstimate
+#endif
+
 int glcOrient3dFilter(vec3 a, vec3 b, vec3 c, vec3 d) {
     if (!(glcInFilterRange(a) && glcInFilterRange(b) && glcInFilterRange(c) && glcInFilterRange(d)))
         return GLC_UNDECIDED;
-    vec3 e = glcOrient3dEstimate(a, b, c, d); // det, permanent, max(M, 1)
+    vec3 e = GLC_ORIENT3D_ESTIMATE(a, b, c, d); // det, permanent, max(M, 1)
     float bound = GLC_FILTER_RELATIVE * e.y + GLC_FILTER_FLUSH * (e.z * e.z);
     if (e.x > bound) return 1;
     if (-e.x > bound) return -1;

@@ -58,9 +58,23 @@ int findMSB(uint x) {
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
 #pragma GCC diagnostic ignored "-Wunused-variable"
+// Test seam: the float evaluation behind glcOrient3dFilter (det, permanent, max(M, 1)), replaceable
+// per thread by tests that model another conforming compiler (a worst-case rounding, a rewriting,
+// a filter whose results differ between reruns). Null: the library's own glcOrient3dEstimate.
+// Shaders never define GLC_ORIENT3D_ESTIMATE, so the GPU always runs the library's evaluation.
+using Orient3dEstimate = vec3 (*)(vec3 a, vec3 b, vec3 c, vec3 d);
+thread_local Orient3dEstimate orient3dEstimateOverride = nullptr;
+vec3 glcOrient3dEstimate(vec3 a, vec3 b, vec3 c, vec3 d); // defined in common/orient.glsl
+vec3 orient3dEstimateSeam(vec3 a, vec3 b, vec3 c, vec3 d) {
+    return orient3dEstimateOverride != nullptr ? orient3dEstimateOverride(a, b, c, d)
+                                               : glcOrient3dEstimate(a, b, c, d);
+}
+#define GLC_ORIENT3D_ESTIMATE orient3dEstimateSeam
+
 #define GLC_PRIVATE thread_local
 #include "common/tri_tri_robust.glsl"
 #undef GLC_PRIVATE
+#undef GLC_ORIENT3D_ESTIMATE
 #pragma GCC diagnostic pop
 
 /// The robust answer as the GPU composes it: the filtered pass, then the exact pass for the pairs
