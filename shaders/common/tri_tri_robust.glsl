@@ -12,7 +12,9 @@
 //   bool glcTriTriExact(a0, a1, a2, b0, b1, b2)
 //        The oracle's decision procedure, sign for sign, every sign exact (filter, else integer
 //        arithmetic). Run by the exact pass over the undecided list only. After the call,
-//        glcExactEvaluations holds the number of predicates it evaluated in integers.
+//        glcExactEvaluations holds the number of predicates it evaluated in integers, and
+//        glcExactFailed is true when it could not finish (never, by the argument below; the
+//        passes then report an error and use no answer).
 //
 // Semantics: closed triangles (touching counts); coplanar pairs decided in their plane; a zero-area
 // triangle is the segment between its extreme corners, or the point it covers.
@@ -84,34 +86,63 @@ bool glcSamePoint(vec3 a, vec3 b) {
 // ---------------------------------------------------------------------------------------------
 // Deferred exact decisions. GLSL inlines every call, and an exact evaluation is large: with one
 // behind every predicate call the shader would hold dozens of copies of it. So the procedure runs
-// with the filters only; the first predicate they cannot decide beyond the exact answers already
-// known voids the run (every later predicate answers 0 at once); glcTriTriExact then decides that
-// predicate exactly (its ONE call site), records the sign and reruns. The procedure is
-// deterministic, so each rerun asks the same questions in the same order. A run asks at most
-// 6 + 6 + 6 * 18 = 120 predicates (shapes: 2 x 3 orient2d; triangle-triangle: 6 orient3d + 6 edges
-// x at most 18 orient2d), within GLC_MAX_EXACT.
+// with the filters only; the first predicate they cannot decide, and whose exact sign is not yet
+// known, voids the run (every later predicate answers 0 at once); glcTriTriExact then decides that
+// predicate exactly (its ONE call site), records the sign and reruns.
+//
+// A recorded sign is found again by the predicate's KEY, never by its position in the run: the
+// kind (orient3d, or orient2d dropping a coordinate) and each point as the index (0..5) of the
+// first input corner equal to it. Every point a predicate is asked about is an input corner
+// (shapes, edges and rotations only copy corners), so the key fixes the predicate's value. A rerun
+// therefore need not repeat the last run's filter results bit for bit (a compiler may evaluate
+// the inlined copies of a filter differently, or a value differently from one run to the next):
+// a sign certified by a filter and one read from the cache are both exact, so every run takes the
+// same path, and each rerun adds the exact sign of one more of its predicates. A run asks at most
+// 6 + 6 + 6 * 18 = 120 predicates (shapes: 2 x 3 orient2d; triangle-triangle: 6 orient3d + 6
+// edges x at most 18 orient2d), so at most 120 signs are recorded, within GLC_MAX_EXACT. Reaching
+// the cap anyway, or a point that is not an input corner, would mean the argument above is broken:
+// glcTriTriExact then sets glcExactFailed, and the passes report it as an error instead of
+// answering from a voided run.
 
-const int GLC_MAX_EXACT = 128;
-GLC_PRIVATE int glcExactSigns[GLC_MAX_EXACT];
-GLC_PRIVATE int glcExactKnown;       // exact answers found so far
-GLC_PRIVATE int glcExactAsked;       // undecided predicates met in this run
-GLC_PRIVATE bool glcExactPending;    // this run met one beyond the known answers
-GLC_PRIVATE vec3 glcPending[4];      // its points
-GLC_PRIVATE int glcPendingDrop;      // -1: orient3d; else orient2d dropping this coordinate
-GLC_PRIVATE uint glcExactEvaluations; // predicates decided in integers by the last glcTriTriExact
+#ifndef GLC_MAX_EXACT
+#define GLC_MAX_EXACT 128 // tests lower it (the C++ view; a GL test's own copy of a kernel's source)
+#endif
+GLC_PRIVATE vec3 glcInputs[6];                  // the corners a0 a1 a2 b0 b1 b2 of the pair being decided
+GLC_PRIVATE int glcExactEntries[GLC_MAX_EXACT]; // recorded signs: key * 4 + (sign + 1)
+GLC_PRIVATE int glcExactKnown;                  // entries recorded so far
+GLC_PRIVATE bool glcExactPending;               // this run met a predicate with no recorded sign
+GLC_PRIVATE vec3 glcPending[4];                 // its points
+GLC_PRIVATE int glcPendingDrop;                 // -1: orient3d; else orient2d dropping this coordinate
+GLC_PRIVATE int glcPendingKey;                  // its key, -1 when it has none
+GLC_PRIVATE bool glcExactFailed;                // the last glcTriTriExact could not finish: no answer
+GLC_PRIVATE uint glcExactEvaluations;           // predicates decided in integers by the last glcTriTriExact
+
+// The index of the first input corner equal to p (+0 and -0 equal), or 6 when none is.
+int glcCornerIndex(vec3 p) {
+    for (int k = 0; k < 6; ++k)
+        if (glcSamePoint(glcInputs[k], p)) return k;
+    return 6;
+}
+
+// The predicate's key (drop + 1 and four corner indices in base 7), or -1 when a point is not an
+// input corner. orient2d passes d = a.
+int glcPredicateKey(vec3 a, vec3 b, vec3 c, vec3 d, int drop) {
+    int ia = glcCornerIndex(a), ib = glcCornerIndex(b), ic = glcCornerIndex(c), id = glcCornerIndex(d);
+    if (ia == 6 || ib == 6 || ic == 6 || id == 6) return -1;
+    return (drop + 1) + 4 * (ia + 7 * (ib + 7 * (ic + 7 * id)));
+}
 
 int glcUndecided(vec3 a, vec3 b, vec3 c, vec3 d, int drop) {
-    if (glcExactAsked < glcExactKnown) {
-        int s = glcExactSigns[glcExactAsked];
-        ++glcExactAsked;
-        return s;
-    }
+    int key = glcPredicateKey(a, b, c, d, drop);
+    for (int i = 0; i < glcExactKnown; ++i)
+        if (key >= 0 && (glcExactEntries[i] >> 2) == key) return (glcExactEntries[i] & 3) - 1;
     glcExactPending = true;
     glcPending[0] = a;
     glcPending[1] = b;
     glcPending[2] = c;
     glcPending[3] = d;
     glcPendingDrop = drop;
+    glcPendingKey = key;
     return 0;
 }
 
@@ -347,18 +378,26 @@ bool glcRobustProcedure(vec3 a0, vec3 a1, vec3 a2, vec3 b0, vec3 b1, vec3 b2) {
 }
 
 bool glcTriTriExact(vec3 a0, vec3 a1, vec3 a2, vec3 b0, vec3 b1, vec3 b2) {
+    glcInputs[0] = a0;
+    glcInputs[1] = a1;
+    glcInputs[2] = a2;
+    glcInputs[3] = b0;
+    glcInputs[4] = b1;
+    glcInputs[5] = b2;
     glcExactKnown = 0;
     glcExactEvaluations = 0u;
-    bool hit = false;
+    glcExactFailed = false;
     for (int run = 0; run <= GLC_MAX_EXACT; ++run) {
-        glcExactAsked = 0;
         glcExactPending = false;
-        hit = glcRobustProcedure(a0, a1, a2, b0, b1, b2);
-        if (!glcExactPending || glcExactKnown == GLC_MAX_EXACT) break; // the bound is never reached (see above)
-        glcExactSigns[glcExactKnown] = glcPendingSign();
+        bool hit = glcRobustProcedure(a0, a1, a2, b0, b1, b2);
+        if (!glcExactPending) return hit;
+        // A voided run's answer is never returned: record the pending sign, or fail.
+        if (glcExactKnown == GLC_MAX_EXACT || glcPendingKey < 0) break;
+        glcExactEntries[glcExactKnown] = glcPendingKey * 4 + glcPendingSign() + 1;
         ++glcExactKnown;
     }
-    return hit;
+    glcExactFailed = true;
+    return false;
 }
 
 #endif // GLC_TRI_TRI_ROBUST_GLSL

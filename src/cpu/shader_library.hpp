@@ -16,8 +16,11 @@
 #include <glm/vec3.hpp>
 #include <glm/vector_relational.hpp>
 
+#include <glcollide/error.hpp>
+
 #include <bit>
 #include <cstdint>
+#include <string>
 
 namespace glcollide::shader {
 namespace {
@@ -78,10 +81,17 @@ vec3 orient3dEstimateSeam(vec3 a, vec3 b, vec3 c, vec3 d) {
 #pragma GCC diagnostic pop
 
 /// The robust answer as the GPU composes it: the filtered pass, then the exact pass for the pairs
-/// it left undecided.
+/// it left undecided. Throws Error when the exact pass could not finish (glcExactFailed), as the
+/// passes do on the device: no answer is taken from a voided run.
 inline bool robustTrianglesIntersect(vec3 a0, vec3 a1, vec3 a2, vec3 b0, vec3 b1, vec3 b2) {
     const int filtered = glcTriTriFiltered(a0, a1, a2, b0, b1, b2);
-    return filtered != GLC_UNDECIDED ? filtered == 1 : glcTriTriExact(a0, a1, a2, b0, b1, b2);
+    if (filtered != GLC_UNDECIDED) return filtered == 1;
+    const bool hit = glcTriTriExact(a0, a1, a2, b0, b1, b2);
+    if (glcExactFailed)
+        throw Error("robust tri-tri: the exact pass could not finish (more than " +
+                    std::to_string(GLC_MAX_EXACT) +
+                    " recorded signs, or a predicate on a point that is not an input corner)");
+    return hit;
 }
 
 } // namespace

@@ -491,6 +491,50 @@ LIBRARY_TEST(RobustTriTriEqualsTheOracleOnEveryRandomFamily) {
     }
 }
 
+// The exact pass's deferred decisions find a recorded sign by the predicate's key, not by its
+// position in the run, so reruns need not repeat each other's filter results bit for bit. Here
+// the orient3d filter forgets every third call (answers det = 0, which it never certifies): each
+// run declines a different set of predicates, as a compiler that evaluates inlined copies of the
+// filter differently might. Replaying signs by position would hand them to the wrong predicates;
+// keyed, every answer stays the oracle's. Also measured: the signs one pair records, which the
+// argument bounds by the 120 predicates a run can ask (GLC_MAX_EXACT = 128).
+thread_local unsigned g_filterCalls = 0;
+vec3 forgetfulEstimate(vec3 a, vec3 b, vec3 c, vec3 d) {
+    vec3 e = sh::glcOrient3dEstimate(a, b, c, d);
+    if (++g_filterCalls % 3u == 0) e.x = 0.0f;
+    return e;
+}
+
+LIBRARY_TEST(ExactPassNeedsNoBitIdenticalReruns) {
+    std::vector<cpu::FloatTriPair> pairs;
+    for (const cpu::NamedTriPair& c : cpu::hardTriTriCases()) pairs.push_back(c.pair);
+    std::uint32_t seed = 31;
+    for (cpu::TriTriSet set : {cpu::TriTriSet::Grid, cpu::TriTriSet::Coplanar, cpu::TriTriSet::Touching,
+                               cpu::TriTriSet::Ulp, cpu::TriTriSet::Degenerate, cpu::TriTriSet::Scaled})
+        for (const cpu::FloatTriPair& p : cpu::randomTriTriPairs(set, 1500, seed++)) pairs.push_back(p);
+    std::size_t wrong = 0, exactPairs = 0;
+    int mostRecorded = 0;
+    for (const cpu::FloatTriPair& p : pairs) {
+        auto v = [&](int k) {
+            const auto i = static_cast<std::size_t>(3 * k);
+            return vec3(p[i], p[i + 1], p[i + 2]);
+        };
+        sh::orient3dEstimateOverride = &forgetfulEstimate;
+        const bool hit = sh::glcTriTriExact(v(0), v(1), v(2), v(3), v(4), v(5));
+        sh::orient3dEstimateOverride = nullptr;
+        ASSERT_FALSE(sh::glcExactFailed) << "the exact pass could not finish";
+        mostRecorded = std::max(mostRecorded, sh::glcExactKnown);
+        exactPairs += sh::glcExactKnown > 0 ? 1 : 0;
+        if (hit != oracle(p) && ++wrong <= 3) ADD_FAILURE() << "a forgetful filter changed an answer";
+    }
+    EXPECT_EQ(wrong, 0u) << "of " << pairs.size();
+    EXPECT_GT(exactPairs, pairs.size() / 4) << "most pairs must need recorded signs, or this shows little";
+    EXPECT_LE(mostRecorded, 120) << "more recorded signs than a run has predicates";
+    std::printf(
+        "[ replay   ] %zu pairs through a forgetful filter, %zu with recorded signs, at most %d per pair\n",
+        pairs.size(), exactPairs, mostRecorded);
+}
+
 // fabad4e's exact path, transcribed: orient3d as 24 monomials of the raw coordinates, each split
 // exactly into two doubles (Dekker), summed exactly into a nonoverlapping expansion (Shewchuk's
 // GROW-EXPANSION with Knuth's TWO-SUM); the sign of the largest component. Exact under IEEE
