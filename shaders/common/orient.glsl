@@ -20,6 +20,14 @@
 //     room to spare), both sides computed in float by the same relaxed rules;
 //   - coordinates above 2^40 go straight to the exact path: nothing can overflow, so there is no
 //     infinity or NaN for a fast-math compiler to assume away.
+// Two ASSUMPTIONS the argument does not prove, both allowed by GLSL and done by no compiler we
+// know; the on-device self-check refuses a device that breaks either (docs/narrow-phase.md):
+//   - no compiler EXPANDS a product of differences into raw coordinates ((b-a)*y into b*y - a*y).
+//     That cancels products of coordinates: for a small triangle far from the origin the float
+//     determinant is then mostly rounding error while the permanent stays small, and the filter
+//     certifies signs at random (the self-check's far-from-origin cases fail);
+//   - a denormal INPUT reaches floatBitsToUint unflushed. If a device flushes it first, the exact
+//     path decides the pair with that coordinate as +-0, another pair (the denormal cases fail).
 
 #ifndef GLC_ORIENT_GLSL
 #define GLC_ORIENT_GLSL

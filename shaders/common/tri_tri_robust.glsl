@@ -1,7 +1,9 @@
 // Robust triangle-triangle intersection: the answer of the exact rational oracle
-// (src/cpu/oracle/exact_tri_tri.cpp) for every finite float input, on any conforming device. Compiled as
-// GLSL and as C++ (src/cpu/shader_library.hpp), so the CPU tests run the very same code.
-// Design and proofs: docs/narrow-phase.md.
+// (src/cpu/oracle/exact_tri_tri.cpp) for every finite float input, on any conforming device that
+// meets the two assumptions stated in common/orient.glsl (no expansion of the filter's products
+// into raw coordinates; denormal inputs read unflushed), which the on-device self-check verifies.
+// Compiled as GLSL and as C++ (src/cpu/shader_library.hpp), so the CPU tests run the very same
+// code. Design and proofs: docs/narrow-phase.md.
 //
 // Two entry points, run by two passes:
 //   int  glcTriTriFiltered(a0, a1, a2, b0, b1, b2)  -> 0, 1 or GLC_UNDECIDED
