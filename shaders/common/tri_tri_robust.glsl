@@ -94,7 +94,7 @@ bool glcSamePoint(vec3 a, vec3 b) {
 //
 // A recorded sign is found again by the predicate's KEY, never by its position in the run: the
 // kind (orient3d, or orient2d dropping a coordinate) and each point as the index (0..5) of the
-// first input corner equal to it. Every point a predicate is asked about is an input corner
+// first input corner with its bits. Every point a predicate is asked about is an input corner
 // (shapes, edges and rotations only copy corners), so the key fixes the predicate's value. A rerun
 // therefore need not repeat the last run's filter results bit for bit (a compiler may evaluate
 // the inlined copies of a filter differently, or a value differently from one run to the next):
@@ -109,42 +109,46 @@ bool glcSamePoint(vec3 a, vec3 b) {
 #ifndef GLC_MAX_EXACT
 #define GLC_MAX_EXACT 128 // tests lower it (the C++ view; a GL test's own copy of a kernel's source)
 #endif
-GLC_PRIVATE vec3 glcInputs[6];                  // the corners a0 a1 a2 b0 b1 b2 of the pair being decided
-GLC_PRIVATE int glcExactEntries[GLC_MAX_EXACT]; // recorded signs: key * 4 + (sign + 1)
+GLC_PRIVATE uvec3 glcInputBits[6];              // the bits of the corners a0 a1 a2 b0 b1 b2 being decided
+GLC_PRIVATE int glcExactEntries[GLC_MAX_EXACT]; // recorded signs: key << 2 | (sign + 1)
 GLC_PRIVATE int glcExactKnown;                  // entries recorded so far
 GLC_PRIVATE bool glcExactPending;               // this run met a predicate with no recorded sign
 GLC_PRIVATE vec3 glcPending[4];                 // its points
 GLC_PRIVATE int glcPendingDrop;                 // -1: orient3d; else orient2d dropping this coordinate
-GLC_PRIVATE int glcPendingKey;                  // its key, -1 when it has none
 GLC_PRIVATE bool glcExactFailed;                // the last glcTriTriExact could not finish: no answer
 GLC_PRIVATE uint glcExactEvaluations;           // predicates decided in integers by the last glcTriTriExact
 
-// The index of the first input corner equal to p (+0 and -0 equal), or 6 when none is.
+// The index of the first input corner with p's bits, or 6 when none has them. Points are copies
+// of corners, so bits suffice (and cost less than value keys; corners equal in value but not in
+// bits, +0 and -0, just get two keys).
 int glcCornerIndex(vec3 p) {
+    uvec3 bits = floatBitsToUint(p);
     for (int k = 0; k < 6; ++k)
-        if (glcSamePoint(glcInputs[k], p)) return k;
+        if (glcInputBits[k] == bits) return k;
     return 6;
 }
 
-// The predicate's key (drop + 1 and four corner indices in base 7), or -1 when a point is not an
-// input corner. orient2d passes d = a.
+// The predicate's key: drop + 1 in bits 0-1 and the four corner indices in 3 bits each from bit
+// 2 (orient2d passes d = a), or -1 when a point is not an input corner (never recorded, so it
+// matches no entry).
 int glcPredicateKey(vec3 a, vec3 b, vec3 c, vec3 d, int drop) {
     int ia = glcCornerIndex(a), ib = glcCornerIndex(b), ic = glcCornerIndex(c), id = glcCornerIndex(d);
     if (ia == 6 || ib == 6 || ic == 6 || id == 6) return -1;
-    return (drop + 1) + 4 * (ia + 7 * (ib + 7 * (ic + 7 * id)));
+    return (drop + 1) | (ia << 2) | (ib << 5) | (ic << 8) | (id << 11);
 }
 
 int glcUndecided(vec3 a, vec3 b, vec3 c, vec3 d, int drop) {
-    int key = glcPredicateKey(a, b, c, d, drop);
-    for (int i = 0; i < glcExactKnown; ++i)
-        if (key >= 0 && (glcExactEntries[i] >> 2) == key) return (glcExactEntries[i] & 3) - 1;
+    if (glcExactKnown > 0) {
+        int key = glcPredicateKey(a, b, c, d, drop);
+        for (int i = 0; i < glcExactKnown; ++i)
+            if ((glcExactEntries[i] >> 2) == key) return (glcExactEntries[i] & 3) - 1;
+    }
     glcExactPending = true;
     glcPending[0] = a;
     glcPending[1] = b;
     glcPending[2] = c;
     glcPending[3] = d;
     glcPendingDrop = drop;
-    glcPendingKey = key;
     return 0;
 }
 
@@ -380,12 +384,12 @@ bool glcRobustProcedure(vec3 a0, vec3 a1, vec3 a2, vec3 b0, vec3 b1, vec3 b2) {
 }
 
 bool glcTriTriExact(vec3 a0, vec3 a1, vec3 a2, vec3 b0, vec3 b1, vec3 b2) {
-    glcInputs[0] = a0;
-    glcInputs[1] = a1;
-    glcInputs[2] = a2;
-    glcInputs[3] = b0;
-    glcInputs[4] = b1;
-    glcInputs[5] = b2;
+    glcInputBits[0] = floatBitsToUint(a0);
+    glcInputBits[1] = floatBitsToUint(a1);
+    glcInputBits[2] = floatBitsToUint(a2);
+    glcInputBits[3] = floatBitsToUint(b0);
+    glcInputBits[4] = floatBitsToUint(b1);
+    glcInputBits[5] = floatBitsToUint(b2);
     glcExactKnown = 0;
     glcExactEvaluations = 0u;
     glcExactFailed = false;
@@ -394,8 +398,9 @@ bool glcTriTriExact(vec3 a0, vec3 a1, vec3 a2, vec3 b0, vec3 b1, vec3 b2) {
         bool hit = glcRobustProcedure(a0, a1, a2, b0, b1, b2);
         if (!glcExactPending) return hit;
         // A voided run's answer is never returned: record the pending sign, or fail.
-        if (glcExactKnown == GLC_MAX_EXACT || glcPendingKey < 0) break;
-        glcExactEntries[glcExactKnown] = glcPendingKey * 4 + glcPendingSign() + 1;
+        int key = glcPredicateKey(glcPending[0], glcPending[1], glcPending[2], glcPending[3], glcPendingDrop);
+        if (glcExactKnown == GLC_MAX_EXACT || key < 0) break;
+        glcExactEntries[glcExactKnown] = (key << 2) | (glcPendingSign() + 1);
         ++glcExactKnown;
     }
     glcExactFailed = true;

@@ -34,6 +34,7 @@ using glm::min;
 using uint = std::uint32_t;
 using vec3 = glm::vec3;
 using ivec3 = glm::ivec3;
+using uvec3 = glm::uvec3;
 
 // GLSL 4.30, section 8.8 "Integer Functions".
 uint uaddCarry(uint x, uint y, uint& carry) {
