@@ -118,22 +118,22 @@ GLC_PRIVATE int glcPendingDrop;                 // -1: orient3d; else orient2d d
 GLC_PRIVATE bool glcExactFailed;                // the last glcTriTriExact could not finish: no answer
 GLC_PRIVATE uint glcExactEvaluations;           // predicates decided in integers by the last glcTriTriExact
 
-// The index of the first input corner with p's bits, or 6 when none has them. Points are copies
-// of corners, so bits suffice (and cost less than value keys; corners equal in value but not in
-// bits, +0 and -0, just get two keys).
-int glcCornerIndex(vec3 p) {
-    uvec3 bits = floatBitsToUint(p);
-    for (int k = 0; k < 6; ++k)
-        if (glcInputBits[k] == bits) return k;
-    return 6;
-}
-
-// The predicate's key: drop + 1 in bits 0-1 and the four corner indices in 3 bits each from bit
-// 2 (orient2d passes d = a), or -1 when a point is not an input corner (never recorded, so it
-// matches no entry).
+// The predicate's key: drop + 1 in bits 0-1, then for each point (orient2d passes d = a) in 3
+// bits the index of the first input corner with its bits (points are copies of corners, so bits
+// suffice; +0 and -0 just give two keys for one value); -1 when a point is not an input corner.
+// One loop over the corners for all four points keeps the code small: every predicate call site
+// holds a copy.
 int glcPredicateKey(vec3 a, vec3 b, vec3 c, vec3 d, int drop) {
-    int ia = glcCornerIndex(a), ib = glcCornerIndex(b), ic = glcCornerIndex(c), id = glcCornerIndex(d);
-    if (ia == 6 || ib == 6 || ic == 6 || id == 6) return -1;
+    uvec3 ba = floatBitsToUint(a), bb = floatBitsToUint(b), bc = floatBitsToUint(c), bd = floatBitsToUint(d);
+    int ia = 7, ib = 7, ic = 7, id = 7;
+    for (int k = 5; k >= 0; --k) { // downwards, so the first matching corner is the one that stays
+        uvec3 corner = glcInputBits[k];
+        ia = corner == ba ? k : ia;
+        ib = corner == bb ? k : ib;
+        ic = corner == bc ? k : ic;
+        id = corner == bd ? k : id;
+    }
+    if (ia == 7 || ib == 7 || ic == 7 || id == 7) return -1;
     return (drop + 1) | (ia << 2) | (ib << 5) | (ic << 8) | (id << 11);
 }
 
