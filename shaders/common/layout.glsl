@@ -29,7 +29,8 @@
 #define GLC_BIND_DISPATCH_ARGS 20      // uint[3 * GLC_LIST_COUNT]: indirect dispatch arguments per list, written on the GPU
 #define GLC_BIND_QUERY_TRIANGLES 21   // float[18 * pairs]: tri-tri query input, a0 a1 a2 b0 b1 b2 (xyz each)
 #define GLC_BIND_QUERY_RESULTS 22     // uint[pairs]: tri-tri query output, 1 = the closed triangles intersect
-#define GLC_BIND_QUERY_STATS 23       // uint[1]: tri-tri query exact-fallback counter (robust precision)
+#define GLC_BIND_QUERY_STATS 23       // uint[3]: tri-tri query (robust): exact fallbacks, undecided pairs,
+                                      // pairs the exact pass could not finish (an error)
 #define GLC_BIND_HEALTH 24             // GpuHealth: the first non-finite node NodeUpdate produced
 #define GLC_BIND_UNDECIDED 25          // uint[]: robust TriTri: items the filtered pass left to the exact pass
                                        // (candidate indices; query: pair indices)
@@ -163,6 +164,8 @@ struct GpuCollisionCounters {
     uint contactCount;       // vertex-face and edge-edge contacts that produced a force
     uint bvhUnfinished;      // BVH traversal: queries that used up their rounds (the stage reruns with more)
     uint bvhNodeVisits;      // BVH traversal: nodes whose box was tested (the tree-quality figure)
+    uint exactErrorCount;    // robust TriTri: pairs the exact pass could not finish (glcExactFailed;
+                             // never by construction): detect() throws, no answer is used
 };
 
 // Written by NodeUpdate when a node's new position or velocity is not finite (EngineOptions::

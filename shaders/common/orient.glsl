@@ -20,6 +20,14 @@
 //     room to spare), both sides computed in float by the same relaxed rules;
 //   - coordinates above 2^40 go straight to the exact path: nothing can overflow, so there is no
 //     infinity or NaN for a fast-math compiler to assume away.
+// Two ASSUMPTIONS the argument does not prove, both allowed by GLSL and done by no compiler we
+// know; the on-device self-check refuses a device that breaks either (docs/narrow-phase.md):
+//   - no compiler EXPANDS a product of differences into raw coordinates ((b-a)*y into b*y - a*y).
+//     That cancels products of coordinates: for a small triangle far from the origin the float
+//     determinant is then mostly rounding error while the permanent stays small, and the filter
+//     certifies signs at random (the self-check's far-from-origin cases fail);
+//   - a denormal INPUT reaches floatBitsToUint unflushed. If a device flushes it first, the exact
+//     path decides the pair with that coordinate as +-0, another pair (the denormal cases fail).
 
 #ifndef GLC_ORIENT_GLSL
 #define GLC_ORIENT_GLSL
@@ -53,10 +61,18 @@ vec3 glcOrient3dEstimate(vec3 a, vec3 b, vec3 c, vec3 d) {
     return vec3(det, permanent, m);
 }
 
+// The evaluation the filter decides from: glcOrient3dEstimate in every shader. A test seam: the
+// C++ view (src/cpu/shader_library.hpp) defines it first, so that tests can feed the decision
+// below the float evaluations other conforming compilers could produce (a worst-case rounding, a
+// rewriting). No shader defines it: GLSL builds have no variant here.
+#ifndef GLC_ORIENT3D_ESTIMATE
+#define GLC_ORIENT3D_ESTIMATE glcOrient3dEstimate
+#endif
+
 int glcOrient3dFilter(vec3 a, vec3 b, vec3 c, vec3 d) {
     if (!(glcInFilterRange(a) && glcInFilterRange(b) && glcInFilterRange(c) && glcInFilterRange(d)))
         return GLC_UNDECIDED;
-    vec3 e = glcOrient3dEstimate(a, b, c, d); // det, permanent, max(M, 1)
+    vec3 e = GLC_ORIENT3D_ESTIMATE(a, b, c, d); // det, permanent, max(M, 1)
     float bound = GLC_FILTER_RELATIVE * e.y + GLC_FILTER_FLUSH * (e.z * e.z);
     if (e.x > bound) return 1;
     if (-e.x > bound) return -1;

@@ -1,7 +1,9 @@
 // Robust triangle-triangle intersection: the answer of the exact rational oracle
-// (src/cpu/oracle/exact_tri_tri.cpp) for every finite float input, on any conforming device. Compiled as
-// GLSL and as C++ (src/cpu/shader_library.hpp), so the CPU tests run the very same code.
-// Design and proofs: docs/narrow-phase.md.
+// (src/cpu/oracle/exact_tri_tri.cpp) for every finite float input, on any conforming device that
+// meets the two assumptions stated in common/orient.glsl (no expansion of the filter's products
+// into raw coordinates; denormal inputs read unflushed), which the on-device self-check verifies.
+// Compiled as GLSL and as C++ (src/cpu/shader_library.hpp), so the CPU tests run the very same
+// code. Design and proofs: docs/narrow-phase.md.
 //
 // Two entry points, run by two passes:
 //   int  glcTriTriFiltered(a0, a1, a2, b0, b1, b2)  -> 0, 1 or GLC_UNDECIDED
@@ -12,7 +14,9 @@
 //   bool glcTriTriExact(a0, a1, a2, b0, b1, b2)
 //        The oracle's decision procedure, sign for sign, every sign exact (filter, else integer
 //        arithmetic). Run by the exact pass over the undecided list only. After the call,
-//        glcExactEvaluations holds the number of predicates it evaluated in integers.
+//        glcExactEvaluations holds the number of predicates it evaluated in integers, and
+//        glcExactFailed is true when it could not finish (never, by the argument below; the
+//        passes then report an error and use no answer).
 //
 // Semantics: closed triangles (touching counts); coplanar pairs decided in their plane; a zero-area
 // triangle is the segment between its extreme corners, or the point it covers.
@@ -84,27 +88,60 @@ bool glcSamePoint(vec3 a, vec3 b) {
 // ---------------------------------------------------------------------------------------------
 // Deferred exact decisions. GLSL inlines every call, and an exact evaluation is large: with one
 // behind every predicate call the shader would hold dozens of copies of it. So the procedure runs
-// with the filters only; the first predicate they cannot decide beyond the exact answers already
-// known voids the run (every later predicate answers 0 at once); glcTriTriExact then decides that
-// predicate exactly (its ONE call site), records the sign and reruns. The procedure is
-// deterministic, so each rerun asks the same questions in the same order. A run asks at most
-// 6 + 6 + 6 * 18 = 120 predicates (shapes: 2 x 3 orient2d; triangle-triangle: 6 orient3d + 6 edges
-// x at most 18 orient2d), within GLC_MAX_EXACT.
+// with the filters only; the first predicate they cannot decide, and whose exact sign is not yet
+// known, voids the run (every later predicate answers 0 at once); glcTriTriExact then decides that
+// predicate exactly (its ONE call site), records the sign and reruns.
+//
+// A recorded sign is found again by the predicate's KEY, never by its position in the run: the
+// kind (orient3d, or orient2d dropping a coordinate) and each point as the index (0..5) of the
+// first input corner with its bits. Every point a predicate is asked about is an input corner
+// (shapes, edges and rotations only copy corners), so the key fixes the predicate's value. A rerun
+// therefore need not repeat the last run's filter results bit for bit (a compiler may evaluate
+// the inlined copies of a filter differently, or a value differently from one run to the next):
+// a sign certified by a filter and one read from the cache are both exact, so every run takes the
+// same path, and each rerun adds the exact sign of one more of its predicates. A run asks at most
+// 6 + 6 + 6 * 18 = 120 predicates (shapes: 2 x 3 orient2d; triangle-triangle: 6 orient3d + 6
+// edges x at most 18 orient2d), so at most 120 signs are recorded, within GLC_MAX_EXACT. Reaching
+// the cap anyway, or a point that is not an input corner, would mean the argument above is broken:
+// glcTriTriExact then sets glcExactFailed, and the passes report it as an error instead of
+// answering from a voided run.
 
-const int GLC_MAX_EXACT = 128;
-GLC_PRIVATE int glcExactSigns[GLC_MAX_EXACT];
-GLC_PRIVATE int glcExactKnown;       // exact answers found so far
-GLC_PRIVATE int glcExactAsked;       // undecided predicates met in this run
-GLC_PRIVATE bool glcExactPending;    // this run met one beyond the known answers
-GLC_PRIVATE vec3 glcPending[4];      // its points
-GLC_PRIVATE int glcPendingDrop;      // -1: orient3d; else orient2d dropping this coordinate
-GLC_PRIVATE uint glcExactEvaluations; // predicates decided in integers by the last glcTriTriExact
+#ifndef GLC_MAX_EXACT
+#define GLC_MAX_EXACT 128 // tests lower it (the C++ view; a GL test's own copy of a kernel's source)
+#endif
+GLC_PRIVATE uvec3 glcInputBits[6];              // the bits of the corners a0 a1 a2 b0 b1 b2 being decided
+GLC_PRIVATE int glcExactEntries[GLC_MAX_EXACT]; // recorded signs: key << 2 | (sign + 1)
+GLC_PRIVATE int glcExactKnown;                  // entries recorded so far
+GLC_PRIVATE bool glcExactPending;               // this run met a predicate with no recorded sign
+GLC_PRIVATE vec3 glcPending[4];                 // its points
+GLC_PRIVATE int glcPendingDrop;                 // -1: orient3d; else orient2d dropping this coordinate
+GLC_PRIVATE bool glcExactFailed;                // the last glcTriTriExact could not finish: no answer
+GLC_PRIVATE uint glcExactEvaluations;           // predicates decided in integers by the last glcTriTriExact
+
+// The predicate's key: drop + 1 in bits 0-1, then for each point (orient2d passes d = a) in 3
+// bits the index of the first input corner with its bits (points are copies of corners, so bits
+// suffice; +0 and -0 just give two keys for one value); -1 when a point is not an input corner.
+// One loop over the corners for all four points keeps the code small: every predicate call site
+// holds a copy.
+int glcPredicateKey(vec3 a, vec3 b, vec3 c, vec3 d, int drop) {
+    uvec3 ba = floatBitsToUint(a), bb = floatBitsToUint(b), bc = floatBitsToUint(c), bd = floatBitsToUint(d);
+    int ia = 7, ib = 7, ic = 7, id = 7;
+    for (int k = 5; k >= 0; --k) { // downwards, so the first matching corner is the one that stays
+        uvec3 corner = glcInputBits[k];
+        ia = corner == ba ? k : ia;
+        ib = corner == bb ? k : ib;
+        ic = corner == bc ? k : ic;
+        id = corner == bd ? k : id;
+    }
+    if (ia == 7 || ib == 7 || ic == 7 || id == 7) return -1;
+    return (drop + 1) | (ia << 2) | (ib << 5) | (ic << 8) | (id << 11);
+}
 
 int glcUndecided(vec3 a, vec3 b, vec3 c, vec3 d, int drop) {
-    if (glcExactAsked < glcExactKnown) {
-        int s = glcExactSigns[glcExactAsked];
-        ++glcExactAsked;
-        return s;
+    if (glcExactKnown > 0) {
+        int key = glcPredicateKey(a, b, c, d, drop);
+        for (int i = 0; i < glcExactKnown; ++i)
+            if ((glcExactEntries[i] >> 2) == key) return (glcExactEntries[i] & 3) - 1;
     }
     glcExactPending = true;
     glcPending[0] = a;
@@ -347,18 +384,27 @@ bool glcRobustProcedure(vec3 a0, vec3 a1, vec3 a2, vec3 b0, vec3 b1, vec3 b2) {
 }
 
 bool glcTriTriExact(vec3 a0, vec3 a1, vec3 a2, vec3 b0, vec3 b1, vec3 b2) {
+    glcInputBits[0] = floatBitsToUint(a0);
+    glcInputBits[1] = floatBitsToUint(a1);
+    glcInputBits[2] = floatBitsToUint(a2);
+    glcInputBits[3] = floatBitsToUint(b0);
+    glcInputBits[4] = floatBitsToUint(b1);
+    glcInputBits[5] = floatBitsToUint(b2);
     glcExactKnown = 0;
     glcExactEvaluations = 0u;
-    bool hit = false;
+    glcExactFailed = false;
     for (int run = 0; run <= GLC_MAX_EXACT; ++run) {
-        glcExactAsked = 0;
         glcExactPending = false;
-        hit = glcRobustProcedure(a0, a1, a2, b0, b1, b2);
-        if (!glcExactPending || glcExactKnown == GLC_MAX_EXACT) break; // the bound is never reached (see above)
-        glcExactSigns[glcExactKnown] = glcPendingSign();
+        bool hit = glcRobustProcedure(a0, a1, a2, b0, b1, b2);
+        if (!glcExactPending) return hit;
+        // A voided run's answer is never returned: record the pending sign, or fail.
+        int key = glcPredicateKey(glcPending[0], glcPending[1], glcPending[2], glcPending[3], glcPendingDrop);
+        if (glcExactKnown == GLC_MAX_EXACT || key < 0) break;
+        glcExactEntries[glcExactKnown] = (key << 2) | (glcPendingSign() + 1);
         ++glcExactKnown;
     }
-    return hit;
+    glcExactFailed = true;
+    return false;
 }
 
 #endif // GLC_TRI_TRI_ROBUST_GLSL

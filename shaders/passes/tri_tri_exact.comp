@@ -26,5 +26,6 @@ void main() {
     bool hit = glcTriTriExact(g_positions[a.x].xyz, g_positions[a.y].xyz, g_positions[a.z].xyz,
                               g_positions[b.x].xyz, g_positions[b.y].xyz, g_positions[b.z].xyz);
     if (glcExactEvaluations != 0u) atomicAdd(g_counters.exactFallbackCount, glcExactEvaluations);
-    if (hit) GLC_APPEND(GLC_LIST_INTERSECTIONS, g_intersections, pair)
+    if (glcExactFailed) atomicAdd(g_counters.exactErrorCount, 1u); // no answer: the host throws
+    else if (hit) GLC_APPEND(GLC_LIST_INTERSECTIONS, g_intersections, pair)
 }

@@ -2,7 +2,8 @@
 // TriTriQueryExact — the exact half of a robust TriTriQuery batch: one invocation per pair the
 // filtered pass left undecided (the list at GLC_BIND_UNDECIDED, its length in stats[1]), decided by
 // glcTriTriExact of common/tri_tri_robust.glsl. The host reads the count back and dispatches that
-// many invocations (passes/tri_tri_query_pass.cpp).
+// many invocations (passes/tri_tri_query_pass.cpp); a pair it could not finish is counted in
+// stats[2], and the host throws instead of answering.
 #include "common/layout.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
@@ -29,4 +30,5 @@ void main() {
                               corner(base, 4u), corner(base, 5u));
     g_queryResults[i] = hit ? 1u : 0u;
     if (glcExactEvaluations != 0u) atomicAdd(g_queryStats[0], glcExactEvaluations);
+    if (glcExactFailed) atomicAdd(g_queryStats[2], 1u); // no answer: the host throws
 }

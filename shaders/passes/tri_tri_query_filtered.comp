@@ -14,7 +14,8 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 
 layout(std430, binding = GLC_BIND_QUERY_TRIANGLES) readonly buffer QueryTrianglesBuf { float g_queryTriangles[]; };
 layout(std430, binding = GLC_BIND_QUERY_RESULTS) writeonly buffer QueryResultsBuf { uint g_queryResults[]; };
-// stats[0]: predicates evaluated exactly (the exact pass), stats[1]: undecided pairs.
+// stats[0]: predicates evaluated exactly (the exact pass), stats[1]: undecided pairs, stats[2]:
+// pairs the exact pass could not finish.
 layout(std430, binding = GLC_BIND_QUERY_STATS) buffer QueryStatsBuf { uint g_queryStats[]; };
 layout(std430, binding = GLC_BIND_UNDECIDED) writeonly buffer UndecidedBuf { uint g_undecided[]; };
 

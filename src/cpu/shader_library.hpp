@@ -16,8 +16,11 @@
 #include <glm/vec3.hpp>
 #include <glm/vector_relational.hpp>
 
+#include <glcollide/error.hpp>
+
 #include <bit>
 #include <cstdint>
+#include <string>
 
 namespace glcollide::shader {
 namespace {
@@ -31,6 +34,7 @@ using glm::min;
 using uint = std::uint32_t;
 using vec3 = glm::vec3;
 using ivec3 = glm::ivec3;
+using uvec3 = glm::uvec3;
 
 // GLSL 4.30, section 8.8 "Integer Functions".
 uint uaddCarry(uint x, uint y, uint& carry) {
@@ -58,16 +62,37 @@ int findMSB(uint x) {
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
 #pragma GCC diagnostic ignored "-Wunused-variable"
+// Test seam: the float evaluation behind glcOrient3dFilter (det, permanent, max(M, 1)), replaceable
+// per thread by tests that model another conforming compiler (a worst-case rounding, a rewriting,
+// a filter whose results differ between reruns). Null: the library's own glcOrient3dEstimate.
+// Shaders never define GLC_ORIENT3D_ESTIMATE, so the GPU always runs the library's evaluation.
+using Orient3dEstimate = vec3 (*)(vec3 a, vec3 b, vec3 c, vec3 d);
+thread_local Orient3dEstimate orient3dEstimateOverride = nullptr;
+vec3 glcOrient3dEstimate(vec3 a, vec3 b, vec3 c, vec3 d); // defined in common/orient.glsl
+vec3 orient3dEstimateSeam(vec3 a, vec3 b, vec3 c, vec3 d) {
+    return orient3dEstimateOverride != nullptr ? orient3dEstimateOverride(a, b, c, d)
+                                               : glcOrient3dEstimate(a, b, c, d);
+}
+#define GLC_ORIENT3D_ESTIMATE orient3dEstimateSeam
+
 #define GLC_PRIVATE thread_local
 #include "common/tri_tri_robust.glsl"
 #undef GLC_PRIVATE
+#undef GLC_ORIENT3D_ESTIMATE
 #pragma GCC diagnostic pop
 
 /// The robust answer as the GPU composes it: the filtered pass, then the exact pass for the pairs
-/// it left undecided.
+/// it left undecided. Throws Error when the exact pass could not finish (glcExactFailed), as the
+/// passes do on the device: no answer is taken from a voided run.
 inline bool robustTrianglesIntersect(vec3 a0, vec3 a1, vec3 a2, vec3 b0, vec3 b1, vec3 b2) {
     const int filtered = glcTriTriFiltered(a0, a1, a2, b0, b1, b2);
-    return filtered != GLC_UNDECIDED ? filtered == 1 : glcTriTriExact(a0, a1, a2, b0, b1, b2);
+    if (filtered != GLC_UNDECIDED) return filtered == 1;
+    const bool hit = glcTriTriExact(a0, a1, a2, b0, b1, b2);
+    if (glcExactFailed)
+        throw Error("robust tri-tri: the exact pass could not finish (more than " +
+                    std::to_string(GLC_MAX_EXACT) +
+                    " recorded signs, or a predicate on a point that is not an input corner)");
+    return hit;
 }
 
 } // namespace

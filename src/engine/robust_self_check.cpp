@@ -2,6 +2,7 @@
 
 #include "gl/program_cache.hpp"
 #include "gl/setup_stats_sink.hpp"
+#include "passes/collision/narrow_phase_batch.hpp"
 #include "passes/tri_tri_query_pass.hpp"
 
 #include <glcollide/error.hpp>
@@ -49,11 +50,12 @@ std::uint64_t hashCases(const std::vector<SelfCheckCase>& cases) {
     return gl::fnv1a64(bytes);
 }
 
-// What a pass is remembered under: the device and driver, the query programs' sources (as built,
-// so a rewritten shader is checked again), the case set and any test injection.
+// What a pass is remembered under: the device and driver, the sources of every program the check
+// runs (as built, so a rewritten shader is checked again: both kernel sets and the list
+// dispatcher), the case set and any test injection.
 std::string rememberKey(const gl::DriverIdentity& driver, const std::vector<ProgramSetup>& programs,
                         const std::vector<SelfCheckCase>& cases, const SelfCheckInjection& injection) {
-    std::string key = "glcollide robust self-check 1\nvendor: " + driver.vendor +
+    std::string key = "glcollide robust self-check 2\nvendor: " + driver.vendor +
                       "\nrenderer: " + driver.renderer + "\nversion: " + driver.version + "\n";
     for (const ProgramSetup& p : programs) {
         key += "program: " + p.shader;
@@ -84,14 +86,22 @@ bool markerHolds(const std::filesystem::path& path, const std::string& key) {
     return text == key; // the full key, so a colliding file name never counts as a pass
 }
 
-// Builds the robust query pass with its own sink, to learn the programs' sources, and passes the
+// The two sets of robust kernels the check runs: the collision pipeline's, which engines run, and
+// the query's (glcollide query tritri, benchmarks).
+struct CheckKernels {
+    passes::NarrowPhaseBatch collision;
+    passes::TriTriQueryPass query;
+};
+
+// Builds both kernel sets with their own sink, to learn the programs' sources, and passes the
 // programs on to the caller's sink (an Engine's setup statistics) as setup cost.
-passes::TriTriQueryPass buildQueryPass(std::vector<ProgramSetup>& programs) {
+CheckKernels buildKernels(std::vector<ProgramSetup>& programs) {
     SetupStats local;
-    std::optional<passes::TriTriQueryPass> pass;
+    std::optional<CheckKernels> kernels;
     {
         const gl::SetupStatsScope scope(&local);
-        pass.emplace(TriTriPrecision::Robust);
+        kernels.emplace(CheckKernels{passes::NarrowPhaseBatch(TriTriPrecision::Robust),
+                                     passes::TriTriQueryPass(TriTriPrecision::Robust)});
     }
     if (SetupStats* outer = gl::activeSetupStats()) {
         if (outer->cacheFolder.empty()) outer->cacheFolder = local.cacheFolder;
@@ -99,7 +109,7 @@ passes::TriTriQueryPass buildQueryPass(std::vector<ProgramSetup>& programs) {
     }
     for (const ProgramSetup& p : local.programs) gl::recordProgramSetup(p);
     programs = std::move(local.programs);
-    return std::move(*pass);
+    return std::move(*kernels);
 }
 
 std::string failureMessage(const gl::DriverIdentity& driver, const SelfCheckReport& r) {
@@ -176,6 +186,33 @@ void forgetRememberedSelfChecks() {
     g_remembered.clear();
 }
 
+void judgeSelfCheckAnswers(const std::vector<SelfCheckAnswers>& answers, const SelfCheckInjection& injection,
+                           SelfCheckReport& report) {
+    const std::vector<SelfCheckCase>& cases = builtinSelfCheckCases();
+    std::vector<bool> inverted(cases.size(), false);
+    for (std::size_t i : injection.invertExpected) inverted.at(i) = true;
+    for (const SelfCheckAnswers& a : answers)
+        if (a.intersect.size() != cases.size())
+            throw Error("self-check: the " + a.kernels + " answered " + std::to_string(a.intersect.size()) +
+                        " of " + std::to_string(cases.size()) + " cases");
+    report.cases = static_cast<std::uint32_t>(cases.size());
+    report.wrong = 0;
+    report.firstWrong.clear();
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const bool expected = cpu::exactPairIntersects(cases[i].pair) != inverted[i];
+        std::string wrongSets; // the kernel sets that answered !expected
+        for (const SelfCheckAnswers& a : answers)
+            if ((a.intersect[i] != 0) != expected)
+                wrongSets += (wrongSets.empty() ? "" : " and the ") + a.kernels;
+        if (wrongSets.empty()) continue;
+        if (report.wrong++ == 0)
+            report.firstWrong = "case " + std::to_string(i) + " \"" + cases[i].name +
+                                "\": " + formatTriPair(cases[i].pair) + ", expected " +
+                                (expected ? "1 (intersecting)" : "0 (apart)") + ", got " +
+                                (expected ? "0 (apart)" : "1 (intersecting)") + " from the " + wrongSets;
+    }
+}
+
 SelfCheckReport runRobustSelfCheck(SelfCheckMode mode, const SelfCheckInjection& injection) {
     SelfCheckReport report;
     report.mode = mode;
@@ -192,7 +229,7 @@ SelfCheckReport runRobustSelfCheck(SelfCheckMode mode, const SelfCheckInjection&
             throw Error("self-check injection: case " + std::to_string(i) + " of " +
                         std::to_string(cases.size()));
     std::vector<ProgramSetup> programs;
-    const passes::TriTriQueryPass pass = buildQueryPass(programs);
+    CheckKernels kernels = buildKernels(programs);
     const gl::DriverIdentity driver = gl::currentDriverIdentity();
     const std::string key = rememberKey(driver, programs, cases, injection);
     const std::optional<std::filesystem::path> marker = markerPath(key);
@@ -208,19 +245,23 @@ SelfCheckReport runRobustSelfCheck(SelfCheckMode mode, const SelfCheckInjection&
     std::vector<passes::TriTriPair> pairs;
     pairs.reserve(cases.size());
     for (const SelfCheckCase& c : cases) pairs.push_back(c.pair);
-    const passes::TriTriQueryResult got = pass.run(pairs);
-    std::vector<bool> inverted(cases.size(), false);
-    for (std::size_t i : injection.invertExpected) inverted[i] = true;
-    report.cases = static_cast<std::uint32_t>(cases.size());
-    for (std::size_t i = 0; i < cases.size(); ++i) {
-        const bool expected = cpu::exactPairIntersects(cases[i].pair) != inverted[i];
-        const bool answer = got.intersect[i] != 0;
-        if (answer == expected) continue;
-        if (report.wrong++ == 0)
-            report.firstWrong = "case " + std::to_string(i) + " \"" + cases[i].name +
-                                "\": " + formatTriPair(cases[i].pair) + ", expected " +
-                                (expected ? "1 (intersecting)" : "0 (apart)") + ", got " +
-                                (answer ? "1 (intersecting)" : "0 (apart)");
+    std::vector<SelfCheckAnswers> answers;
+    std::string unfinished; // a kernel set that could not answer (its exact pass failed)
+    auto answer = [&](const char* name, auto&& run) {
+        try {
+            answers.push_back({name, run(pairs).intersect});
+        } catch (const Error& e) {
+            if (unfinished.empty()) unfinished = std::string("the ") + name + " gave no answer: " + e.what();
+        }
+    };
+    answer("collision kernels (tri_tri_filtered, tri_tri_exact)",
+           [&](const auto& p) { return kernels.collision.run(p); });
+    answer("query kernels (tri_tri_query_filtered, tri_tri_query_exact)",
+           [&](const auto& p) { return kernels.query.run(p); });
+    judgeSelfCheckAnswers(answers, injection, report);
+    if (!unfinished.empty()) {
+        report.wrong = report.cases;
+        report.firstWrong = unfinished;
     }
     report.passed = report.wrong == 0;
     report.milliseconds = elapsed();

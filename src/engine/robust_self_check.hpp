@@ -3,19 +3,22 @@
 // self-check"). Robust precision promises the exact rational oracle's answer on every input; that
 // rests on the device executing the integer and float operations of the shaders as GLSL
 // specifies. The first time robust precision is used on a device, the built-in hard cases and a
-// fixed sample of the near-degenerate random families run through TriTriQueryPass(Robust) and
-// are compared with the oracle. A disagreement is an Error (or a warning, or nothing, as the mode
+// fixed sample of the near-degenerate random families run through both sets of robust kernels —
+// the collision pipeline's (NarrowPhaseBatch: tri_tri_filtered, tri_tri_exact, the kernels engines
+// run) and the query's (TriTriQueryPass: tri_tri_query_filtered, tri_tri_query_exact) — and are
+// compared with the oracle. A disagreement is an Error (or a warning, or nothing, as the mode
 // says) naming the device, the driver and the first wrong case. A pass is remembered per device,
-// driver, query shader sources and case set: a marker file in the program cache folder (across
-// processes) and a set of keys in this process (when the cache is off), so the check runs once.
-// Part of the engine (which runs it before robust collisions), not of passes: it needs the exact
-// oracle and its cases (cpu/oracle/), and passes links no GMP.
+// driver, the sources of every program it ran and the case set: a marker file in the program cache folder
+// (across processes) and a set of keys in this process (when the cache is off), so the check runs once. Part
+// of the engine (which runs it before robust collisions), not of passes: it needs the exact oracle and its
+// cases (cpu/oracle/), and passes links no GMP.
 
 #include "cpu/oracle/tri_tri_cases.hpp"
 
 #include <glcollide/setup_stats.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -49,6 +52,19 @@ SelfCheckMode effectiveSelfCheckMode(SelfCheckMode option);
 struct SelfCheckInjection {
     std::vector<std::size_t> invertExpected;
 };
+
+/// The answers of one set of kernels to builtinSelfCheckCases(), in case order.
+struct SelfCheckAnswers {
+    std::string kernels;                 ///< names the kernels in messages, e.g. "collision kernels"
+    std::vector<std::uint8_t> intersect; ///< 1: the closed triangles intersect
+};
+
+/// Compares every set of answers with the oracle (the expected answers of the injected cases
+/// inverted) and fills report.cases, report.wrong (cases that some set answered differently)
+/// and report.firstWrong (index, name, coordinates, expected, and what each wrong set said).
+/// The device-free half of the check: tests feed it answers of simulated devices.
+void judgeSelfCheckAnswers(const std::vector<SelfCheckAnswers>& answers, const SelfCheckInjection& injection,
+                           SelfCheckReport& report);
 
 /// Runs the check on the current context unless `mode` is Off or a pass is remembered. Throws
 /// Error on a disagreement in Error mode; in Warn mode returns it in SelfCheckReport::message.

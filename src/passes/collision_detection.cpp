@@ -88,6 +88,7 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
     // Also clears the contact response's counter: a new substep counts its contacts from zero.
     const std::uint32_t reruns = m_chain.run(*m_lists, timer);
     const AppendLists& l = *m_lists;
+    NarrowPhase::throwIfExactPassFailed(l);
     m_counts = {};
     m_counts.boxPairs = l.count(GLC_LIST_BOX_PAIRS); // 0 when the broad phase has no such list
     m_counts.candidates = l.count(GLC_LIST_CANDIDATES);

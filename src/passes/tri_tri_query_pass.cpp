@@ -8,6 +8,7 @@
 
 #include <limits>
 #include <string>
+#include <utility>
 
 namespace glcollide::passes {
 
@@ -24,6 +25,9 @@ TriTriQueryPass::TriTriQueryPass(TriTriPrecision precision) : m_precision(precis
     }
 }
 
+TriTriQueryPass::TriTriQueryPass(gl::ComputeProgram filtered, gl::ComputeProgram exact)
+    : m_precision(TriTriPrecision::Robust), m_program(std::move(filtered)), m_exact(std::move(exact)) {}
+
 TriTriQueryBatch TriTriQueryPass::upload(const std::vector<TriTriPair>& pairs) const {
     GLint64 maxBlock = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
@@ -37,7 +41,7 @@ TriTriQueryBatch TriTriQueryPass::upload(const std::vector<TriTriPair>& pairs) c
     b.pairCount = static_cast<std::uint32_t>(pairs.size());
     b.triangles = gl::Buffer("query_triangles", inputBytes, pairs.data());
     b.results = gl::Buffer("query_results", pairs.size() * sizeof(std::uint32_t));
-    b.stats = gl::Buffer("query_stats", 2 * sizeof(std::uint32_t));
+    b.stats = gl::Buffer("query_stats", 3 * sizeof(std::uint32_t));
     if (m_precision == TriTriPrecision::Robust)
         b.undecided =
             gl::Buffer("query_undecided", pairs.size() * sizeof(std::uint32_t)); // at most every pair
@@ -46,7 +50,7 @@ TriTriQueryBatch TriTriQueryPass::upload(const std::vector<TriTriPair>& pairs) c
 
 void TriTriQueryPass::dispatch(TriTriQueryBatch& b) const {
     if (b.pairCount == 0) return;
-    const std::uint32_t zeros[2] = {0, 0};
+    const std::uint32_t zeros[3] = {0, 0, 0};
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after an earlier dispatch's writes to the counters
     b.stats.upload(0, sizeof zeros, zeros);
     b.triangles.bindStorage(GLC_BIND_QUERY_TRIANGLES);
@@ -75,8 +79,15 @@ TriTriQueryResult TriTriQueryPass::read(const TriTriQueryBatch& b) const {
     std::vector<std::uint32_t> answers(b.pairCount);
     if (b.pairCount == 0) return result;
     b.results.download(0, answers.size() * sizeof(std::uint32_t), answers.data());
-    std::uint32_t stats[2] = {0, 0};
+    std::uint32_t stats[3] = {0, 0, 0};
     b.stats.download(0, sizeof stats, stats);
+    if (stats[2] != 0)
+        throw Error(
+            std::string(kName) + ": the exact pass could not finish " + std::to_string(stats[2]) + " of " +
+            std::to_string(b.pairCount) +
+            " pairs (more signs to record than GLC_MAX_EXACT, or a predicate on a point that is not an "
+            "input corner: a broken assumption of shaders/common/tri_tri_robust.glsl); no answer is "
+            "returned");
     result.intersect.reserve(answers.size());
     for (std::uint32_t a : answers) result.intersect.push_back(a != 0 ? 1 : 0);
     result.exactFallbacks = stats[0];

@@ -44,11 +44,15 @@ class TriTriQueryPass {
   public:
     static constexpr const char* kName = "TriTriQuery";
     explicit TriTriQueryPass(TriTriPrecision precision);
+    /// Test hook: robust precision with the given filtered and exact programs (e.g. an exact
+    /// kernel built from modified source, tests/gl/tri_tri_gl_test.cpp).
+    TriTriQueryPass(gl::ComputeProgram filtered, gl::ComputeProgram exact);
 
     [[nodiscard]] TriTriPrecision precision() const { return m_precision; }
 
     /// Uploads `pairs`, answers them, waits and reads the answers back. Throws Error when the
-    /// batch exceeds the device's shader storage block size.
+    /// batch exceeds the device's shader storage block size, or when the exact pass could not
+    /// finish a pair (read()).
     [[nodiscard]] TriTriQueryResult run(const std::vector<TriTriPair>& pairs) const;
 
     /// The three steps of run(), for benchmarks that time dispatch() alone, any number of times.

@@ -207,6 +207,7 @@ TEST(LayoutGl, CollisionStructsMatchCpp) {
          offsetof(gpu::GpuCollisionCounters, lists) + offsetof(gpu::GpuListCounter, capacity)},
         {"g_counters.exactFallbackCount", offsetof(gpu::GpuCollisionCounters, exactFallbackCount)},
         {"g_counters.contactCount", offsetof(gpu::GpuCollisionCounters, contactCount)},
+        {"g_counters.exactErrorCount", offsetof(gpu::GpuCollisionCounters, exactErrorCount)},
     };
     for (const auto& [name, offset] : members)
         EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset))

@@ -1,8 +1,10 @@
 // The on-device self-check of robust precision (src/engine/robust_self_check.hpp) on this device:
-// it passes; a disagreement (injected by inverting expected answers through the test hook, while
-// every case still runs on the device) is an Error naming the device, the driver, the first wrong
-// case and the count, or a warning in warn mode; a pass is remembered by the marker file across
-// processes and by the process itself without a cache; an Engine with robust collisions runs it.
+// it passes, on both kernel sets (the collision pipeline's, which engines run, and the query's;
+// tests/mutants/robust-self-check-*.patch break a kernel the way a driver might and must fail here); a
+// disagreement (injected by inverting expected answers through the test hook, while every case still runs on
+// the device) is an Error naming the device, the driver, the first wrong case and the count, or a warning in
+// warn mode; a pass is remembered by the marker file across processes and by the process itself without a
+// cache; an Engine with robust collisions runs it.
 //
 // Every test starts from a fresh cache folder and forgets the process's remembered passes, so
 // each one decides for itself whether the check runs.
@@ -64,6 +66,20 @@ TEST_F(RobustSelfCheckGl, PassesOnThisDevice) {
     ASSERT_FALSE(r.marker.empty());
     EXPECT_EQ(std::filesystem::path(r.marker).parent_path(), dir.path());
     EXPECT_TRUE(std::filesystem::exists(r.marker));
+}
+
+// The pass is remembered for the programs that ran: both kernel sets, the collision pipeline's
+// (which engines run) and the query's, so a change to either is checked again.
+TEST_F(RobustSelfCheckGl, TheMarkerNamesTheKernelsEnginesRun) {
+    const SelfCheckReport r = runRobustSelfCheck(SelfCheckMode::Error);
+    ASSERT_TRUE(r.passed);
+    std::ifstream in(r.marker, std::ios::binary);
+    const std::string key((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const char* program :
+         {"tri_tri_filtered", "tri_tri_exact", "tri_tri_query_filtered", "tri_tri_query_exact"})
+        EXPECT_NE(key.find(std::string("program: ") + program + " source "), std::string::npos)
+            << program << "\n"
+            << key;
 }
 
 TEST_F(RobustSelfCheckGl, TheMarkerMakesTheNextProcessSkipTheRun) {

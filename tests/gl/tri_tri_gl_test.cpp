@@ -1,7 +1,10 @@
 // The narrow phase on the GPU (shaders/common/tri_tri.glsl through the TriTriQuery pass):
 //  - robust must equal the exact rational oracle (src/cpu/oracle/exact_tri_tri.cpp) on every pair: the
 //    hand-made hard cases in all corner rotations and both orders, and seeded random sets, uniform
-//    and near-degenerate (src/cpu/oracle/tri_tri_cases.cpp);
+//    and near-degenerate (src/cpu/oracle/tri_tri_cases.cpp); the collision pipeline's own kernels
+//    (tri_tri_filtered, tri_tri_exact through NarrowPhaseBatch) too;
+//  - an exact pass that cannot finish a pair (its cap on recorded signs lowered in a copy of the
+//    kernel's source) is an Error from both kernel sets, never an answer;
 //  - fast is compared with its float CPU twin (src/cpu/fast_tri_tri.cpp) and with the oracle.
 //    Its disagreements with the oracle are counted per set and printed (docs/narrow-phase.md
 //    publishes them); the only assertions are sanity bounds.
@@ -10,7 +13,11 @@
 #include "cpu/fast_tri_tri.hpp"
 #include "cpu/oracle/exact_tri_tri.hpp"
 #include "cpu/oracle/tri_tri_cases.hpp"
+#include "gl/program.hpp"
+#include "passes/collision/narrow_phase_batch.hpp"
 #include "passes/tri_tri_query_pass.hpp"
+
+#include <glcollide/error.hpp>
 
 #include <gtest/gtest.h>
 
@@ -142,6 +149,60 @@ TEST(TriTriGl, BatchSizesAroundTheWorkGroup) {
         EXPECT_EQ(gpu.intersect, oracle(pairs)) << n << " pairs";
     }
     EXPECT_TRUE(robust.run({}).intersect.empty());
+}
+
+// The kernels engines run (tri_tri_filtered, then tri_tri_exact over the undecided candidates),
+// fed the pairs as one-face objects with exactly the pairs as candidates.
+TEST(TriTriGl, CollisionKernelsMatchOracle) {
+    std::vector<FloatTriPair> pairs;
+    for (const auto& c : cpu::hardTriTriCases()) pairs.push_back(c.pair);
+    for (TriTriSet set : {TriTriSet::Ulp, TriTriSet::Degenerate, TriTriSet::Scaled})
+        for (const FloatTriPair& p : cpu::randomTriTriPairs(set, 1000, 41)) pairs.push_back(p);
+    passes::NarrowPhaseBatch batch(TriTriPrecision::Robust);
+    const passes::TriTriQueryResult gpu = batch.run(pairs);
+    ASSERT_EQ(gpu.intersect.size(), pairs.size());
+    EXPECT_EQ(mismatches(gpu.intersect, oracle(pairs)), 0u);
+    EXPECT_GT(gpu.undecidedPairs, pairs.size() / 10) << "the exact pass must be exercised";
+    EXPECT_GT(gpu.exactFallbacks, 0u);
+    EXPECT_TRUE(batch.run({}).intersect.empty());
+}
+
+// A copy of an exact kernel's source with its cap on recorded signs lowered to 3, which ordinary
+// hard cases exceed (tests/unit/exact_pass_cap_test.cpp shows which on the CPU).
+gl::ComputeProgram exactKernelWithCap3(const char* shader) {
+    std::string source = gl::shaderSource(shader);
+    source.insert(source.find('\n') + 1, "#define GLC_MAX_EXACT 3\n");
+    return gl::ComputeProgram::fromSource(std::string(shader) + " (cap 3)", source);
+}
+
+std::vector<FloatTriPair> hardPairs() {
+    std::vector<FloatTriPair> pairs;
+    for (const auto& c : cpu::hardTriTriCases()) pairs.push_back(c.pair);
+    return pairs;
+}
+
+TEST(TriTriGl, AnExactPassThatCannotFinishIsAnErrorForQueries) {
+    const TriTriQueryPass query(gl::ComputeProgram("tri_tri_query_filtered"),
+                                exactKernelWithCap3("tri_tri_query_exact"));
+    try {
+        (void)query.run(hardPairs());
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("the exact pass could not finish"), std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(TriTriGl, AnExactPassThatCannotFinishIsAnErrorForCollisions) {
+    passes::NarrowPhaseBatch batch(
+        passes::NarrowPhase(gl::ComputeProgram("tri_tri_filtered"), exactKernelWithCap3("tri_tri_exact")));
+    try {
+        (void)batch.run(hardPairs());
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("the exact pass could not finish"), std::string::npos)
+            << e.what();
+    }
 }
 
 // Fast against its CPU twin and against the oracle. The shader's fast path is `precise` (no FMA

@@ -39,6 +39,16 @@ void AppendLists::declare(std::uint32_t list, const ListSpec& spec) {
     writeCounters();
 }
 
+void AppendLists::fillFromHost(std::uint32_t list, const void* items, std::uint32_t count) {
+    List& l = m_lists.at(list);
+    if (count > l.capacity)
+        throw Error(std::string("collision list '") + l.spec.label + "': " + std::to_string(count) +
+                    " items filled from the host, capacity " + std::to_string(l.capacity));
+    if (count != 0) l.storage.upload(0, std::size_t{count} * l.spec.itemBytes, items);
+    l.count = count;
+    writeCounters();
+}
+
 std::uint32_t AppendLists::storedCount(std::uint32_t list) const {
     const List& l = m_lists.at(list);
     return l.count < l.capacity ? l.count : l.capacity;

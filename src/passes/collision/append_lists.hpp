@@ -35,6 +35,10 @@ class AppendLists {
     explicit AppendLists(std::uint64_t byteLimit);
 
     void declare(std::uint32_t list, const ListSpec& spec);
+    /// Stores `count` items (count * itemBytes bytes at `items`, count <= capacity) as the whole
+    /// of `list` and sets its count: a list the host fills instead of a stage (the candidates of
+    /// NarrowPhaseBatch). A chain that does not write the list keeps it.
+    void fillFromHost(std::uint32_t list, const void* items, std::uint32_t count);
     [[nodiscard]] bool declared(std::uint32_t list) const {
         return static_cast<bool>(m_lists.at(list).storage);
     }
@@ -47,6 +51,8 @@ class AppendLists {
     /// Times grow() ran on the list since the last resetGrowths().
     [[nodiscard]] std::uint32_t growths(std::uint32_t list) const { return m_lists.at(list).growths; }
     [[nodiscard]] std::uint32_t exactFallbacks() const { return m_exactFallbacks; }
+    /// Robust TriTri: pairs the exact pass could not finish at the last readCounters() (an error).
+    [[nodiscard]] std::uint32_t exactErrors() const { return m_stats.exactErrorCount; }
     /// BVH traversal statistics at the last readCounters() (GpuCollisionCounters).
     [[nodiscard]] std::uint32_t bvhUnfinished() const { return m_stats.bvhUnfinished; }
     [[nodiscard]] std::uint32_t bvhNodeVisits() const { return m_stats.bvhNodeVisits; }

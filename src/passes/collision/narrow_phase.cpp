@@ -2,6 +2,11 @@
 
 #include "core/gpu_layout.hpp"
 
+#include <glcollide/error.hpp>
+
+#include <string>
+#include <utility>
+
 namespace glcollide::passes {
 
 NarrowPhase::NarrowPhase(TriTriPrecision precision) {
@@ -11,6 +16,17 @@ NarrowPhase::NarrowPhase(TriTriPrecision precision) {
     } else {
         m_test = gl::ComputeProgram("tri_tri_fast");
     }
+}
+
+NarrowPhase::NarrowPhase(gl::ComputeProgram filtered, gl::ComputeProgram exact)
+    : m_test(std::move(filtered)), m_exact(std::move(exact)) {}
+
+void NarrowPhase::throwIfExactPassFailed(const AppendLists& lists) {
+    if (lists.exactErrors() == 0) return;
+    throw Error("TriTri: the exact pass could not finish " + std::to_string(lists.exactErrors()) +
+                " candidate pairs (more signs to record than GLC_MAX_EXACT, or a predicate on a point "
+                "that is not an input corner: a broken assumption of shaders/common/tri_tri_robust.glsl); "
+                "their answers would not be exact");
 }
 
 void NarrowPhase::addStages(StageChain& chain, AppendLists& lists) {

@@ -17,9 +17,16 @@ namespace glcollide::passes {
 class NarrowPhase {
   public:
     explicit NarrowPhase(TriTriPrecision precision);
+    /// Test hook: robust precision with the given filtered and exact programs (e.g. an exact
+    /// kernel built from modified source, tests/gl/tri_tri_gl_test.cpp).
+    NarrowPhase(gl::ComputeProgram filtered, gl::ComputeProgram exact);
     /// Declares the undecided list (robust; it keeps the candidates' capacity) and adds the TriTri
     /// stages to `chain`. Call after the candidate and intersection lists are declared.
     void addStages(StageChain& chain, AppendLists& lists);
+    /// After the chain's read-back: throws Error when the exact pass could not finish a pair
+    /// (GpuCollisionCounters.exactErrorCount; never, by the argument of tri_tri_robust.glsl), so
+    /// that no answer of a voided run is used.
+    static void throwIfExactPassFailed(const AppendLists& lists);
 
   private:
     gl::ComputeProgram m_test;  ///< fast, or the robust filtered test
