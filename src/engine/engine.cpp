@@ -267,9 +267,9 @@ void Engine::Impl::makePass(engine::Stage stage) {
         f.springs = plan.springUpdate;
         f.update = plan.nodeUpdateParams;
         f.substeps = static_cast<std::uint32_t>(substeps.substeps);
-        f.substepsPerDispatch = passes::frameStepSubstepsPerDispatch(
-            buffers.nodeCount, f.springs ? &model.nodeSprings : nullptr,
-            f.external.wind ? &model.nodeFaces : nullptr);
+        f.substepsPerDispatch =
+            passes::frameStepSubstepsPerDispatch(buffers.nodeCount, f.springs ? &model.nodeSprings : nullptr,
+                                                 f.external.wind ? &model.nodeFaces : nullptr);
         frameStep.emplace(f);
         break;
     }
