@@ -93,8 +93,19 @@ struct CheckKernels {
     passes::TriTriQueryPass query;
 };
 
+// Whether the sink already holds this program (same shader, defines and source).
+bool holds(const SetupStats& sink, const ProgramSetup& program) {
+    for (const ProgramSetup& p : sink.programs)
+        if (p.shader == program.shader && p.defines == program.defines && p.sourceHash == program.sourceHash)
+            return true;
+    return false;
+}
+
 // Builds both kernel sets with their own sink, to learn the programs' sources, and passes the
-// programs on to the caller's sink (an Engine's setup statistics) as setup cost.
+// programs on to the caller's sink (an Engine's setup statistics) as setup cost, except those the
+// caller built itself: an engine with robust collisions has already built tri_tri_filtered,
+// tri_tri_exact and list_dispatch_args, and the check's copies (loads from the program cache the
+// engine's builds just filled) are part of the check's own time, not a second entry.
 CheckKernels buildKernels(std::vector<ProgramSetup>& programs) {
     SetupStats local;
     std::optional<CheckKernels> kernels;
@@ -103,11 +114,13 @@ CheckKernels buildKernels(std::vector<ProgramSetup>& programs) {
         kernels.emplace(CheckKernels{passes::NarrowPhaseBatch(TriTriPrecision::Robust),
                                      passes::TriTriQueryPass(TriTriPrecision::Robust)});
     }
-    if (SetupStats* outer = gl::activeSetupStats()) {
+    SetupStats* outer = gl::activeSetupStats();
+    if (outer != nullptr) {
         if (outer->cacheFolder.empty()) outer->cacheFolder = local.cacheFolder;
         if (outer->cacheNote.empty()) outer->cacheNote = local.cacheNote;
     }
-    for (const ProgramSetup& p : local.programs) gl::recordProgramSetup(p);
+    for (const ProgramSetup& p : local.programs)
+        if (outer == nullptr || !holds(*outer, p)) gl::recordProgramSetup(p);
     programs = std::move(local.programs);
     return std::move(*kernels);
 }

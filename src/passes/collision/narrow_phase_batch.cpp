@@ -42,7 +42,7 @@ TriTriQueryResult NarrowPhaseBatch::run(const std::vector<TriTriPair>& pairs) {
     const gl::Buffer faceBuffer = gl::makeBuffer("batch_faces", faces);
 
     constexpr std::size_t kPairBytes = 2 * sizeof(std::uint32_t); // uvec2
-    AppendLists lists(0);
+    AppendLists& lists = m_lists;
     lists.declare(GLC_LIST_CANDIDATES, {"candidates", "pairs", kPairBytes, GLC_BIND_FACE_PAIRS, count});
     lists.declare(GLC_LIST_INTERSECTIONS,
                   {"intersections", "pairs", kPairBytes, GLC_BIND_INTERSECTIONS, count});

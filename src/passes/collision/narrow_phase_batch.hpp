@@ -8,6 +8,7 @@
 // as through TriTriQueryPass, so that it checks the kernels engines run
 // (docs/narrow-phase.md, "On-device self-check").
 
+#include "passes/collision/append_lists.hpp"
 #include "passes/collision/narrow_phase.hpp"
 #include "passes/tri_tri_query_pass.hpp"
 
@@ -18,9 +19,11 @@ namespace glcollide::passes {
 class NarrowPhaseBatch {
   public:
     static constexpr const char* kName = "TriTri (batch)";
-    explicit NarrowPhaseBatch(TriTriPrecision precision) : m_narrowPhase(precision) {}
+    /// Builds every program it runs (the narrow phase's and the lists' dispatcher), so that a
+    /// caller's setup sink sees them all here.
+    explicit NarrowPhaseBatch(TriTriPrecision precision) : m_narrowPhase(precision), m_lists(0) {}
     /// Test hook: see NarrowPhase(filtered, exact).
-    explicit NarrowPhaseBatch(NarrowPhase narrowPhase) : m_narrowPhase(std::move(narrowPhase)) {}
+    explicit NarrowPhaseBatch(NarrowPhase narrowPhase) : m_narrowPhase(std::move(narrowPhase)), m_lists(0) {}
 
     /// Uploads the pairs as a model, runs the narrow phase's stages over them, waits and reads
     /// the intersection list back. Throws Error when the exact pass could not finish a pair
@@ -29,6 +32,7 @@ class NarrowPhaseBatch {
 
   private:
     NarrowPhase m_narrowPhase;
+    AppendLists m_lists; ///< declared afresh, with the batch's capacities, by every run()
 };
 
 } // namespace glcollide::passes
