@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Assembles docs/benchmarks.md and the README's headline table from `glcollide bench` outputs.
+"""Assembles docs/benchmarks.md and the headline tables of docs/benchmark-snapshots.md from `glcollide bench` outputs.
 
 Every folder bench/results/<device>/ holding a report.md (written by `glcollide bench --out
 bench/results/{device}`) becomes one section of docs/benchmarks.md, between the markers
 <!-- results:begin --> and <!-- results:end -->, with its plot links made relative to docs/.
-The README's block between <!-- bench-headline:begin --> and <!-- bench-headline:end --> gets
+The block of docs/benchmark-snapshots.md between <!-- bench-headline:begin --> and <!-- bench-headline:end --> gets
 every device's headline table (GPUs first), each under a line naming the device, the commit and
 the suite it was measured with (from its bench.json context).
 Run by scripts/bench-report.sh; it only rearranges text, it measures nothing.
@@ -63,8 +63,8 @@ def main():
     for device in found:
         headline = open(os.path.join(RESULTS, device, "headline.md"), encoding="utf-8").read()
         headlines.append(f"#### {label(device)}\n\n" + headline.rstrip() + "\n")
-    splice(os.path.join(ROOT, "README.md"), "<!-- bench-headline:begin -->", "<!-- bench-headline:end -->",
-           "\n".join(headlines) + "\nAll tables and plots: [docs/benchmarks.md](docs/benchmarks.md).")
+    splice(os.path.join(ROOT, "docs", "benchmark-snapshots.md"), "<!-- bench-headline:begin -->", "<!-- bench-headline:end -->",
+           "\n".join(headlines) + "\nAll tables and plots: [docs/benchmarks.md](benchmarks.md).")
     print("docs/benchmarks.md: " + ", ".join(found))
 
 
