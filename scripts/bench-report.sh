@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the published benchmark report with one command: builds, runs a suite on this
 # machine's device (bench/suites/full.json unless another is given) into bench/results/<device>/,
-# then rebuilds docs/benchmarks.md and the README's headline table from every device's results.
+# then rebuilds docs/benchmarks.md and the headline tables of docs/benchmark-snapshots.md from every device's results.
 # Extra arguments go to `glcollide bench` (e.g. --device cuda:0, --only broad_phase).
 set -euo pipefail
 cd "$(dirname "$0")/.."
