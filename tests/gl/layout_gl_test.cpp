@@ -205,9 +205,7 @@ TEST(LayoutGl, CollisionStructsMatchCpp) {
          offsetof(gpu::GpuCollisionCounters, lists) + offsetof(gpu::GpuListCounter, count)},
         {"g_counters.lists[0].capacity",
          offsetof(gpu::GpuCollisionCounters, lists) + offsetof(gpu::GpuListCounter, capacity)},
-        {"g_counters.exactFallbackCount", offsetof(gpu::GpuCollisionCounters, exactFallbackCount)},
-        {"g_counters.contactCount", offsetof(gpu::GpuCollisionCounters, contactCount)},
-        {"g_counters.exactErrorCount", offsetof(gpu::GpuCollisionCounters, exactErrorCount)},
+        {"g_counters.stats[0]", offsetof(gpu::GpuCollisionCounters, stats)},
     };
     for (const auto& [name, offset] : members)
         EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset))
