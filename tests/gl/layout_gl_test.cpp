@@ -77,6 +77,9 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"PartialsPqBuf", GLC_BIND_SOLVER_PARTIALS_PQ},
     {"SolverStateBuf", GLC_BIND_SOLVER_STATE},
     {"HeavyNodesBuf", GLC_BIND_HEAVY_NODES},
+    // continuous detection (docs/ccd.md, "In the engine")
+    {"PredictedPositionsBuf", GLC_BIND_PREDICTED_POSITIONS},
+    {"NodeToiBuf", GLC_BIND_NODE_TOI},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {
