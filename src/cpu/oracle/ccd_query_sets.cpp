@@ -5,6 +5,8 @@
 
 #include <glcollide/error.hpp>
 
+#include <glm/common.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -49,6 +51,35 @@ const json& topArray(const json& doc, const std::string& file, const std::string
 
 std::string pointer(std::size_t i) {
     return "/" + std::to_string(i);
+}
+
+/// A primitive's swept box, with up to three vertices and its box id.
+struct SweptBox {
+    glm::dvec3 lo, hi;
+    std::array<std::uint32_t, 3> vertices;
+    int vertexCount;
+    std::uint64_t id;
+    int group; // which side of a pair it may be (vertex-face: 0 vertex, 1 face; edge-edge: 0)
+};
+
+SweptBox sweptBox(const CcdStep& step, const std::uint32_t* vertices, int count, std::uint64_t id,
+                  int group) {
+    SweptBox box{step.start[vertices[0]], step.start[vertices[0]], {}, count, id, group};
+    for (int k = 0; k < count; ++k) {
+        box.vertices[k] = vertices[k];
+        for (const glm::dvec3& p : {step.start[vertices[k]], step.end[vertices[k]]}) {
+            box.lo = glm::min(box.lo, p);
+            box.hi = glm::max(box.hi, p);
+        }
+    }
+    return box;
+}
+
+bool shareAVertex(const SweptBox& a, const SweptBox& b) {
+    for (int i = 0; i < a.vertexCount; ++i)
+        for (int j = 0; j < b.vertexCount; ++j)
+            if (a.vertices[i] == b.vertices[j]) return true;
+    return false;
 }
 
 } // namespace
@@ -202,6 +233,36 @@ std::vector<MeshCcdQuery> readListedCcdQueries(const CcdStep& step, const Scalab
         }
     }
     return queries;
+}
+
+std::vector<BoxPair> sweptBoxCandidates(const CcdStep& step, CcdPairKind kind) {
+    const std::uint64_t vertices = step.start.size(), edges = step.edges.size();
+    std::vector<SweptBox> boxes;
+    if (kind == CcdPairKind::VertexFace) {
+        for (std::uint32_t v = 0; v < vertices; ++v) boxes.push_back(sweptBox(step, &v, 1, v, 0));
+        for (std::size_t f = 0; f < step.faces.size(); ++f)
+            boxes.push_back(sweptBox(step, step.faces[f].data(), 3, vertices + edges + f, 1));
+    } else {
+        for (std::size_t e = 0; e < edges; ++e)
+            boxes.push_back(sweptBox(step, step.edges[e].data(), 2, vertices + e, 0));
+    }
+    // Sweep and prune along x: after sorting by lo.x, the boxes that overlap box i in x and come
+    // after it are those that start before box i ends.
+    std::sort(boxes.begin(), boxes.end(),
+              [](const SweptBox& a, const SweptBox& b) { return a.lo.x < b.lo.x; });
+    std::vector<BoxPair> pairs;
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        const SweptBox& a = boxes[i];
+        for (std::size_t j = i + 1; j < boxes.size() && boxes[j].lo.x <= a.hi.x; ++j) {
+            const SweptBox& b = boxes[j];
+            if (kind == CcdPairKind::VertexFace && a.group == b.group) continue;
+            if (b.lo.y > a.hi.y || a.lo.y > b.hi.y || b.lo.z > a.hi.z || a.lo.z > b.hi.z) continue;
+            if (shareAVertex(a, b)) continue;
+            pairs.push_back({std::min(a.id, b.id), std::max(a.id, b.id)}); // vertex ids < face ids
+        }
+    }
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
 }
 
 std::vector<SampleCcdQuery> readScalableCcdQueries(const ScalableCcdSet& set) {
