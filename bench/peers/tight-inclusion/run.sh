@@ -2,7 +2,8 @@
 # Runs the Tight-Inclusion peer (built by build.sh) on one CPU core: the CCD benchmark's
 # Sample-Queries shipped in tests/data/external/ccd-sample-queries (all vertex-face files
 # together, then all edge-edge files), and, when a folder of them is given, the Scalable-CCD sets as
-# written by glcollide_ccd_sets_csv (cloth-funnel and cloth-ball, vf and ee). Double first, then
+# written by glcollide_ccd_sets_csv (cloth-funnel, the funnel's whole broad phase and cloth-ball,
+# vf and ee). Double first, then
 # float. One JSON object per line on stdout (ti_queries.cpp documents the fields), after a first
 # line describing the machine.
 #
@@ -32,7 +33,7 @@ for precision in double float; do
     taskset -c "$core" "$bin/ti_queries_$precision" --kind "$kind" --set "sample-queries $kind" "${files[@]}"
   done
   if [ -n "$sets_dir" ]; then
-    for scene in cloth-funnel cloth-ball; do
+    for scene in cloth-funnel cloth-funnel-candidates cloth-ball; do
       for kind in vf ee; do
         taskset -c "$core" "$bin/ti_queries_$precision" --kind "$kind" --set "$scene $kind" "$sets_dir/$scene-$kind.csv"
       done
