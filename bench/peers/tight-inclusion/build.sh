@@ -64,7 +64,7 @@ for f in src/tight_inclusion/ccd.cpp src/tight_inclusion/config.hpp.in LICENSE; 
   [ -f "$src/$f" ] || { echo "tight-inclusion: $snapshot has no $f: not a Tight-Inclusion snapshot" >&2; exit 1; }
 done
 version=$(sed -n 's/^[[:space:]]*VERSION "\([0-9.]*\)".*/\1/p' "$src/CMakeLists.txt" | head -n 1) # project(... VERSION "x.y.z")
-printf 'Tight-Inclusion %s, commit %s, from %s\n' "${version:-unknown}" "$commit" "$snapshot" >"$out/source-commit.txt"
+printf 'Tight-Inclusion %s, commit %s\n' "${version:-unknown}" "$commit" >"$out/source-commit.txt"
 cp "$src/LICENSE" "$out/LICENSE-tight-inclusion"
 
 # TI's logger includes spdlog's bundled fmt; Debian's spdlog uses the system fmt instead.
