@@ -366,12 +366,19 @@ RationalCcdQuery rationalQuery(const std::array<glm::dvec3, 8>& points) {
     return q;
 }
 
-std::vector<SampleCcdQuery> readSampleCcdQueries(const std::string& path) {
+namespace {
+
+/// Reads a CCD query CSV (8 rows per query; each row the numerator and denominator of x, y and
+/// z, then the ground truth when the file has a 7th column). truthColumn: 7 fields required
+/// (true), or 6 or 7 fields, the same in every row (false; a 7th column is then still checked
+/// for consistency within a query).
+std::vector<SampleCcdQuery> readCcdCsv(const std::string& path, bool truthColumn) {
     std::ifstream in(path);
     if (!in) throw std::runtime_error(path + ": cannot open");
     std::vector<SampleCcdQuery> queries;
     std::string line;
     int lineNumber = 0;
+    std::size_t columns = 0; // of the first row
     auto fail = [&](const std::string& why) {
         throw std::runtime_error(path + ":" + std::to_string(lineNumber) + ": " + why);
     };
@@ -383,14 +390,25 @@ std::vector<SampleCcdQuery> readSampleCcdQueries(const std::string& path) {
         std::string field;
         while (std::getline(row, field, ',')) {
             mpz_class value;
-            if (field.empty() || value.set_str(field, 10) != 0) fail("not an integer: '" + field + "'");
+            // GMP ignores white space inside the digits: "1, 2" is read as 1 and 2, as the
+            // benchmark's README example writes its rows.
+            if (field.find_first_not_of(" \t") == std::string::npos || value.set_str(field, 10) != 0)
+                fail("not an integer: '" + field + "'");
             fields.push_back(value);
         }
-        if (fields.size() != 7) fail("expected 7 fields, found " + std::to_string(fields.size()));
+        if (truthColumn && fields.size() != 7)
+            fail("expected 7 fields, found " + std::to_string(fields.size()));
+        if (!truthColumn && fields.size() != 6 && fields.size() != 7)
+            fail("expected 6 or 7 fields, found " + std::to_string(fields.size()));
+        if (lineNumber == 1) columns = fields.size();
+        if (fields.size() != columns)
+            fail("expected " + std::to_string(columns) + " fields as in line 1, found " +
+                 std::to_string(fields.size()));
+        const bool truth = columns == 7 && fields[6] != 0;
         const int row8 = (lineNumber - 1) % 8;
         if (row8 == 0)
-            queries.push_back({{}, fields[6] != 0});
-        else if ((fields[6] != 0) != queries.back().truth)
+            queries.push_back({{}, truth});
+        else if (truth != queries.back().truth)
             fail("ground truth differs within a query");
         RationalPoint point;
         mpq_class* coords[3] = {&point.x, &point.y, &point.z};
@@ -403,6 +421,30 @@ std::vector<SampleCcdQuery> readSampleCcdQueries(const std::string& path) {
     }
     if (lineNumber % 8 != 0) fail("the file does not end with a whole query (8 rows)");
     return queries;
+}
+
+} // namespace
+
+std::vector<SampleCcdQuery> readSampleCcdQueries(const std::string& path) {
+    return readCcdCsv(path, true);
+}
+
+std::vector<RationalCcdQuery> readCcdQueryPoints(const std::string& path) {
+    std::vector<RationalCcdQuery> points;
+    for (SampleCcdQuery& q : readCcdCsv(path, false)) points.push_back(std::move(q.points));
+    return points;
+}
+
+void writeSampleCcdQueries(const std::string& path, const std::vector<SampleCcdQuery>& queries) {
+    std::ofstream out(path, std::ios::binary);
+    if (!out) throw std::runtime_error(path + ": cannot open for writing");
+    for (const SampleCcdQuery& q : queries)
+        for (const RationalPoint& p : q.points) {
+            for (const mpq_class* c : {&p.x, &p.y, &p.z})
+                out << c->get_num().get_str() << ',' << c->get_den().get_str() << ',';
+            out << (q.truth ? 1 : 0) << '\n';
+        }
+    if (!out.flush()) throw std::runtime_error(path + ": cannot write");
 }
 
 } // namespace glcollide::cpu
