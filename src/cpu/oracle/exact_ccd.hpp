@@ -47,7 +47,9 @@ struct SampleCcdQuery {
 };
 
 /// Reads a Sample-Queries CSV file (8 rows per query, 7 integer fields per row: numerator and
-/// denominator of x, y and z, then the ground truth). Throws std::runtime_error naming the line.
+/// denominator of x, y and z, then the ground truth) with readCcdQueryCsv (ccd_query_csv.hpp), which
+/// also reads rows of decimal numbers; every query must have its ground truth. Throws Error (a
+/// std::runtime_error) naming the line.
 std::vector<SampleCcdQuery> readSampleCcdQueries(const std::string& path);
 
 } // namespace glcollide::cpu
