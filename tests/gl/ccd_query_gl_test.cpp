@@ -22,6 +22,7 @@
 #include "passes/ccd_query_pass.hpp"
 
 #include <glcollide/error.hpp>
+#include <glcollide/gl_info.hpp>
 
 #include <gtest/gtest.h>
 
@@ -241,6 +242,13 @@ TEST(CcdQueryGl, RefusesBadSeparationsAndBudgets) {
     EXPECT_THROW((void)CcdQueryPass().run(CcdKind::EdgeEdge, {q}), Error);
     EXPECT_THROW((void)CcdQueryPass(0).run(CcdKind::EdgeEdge, {CcdQuery{}}), Error);
     EXPECT_TRUE(CcdQueryPass().run(CcdKind::EdgeEdge, {}).mayCollide.empty());
+    // A software rasteriser ends an invocation after 65,535 loop iterations: a larger budget would
+    // let it cut a search and answer "no contact".
+    const CcdQueryPass large(passes::kMaxLlvmpipeCcdBudget + 1);
+    if (queryGlInfo().isSoftware)
+        EXPECT_THROW((void)large.run(CcdKind::EdgeEdge, {CcdQuery{}}), Error);
+    else
+        EXPECT_EQ(large.run(CcdKind::EdgeEdge, {CcdQuery{}}).mayCollide.size(), 1u);
 }
 
 } // namespace
