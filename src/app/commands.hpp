@@ -48,7 +48,8 @@ struct QueryCcdOptions {
     std::string kind;                ///< vf (vertex-face) or ee (edge-edge)
     bool toi = false;                ///< append ",<time of impact>" to each answer
     std::string minSeparation = "0"; ///< decimal, read exactly
-    int budget = 21844;              ///< boxes per query (passes::kDefaultCcdBudget)
+    int budget = 21844;              ///< boxes per query and piece (passes::kDefaultCcdBudget)
+    int rounds = 4;                  ///< continuation rounds (passes::kDefaultCcdContinuationRounds)
     std::string device;
 };
 

@@ -81,7 +81,11 @@ int main(int argc, char** argv) {
         ->default_val("0");
     ccdCmd
         ->add_option("--budget", ccd.budget,
-                     "Boxes per query before answering 1 as capped (at most 21844 on llvmpipe)")
+                     "Boxes per query and piece before answering 1 as capped (at most 21844 on llvmpipe)")
+        ->capture_default_str();
+    ccdCmd
+        ->add_option("--rounds", ccd.rounds,
+                     "Rounds in which capped queries continue on halves of their time interval (0: none)")
         ->capture_default_str();
     ccdCmd->add_option("--device", ccd.device,
                        "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");

@@ -21,6 +21,7 @@ namespace glcollide::app {
 namespace {
 
 static_assert(QueryCcdOptions{}.budget == passes::kDefaultCcdBudget);
+static_assert(QueryCcdOptions{}.rounds == passes::kDefaultCcdContinuationRounds);
 
 passes::CcdKind parseKind(const std::string& kind) {
     if (kind == "vf") return passes::CcdKind::VertexFace;
@@ -91,6 +92,8 @@ int queryCcdCommand(const QueryCcdOptions& options) {
     // Parse and round before creating a context: a bad row fails fast and names its line.
     const passes::CcdKind kind = parseKind(options.kind);
     const mpq_class minSeparation = parseMinSeparation(options.minSeparation);
+    if (options.rounds < 0)
+        throw Error("--rounds: expected 0 or more, got " + std::to_string(options.rounds));
     if (options.budget < 1)
         throw Error("--budget: expected at least 1 box per query, got " + std::to_string(options.budget));
     const std::vector<cpu::CcdCsvQuery> csv = cpu::readCcdQueryCsv(options.inPath);
@@ -98,7 +101,7 @@ int queryCcdCommand(const QueryCcdOptions& options) {
     const std::vector<passes::CcdQuery> queries = roundedQueries(csv, minSeparation, options.inPath, widened);
 
     HeadlessContext context({options.device});
-    const passes::CcdQueryPass pass(options.budget);
+    const passes::CcdQueryPass pass(options.budget, options.rounds);
     pass.prepare(kind); // compiled (or loaded from the program cache) outside the timing
     const auto start = std::chrono::steady_clock::now();
     const passes::CcdQueryResult result = pass.run(kind, queries);
@@ -120,8 +123,9 @@ int queryCcdCommand(const QueryCcdOptions& options) {
     std::snprintf(rate, sizeof rate, "%.3f s on the device, %.0f queries/s", seconds,
                   seconds > 0 ? static_cast<double>(queries.size()) / seconds : 0.0);
     std::cout << queries.size() << " queries, " << hits << " may collide, " << result.capped << " capped ("
-              << passes::toString(kind) << ", budget " << pass.budget() << ", " << widened
-              << " rounded to float with the separation widened; " << rate << ")"
+              << passes::toString(kind) << ", budget " << pass.budget() << ", " << result.continued
+              << " continued in up to " << pass.continuationRounds() << " rounds, " << result.boxes
+              << " boxes, " << widened << " rounded to float with the separation widened; " << rate << ")"
               << groundTruthSummary(csv, result) << " on " << context.deviceDescription() << " | "
               << context.glInfo().renderer << "\n";
     return 0;

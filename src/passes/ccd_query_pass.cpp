@@ -1,5 +1,7 @@
 #include "passes/ccd_query_pass.hpp"
 
+#include "passes/ccd_continuation.hpp"
+
 #include "core/gpu_layout.hpp"
 #include "gl/handles.hpp"
 
@@ -58,10 +60,13 @@ const char* toString(CcdKind kind) {
     return kind == CcdKind::EdgeEdge ? "ee" : "vf";
 }
 
-CcdQueryPass::CcdQueryPass(int budget) : m_budget(budget) {}
+CcdQueryPass::CcdQueryPass(int budget, int continuationRounds)
+    : m_budget(budget), m_rounds(continuationRounds) {}
 
-CcdQueryPass::CcdQueryPass(gl::ComputeProgram vertexFace, gl::ComputeProgram edgeEdge, int budget)
-    : m_budget(budget), m_vertexFace(std::move(vertexFace)), m_edgeEdge(std::move(edgeEdge)) {}
+CcdQueryPass::CcdQueryPass(gl::ComputeProgram vertexFace, gl::ComputeProgram edgeEdge, int budget,
+                           int continuationRounds)
+    : m_budget(budget), m_rounds(continuationRounds), m_vertexFace(std::move(vertexFace)),
+      m_edgeEdge(std::move(edgeEdge)) {}
 
 const gl::ComputeProgram& CcdQueryPass::program(CcdKind kind) const {
     if (kind == CcdKind::EdgeEdge) {
@@ -72,22 +77,16 @@ const gl::ComputeProgram& CcdQueryPass::program(CcdKind kind) const {
     return *m_vertexFace;
 }
 
-CcdQueryResult CcdQueryPass::run(CcdKind kind, const std::vector<CcdQuery>& queries) const {
-    checkBudget(m_budget);
-    checkSeparations(queries);
-    CcdQueryResult result;
-    if (queries.empty()) return result;
+std::vector<CcdAnswer> CcdQueryPass::solve(CcdKind kind, const std::vector<CcdQuery>& queries) const {
+    std::vector<CcdAnswer> answers;
+    if (queries.empty()) return answers;
+    answers.reserve(queries.size());
     const gl::ComputeProgram& kernel = program(kind);
     const std::size_t chunk = std::min(queries.size(), queriesPerChunk());
-
     gl::Buffer input("ccd_queries", chunk * kFloatsPerQuery * sizeof(float));
     gl::Buffer output("ccd_results", chunk * kUintsPerResult * sizeof(std::uint32_t));
     std::vector<float> packed(chunk * kFloatsPerQuery);
-    std::vector<std::uint32_t> answers(chunk * kUintsPerResult);
-    result.mayCollide.reserve(queries.size());
-    result.toi.reserve(queries.size());
-    result.cappedFlags.reserve(queries.size());
-
+    std::vector<std::uint32_t> raw(chunk * kUintsPerResult);
     kernel.set("u_budget", static_cast<std::uint32_t>(m_budget));
     for (std::size_t first = 0; first < queries.size(); first += chunk) {
         const std::size_t count = std::min(chunk, queries.size() - first);
@@ -104,22 +103,28 @@ CcdQueryResult CcdQueryPass::run(CcdKind kind, const std::vector<CcdQuery>& quer
         kernel.use();
         kernel.set("u_queryCount", static_cast<std::uint32_t>(count));
         kernel.dispatch1D(static_cast<std::uint32_t>(count), GLC_WORKGROUP_SIZE);
-        output.download(0, count * kUintsPerResult * sizeof(std::uint32_t), answers.data());
+        output.download(0, count * kUintsPerResult * sizeof(std::uint32_t), raw.data()); // barrier included
         for (std::size_t i = 0; i < count; ++i) {
-            const std::uint32_t flags = answers[kUintsPerResult * i];
-            std::uint32_t toiBits = answers[kUintsPerResult * i + 1];
-            float toi = 0.0f;
-            static_assert(sizeof toi == sizeof toiBits);
-            std::memcpy(&toi, &toiBits, sizeof toi);
-            result.mayCollide.push_back((flags & kMayCollideBit) != 0 ? 1 : 0);
-            result.toi.push_back(toi);
-            const bool capped = (flags & kCappedBit) != 0;
-            result.cappedFlags.push_back(capped ? 1 : 0);
-            result.capped += capped ? 1u : 0u;
-            result.boxes += answers[kUintsPerResult * i + 2];
+            const std::uint32_t flags = raw[kUintsPerResult * i];
+            CcdAnswer a;
+            std::memcpy(&a.toi, &raw[kUintsPerResult * i + 1], sizeof a.toi);
+            a.mayCollide = (flags & kMayCollideBit) != 0;
+            a.capped = (flags & kCappedBit) != 0;
+            a.boxes = raw[kUintsPerResult * i + 2];
+            answers.push_back(a);
         }
     }
-    return result;
+    return answers;
+}
+
+CcdQueryResult CcdQueryPass::run(CcdKind kind, const std::vector<CcdQuery>& queries) const {
+    checkBudget(m_budget);
+    checkSeparations(queries);
+    if (m_rounds < 0)
+        throw Error(std::string(kName) + ": " + std::to_string(m_rounds) +
+                    " continuation rounds; expected >= 0");
+    return answerWithContinuation(
+        queries, [&](const std::vector<CcdQuery>& batch) { return solve(kind, batch); }, m_rounds);
 }
 
 } // namespace glcollide::passes

@@ -25,6 +25,10 @@ inline constexpr int kMaxLlvmpipeCcdBudget = 21844;
 /// impact, counted as capped: the most llvmpipe allows, so the default runs everywhere.
 inline constexpr int kDefaultCcdBudget = kMaxLlvmpipeCcdBudget;
 
+/// Rounds in which capped queries continue on halves of their time interval (ccd_continuation.hpp):
+/// a query capped in every round is split into at most 2^rounds pieces, each with its own budget.
+inline constexpr int kDefaultCcdContinuationRounds = 4;
+
 enum class CcdKind { VertexFace, EdgeEdge };
 
 /// "vf" or "ee".
@@ -38,38 +42,55 @@ struct CcdQuery {
     float minSeparation = 0.0f;
 };
 
+/// One query's answer from one run of the float CCD (the kernel, or its C++ twin).
+struct CcdAnswer {
+    bool mayCollide = false;
+    float toi = 1.0f;
+    bool capped = false;
+    std::uint32_t boxes = 0;
+};
+
 /// Answers of one batch, one entry per query in input order.
 struct CcdQueryResult {
     std::vector<std::uint8_t> mayCollide;  ///< 1: may come within minSeparation in [0, 1]; 0: never do
     std::vector<float> toi;                ///< never later than the true earliest contact; 1 when 0
-    std::uint32_t capped = 0;              ///< queries that ran out of budget (answered 1)
-    std::uint64_t boxes = 0;               ///< boxes evaluated, all queries together
-    std::vector<std::uint8_t> cappedFlags; ///< 1 for each query that ran out of budget
+    std::uint32_t capped = 0;              ///< queries answered 1 only because pieces ran out of budget
+    std::uint64_t boxes = 0;               ///< boxes evaluated, all queries and rounds together
+    std::vector<std::uint8_t> cappedFlags; ///< 1 for each query counted in `capped`
+    std::uint32_t continued = 0;           ///< queries capped in the first round, continued in halves
 };
 
 class CcdQueryPass {
   public:
     static constexpr const char* kName = "CcdQuery";
-    /// `budget` >= 1 boxes per query; at most kMaxLlvmpipeCcdBudget on llvmpipe (run() throws Error
-    /// there otherwise, since a cut loop would answer "no contact").
-    explicit CcdQueryPass(int budget = kDefaultCcdBudget);
+    /// `budget` >= 1 boxes per query and piece; at most kMaxLlvmpipeCcdBudget on llvmpipe (run()
+    /// throws Error there otherwise, since a cut loop would answer "no contact"). `continuationRounds`
+    /// >= 0: rounds in which capped queries continue on halves of their time interval (0: none).
+    explicit CcdQueryPass(int budget = kDefaultCcdBudget,
+                          int continuationRounds = kDefaultCcdContinuationRounds);
     /// Test hook: the programs of both kinds given (e.g. built from modified source).
-    CcdQueryPass(gl::ComputeProgram vertexFace, gl::ComputeProgram edgeEdge, int budget = kDefaultCcdBudget);
+    CcdQueryPass(gl::ComputeProgram vertexFace, gl::ComputeProgram edgeEdge, int budget = kDefaultCcdBudget,
+                 int continuationRounds = kDefaultCcdContinuationRounds);
 
     [[nodiscard]] int budget() const { return m_budget; }
+    [[nodiscard]] int continuationRounds() const { return m_rounds; }
 
     /// Builds the program of `kind` now (run() builds it on first use), e.g. to time run() alone.
     void prepare(CcdKind kind) const { (void)program(kind); }
 
     /// Uploads the queries, answers them (in chunks that fit the device's shader storage block
-    /// size), waits and reads the answers back. Throws Error for a negative or non-finite
-    /// minimum separation or a budget the device cannot run.
+    /// size), continues the capped ones (answerWithContinuation), waits and reads the answers back.
+    /// Throws Error for a negative or non-finite minimum separation or a budget the device cannot
+    /// run.
     [[nodiscard]] CcdQueryResult run(CcdKind kind, const std::vector<CcdQuery>& queries) const;
 
   private:
     [[nodiscard]] const gl::ComputeProgram& program(CcdKind kind) const;
+    /// One round on the device: the kernel's answer to each query, nothing continued.
+    [[nodiscard]] std::vector<CcdAnswer> solve(CcdKind kind, const std::vector<CcdQuery>& queries) const;
 
     int m_budget;
+    int m_rounds;
     /// Built on first use of each kind (a CLI run needs one).
     mutable std::optional<gl::ComputeProgram> m_vertexFace, m_edgeEdge;
 };

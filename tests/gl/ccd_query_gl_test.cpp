@@ -19,6 +19,7 @@
 #include "cpu/oracle/ccd_rounding.hpp"
 #include "cpu/oracle/exact_ccd.hpp"
 #include "gl/program.hpp"
+#include "passes/ccd_continuation.hpp"
 #include "passes/ccd_query_pass.hpp"
 
 #include <glcollide/error.hpp>
@@ -70,25 +71,22 @@ SampleSet sampleQueries(CcdKind kind) {
     return set;
 }
 
-struct TwinAnswers {
-    std::vector<std::uint8_t> mayCollide, capped;
-    std::vector<float> toi;
-};
-
-TwinAnswers twin(CcdKind kind, const std::vector<CcdQuery>& queries, int budget) {
-    TwinAnswers a;
-    for (const CcdQuery& q : queries) {
-        const auto& p = q.points;
-        const bool hit = kind == CcdKind::VertexFace
-                             ? shader::glcVertexFaceCcd(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7],
-                                                        q.minSeparation, budget)
-                             : shader::glcEdgeEdgeCcd(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7],
-                                                      q.minSeparation, budget);
-        a.mayCollide.push_back(hit ? 1 : 0);
-        a.toi.push_back(shader::glcCcdToi);
-        a.capped.push_back(shader::glcCcdCapped ? 1 : 0);
-    }
-    return a;
+/// The C++ twin as a solver: the same functions, one call per query.
+passes::CcdSolver twinSolver(CcdKind kind, int budget) {
+    return [kind, budget](const std::vector<CcdQuery>& queries) {
+        std::vector<passes::CcdAnswer> answers;
+        for (const CcdQuery& q : queries) {
+            const auto& p = q.points;
+            const bool hit = kind == CcdKind::VertexFace
+                                 ? shader::glcVertexFaceCcd(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7],
+                                                            q.minSeparation, budget)
+                                 : shader::glcEdgeEdgeCcd(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7],
+                                                          q.minSeparation, budget);
+            answers.push_back({hit, shader::glcCcdToi, shader::glcCcdCapped,
+                               static_cast<std::uint32_t>(shader::glcCcdBoxes)});
+        }
+        return answers;
+    };
 }
 
 std::uint32_t bits(float f) {
@@ -111,17 +109,19 @@ void expectGpuAgreesWithTwinOnSampleQueries(CcdKind kind, std::size_t expectedQu
     const CcdQueryResult gpu = pass.run(kind, set.queries);
     const double gpuSeconds = secondsSince(start);
     start = std::chrono::steady_clock::now();
-    const TwinAnswers cpu = twin(kind, set.queries, pass.budget());
+    // The twin continues capped queries the same way (passes/ccd_continuation.hpp).
+    const CcdQueryResult cpu = passes::answerWithContinuation(set.queries, twinSolver(kind, pass.budget()),
+                                                              pass.continuationRounds());
     const double twinSeconds = secondsSince(start);
     ASSERT_EQ(gpu.mayCollide.size(), set.queries.size());
     int answerDifferences = 0, toiDifferences = 0, lateTimes = 0, falseNegatives = 0, falsePositives = 0;
     int capped = 0;
     for (std::size_t i = 0; i < set.queries.size(); ++i) {
-        if ((gpu.mayCollide[i] != cpu.mayCollide[i] || gpu.cappedFlags[i] != cpu.capped[i]) &&
+        if ((gpu.mayCollide[i] != cpu.mayCollide[i] || gpu.cappedFlags[i] != cpu.cappedFlags[i]) &&
             ++answerDifferences <= 10)
             ADD_FAILURE() << "query " << i << ": GPU (" << int(gpu.mayCollide[i]) << ", capped "
                           << int(gpu.cappedFlags[i]) << ") != twin (" << int(cpu.mayCollide[i]) << ", capped "
-                          << int(cpu.capped[i]) << ")";
+                          << int(cpu.cappedFlags[i]) << ")";
         toiDifferences += bits(gpu.toi[i]) != bits(cpu.toi[i]);
         falseNegatives += set.truth[i] && gpu.mayCollide[i] == 0;
         falsePositives += !set.truth[i] && gpu.mayCollide[i] != 0;
@@ -139,11 +139,14 @@ void expectGpuAgreesWithTwinOnSampleQueries(CcdKind kind, std::size_t expectedQu
     EXPECT_EQ(lateTimes, 0);
     EXPECT_EQ(falseNegatives, 0) << "ground-truth contacts missed";
     EXPECT_EQ(gpu.capped, static_cast<std::uint32_t>(capped));
-    std::printf("%s: %zu queries, budget %d: GPU %.2f s, twin %.2f s; capped %d, boxes %llu; times of impact "
+    EXPECT_EQ(gpu.continued, cpu.continued);
+    std::printf("%s: %zu queries, budget %d, %d rounds: GPU %.2f s, twin %.2f s; continued %u, capped %d, "
+                "boxes %llu (twin %llu); times of impact "
                 "not bit-identical to the twin's: %d; against the ground truth: %d false negatives, %d false "
                 "positives\n",
-                passes::toString(kind), set.queries.size(), pass.budget(), gpuSeconds, twinSeconds, capped,
-                static_cast<unsigned long long>(gpu.boxes), toiDifferences, falseNegatives, falsePositives);
+                passes::toString(kind), set.queries.size(), pass.budget(), pass.continuationRounds(),
+                gpuSeconds, twinSeconds, gpu.continued, capped, static_cast<unsigned long long>(gpu.boxes),
+                static_cast<unsigned long long>(cpu.boxes), toiDifferences, falseNegatives, falsePositives);
 }
 
 TEST(CcdQueryGl, VertexFaceAgreesWithTheTwinOnEverySampleQuery) {
@@ -219,8 +222,10 @@ TEST(CcdQueryGl, TheRoundingCoverFindsATouchThatRoundingSeparates) {
     std::array<glm::dvec3, 8> floats;
     for (std::size_t i = 0; i < 8; ++i) floats[i] = glm::dvec3(rounded.points[i]);
     ASSERT_FALSE(cpu::exactVertexFaceCcd(cpu::rationalQuery(floats)).touch);
-    // The rounding error is that of L + 1/3: 1/24576 = |L + 1/3 - (L + 2731/8192)|.
-    ASSERT_EQ(rounded.roundingError, mpq_class(1, 24576));
+    // The rounding error is that of L + 1/3, 1/24576 = |L + 1/3 - (L + 2731/8192)|, scaled with its
+    // axis by 2^-11 (a contact query: z's largest magnitude, L + 1/3, into [0.5, 1)).
+    ASSERT_EQ(rounded.axisScale[2], -11);
+    ASSERT_EQ(rounded.roundingError, mpq_class(1, 24576 * 2048));
     ASSERT_GT(rounded.minSeparation, 0.0f);
 
     const CcdQueryPass withoutBound(kernelWithoutErrorBound({}),

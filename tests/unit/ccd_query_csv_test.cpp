@@ -4,6 +4,7 @@
 // (correctly rounded, and exact rationals in: a single rounding), or from the IEEE binary32 format
 // itself (its largest value, least normal and least subnormal).
 
+#include "cpu/ccd_library.hpp"
 #include "cpu/oracle/ccd_query_csv.hpp"
 #include "cpu/oracle/ccd_rounding.hpp"
 
@@ -12,6 +13,7 @@
 #include <gmpxx.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -213,12 +215,53 @@ cpu::RationalCcdQuery pointsOf(const mpq_class& value) {
     return q;
 }
 
-TEST(CcdRounding, FloatQueriesAreUnchangedAndUncovered) {
-    const cpu::RoundedCcdQuery r = cpu::roundCcdQuery(pointsOf(mpq_class(-3, 8)), 0);
-    EXPECT_EQ(r.roundingError, 0);
-    EXPECT_EQ(r.minSeparation, 0.0f); // exact inputs, contact: nothing widened
-    EXPECT_EQ(r.points[7], glm::vec3(7.0f, 0.25f, -0.375f));
-    EXPECT_EQ(cpu::roundCcdQuery(pointsOf(mpq_class(-3, 8)), mpq_class(1, 4)).minSeparation, 0.25f);
+TEST(CcdRounding, FloatQueriesAreUncoveredAndContactQueriesScaledPerAxis) {
+    // Every coordinate is a float: nothing is widened. Contact (separation 0): each axis scaled by
+    // the power of two that brings its largest magnitude into [0.5, 1): x up to 7 by 2^-3, y = 1/4
+    // by 2, z up to 3/8 by 2.
+    const cpu::RoundedCcdQuery contact = cpu::roundCcdQuery(pointsOf(mpq_class(-3, 8)), 0);
+    EXPECT_EQ(contact.roundingError, 0);
+    EXPECT_EQ(contact.minSeparation, 0.0f);
+    EXPECT_EQ(contact.axisScale, (std::array<long, 3>{-3, 1, 1}));
+    EXPECT_EQ(contact.points[7], glm::vec3(0.875f, 0.5f, -0.75f));
+    // A positive separation is a Euclidean distance: no axis is scaled.
+    const cpu::RoundedCcdQuery apart = cpu::roundCcdQuery(pointsOf(mpq_class(-3, 8)), mpq_class(1, 4));
+    EXPECT_EQ(apart.axisScale, (std::array<long, 3>{0, 0, 0}));
+    EXPECT_EQ(apart.points[7], glm::vec3(7.0f, 0.25f, -0.375f));
+    EXPECT_EQ(apart.minSeparation, 0.25f);
+}
+
+TEST(CcdRounding, ContactQueriesRoundTheSameAtEveryScaleOfEveryAxis) {
+    // The axis scaling makes the float query a function of the rationals up to a power of two per
+    // axis: scaled copies (2^-30 on x, 2^17 on y, 2^3 on z) give the same bits.
+    cpu::RationalCcdQuery q = pointsOf(mpq_class(1, 3));
+    q[2].y = mpq_class(-5, 7);
+    cpu::RationalCcdQuery scaled = q;
+    for (auto& p : scaled) {
+        p.x /= pow2(30);
+        p.y *= pow2(17);
+        p.z *= 8;
+    }
+    const cpu::RoundedCcdQuery a = cpu::roundCcdQuery(q, 0), b = cpu::roundCcdQuery(scaled, 0);
+    EXPECT_EQ(a.points, b.points);
+    EXPECT_EQ(a.minSeparation, b.minSeparation);
+    EXPECT_EQ(b.axisScale[0], a.axisScale[0] + 30);
+    EXPECT_EQ(b.axisScale[1], a.axisScale[1] - 17);
+    EXPECT_EQ(b.axisScale[2], a.axisScale[2] - 3);
+}
+
+TEST(CcdRounding, ContactCoversWeighOnEachAxisByItsOwnMagnitude) {
+    // x near 1000 beside z near 1/1000: without the axis scaling, the cover (2^-14 from x's rounding)
+    // would be 16 times z's whole magnitude; scaled, it is at most 2^-24, an ulp of a coordinate
+    // in [0.5, 1), on every axis.
+    cpu::RationalCcdQuery q;
+    for (std::size_t i = 0; i < q.size(); ++i)
+        q[i] = {mpq_class(3001 + static_cast<long>(i), 3), mpq_class(1, 4),
+                mpq_class(1, 1000 + static_cast<long>(i))};
+    const cpu::RoundedCcdQuery r = cpu::roundCcdQuery(q, 0);
+    EXPECT_GT(r.minSeparation, 0.0f);
+    EXPECT_LE(r.minSeparation, 0x1p-24f);
+    EXPECT_GE(mpq_class(r.minSeparation), 2 * r.roundingError);
 }
 
 TEST(CcdRounding, TheCoverIsTheLeastFloatAboveTheSeparationPlusTwiceTheRoundingError) {
@@ -230,26 +273,48 @@ TEST(CcdRounding, TheCoverIsTheLeastFloatAboveTheSeparationPlusTwiceTheRoundingE
     EXPECT_LT(mpq_class(std::nextafter(r.minSeparation, 0.0f)), d + 2 * e);
 }
 
+TEST(CcdRounding, TheCoverStaysNormalAfterTheFloatCcdNormalizesAtEveryMagnitude) {
+    // A tiny rounding error (from the coordinate 2^-140 / 3) beside coordinates of every magnitude,
+    // for contact (axes scaled) and for a tiny positive separation (2^-300, axes kept): the cover
+    // and the cover times ccd.glsl's own normalizing scale are normal floats.
+    for (const mpq_class& separation : {mpq_class(0), pow2(-300)})
+        for (long e : {-140L, -126L, -100L, -20L, 0L, 3L, 40L, 100L, 127L}) {
+            cpu::RationalCcdQuery q = pointsOf(0);
+            for (auto& p : q) p.x = pow2(e);
+            q[5].z = pow2(-140) / 3;
+            const cpu::RoundedCcdQuery r = cpu::roundCcdQuery(q, separation);
+            float largest = 0.0f;
+            for (const glm::vec3& p : r.points)
+                largest = std::max({largest, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+            const float leastNormal = std::numeric_limits<float>::min();
+            EXPECT_GE(r.minSeparation, leastNormal) << e;
+            EXPECT_GE(r.minSeparation * shader::glcCcdNormalizingScale(largest), leastNormal) << e;
+            EXPECT_GE(mpq_class(r.minSeparation), separation + 2 * r.roundingError) << e;
+        }
+}
+
 TEST(CcdRounding, TheCoverStaysNormalAfterTheFloatCcdNormalizes) {
-    // Coordinates near 2^100: the float CCD scales by 2^-101 (largest into [0.5, 1)). A tiny rounding
-    // error (2^-140, from the coordinate 2^-140 / 3) widens the separation by less than 2^-126 / 2^-101
-    // = 2^-25, which the normalized separation would lose to a device flushing subnormals: the cover
-    // is raised to 2^-25.
+    // A positive separation, 2^-300, keeps the axes. Coordinates up to 2^100: the float CCD scales
+    // by 2^-101 (largest into [0.5, 1)). A tiny rounding error (from the coordinate 2^-140 / 3)
+    // widens the separation by less than 2^-126 / 2^-101 = 2^-25, which the normalized separation
+    // would lose to a device flushing subnormals: the cover is raised to 2^-125 * 2^100 = 2^-25
+    // (core/ccd_cover.hpp).
+    const mpq_class tinySeparation = pow2(-300);
     cpu::RationalCcdQuery q = pointsOf(0);
     q[3].x = pow2(100);
     q[5].z = pow2(-140) / 3;
-    const cpu::RoundedCcdQuery r = cpu::roundCcdQuery(q, 0);
+    const cpu::RoundedCcdQuery r = cpu::roundCcdQuery(q, tinySeparation);
     EXPECT_GT(r.roundingError, 0);
     EXPECT_LT(2 * r.roundingError, pow2(-126));
     EXPECT_EQ(r.minSeparation, 0x1p-25f);
-    // Largest coordinate 7 (scale 2^-3): raised to 2^-126 / 2^-3 = 2^-123.
+    // Largest coordinate 7 (scale 2^-3): raised to 7 * 2^-125 (>= 2^-126 / 2^-3 = 2^-123 / 2).
     cpu::RationalCcdQuery small = pointsOf(0);
     small[5].z = pow2(-140) / 3;
-    EXPECT_EQ(cpu::roundCcdQuery(small, 0).minSeparation, 0x1p-123f);
+    EXPECT_EQ(cpu::roundCcdQuery(small, tinySeparation).minSeparation, std::ldexp(7.0f, -125));
     // Coordinates near 2^-100 (scale 2^100): raised to the least normal float, 2^-126, not 2^-225.
     cpu::RationalCcdQuery tiny;
     for (auto& p : tiny) p = {pow2(-100), pow2(-101), pow2(-140) / 3};
-    EXPECT_EQ(cpu::roundCcdQuery(tiny, 0).minSeparation, std::numeric_limits<float>::min());
+    EXPECT_EQ(cpu::roundCcdQuery(tiny, tinySeparation).minSeparation, std::numeric_limits<float>::min());
 }
 
 } // namespace

@@ -1,6 +1,6 @@
 #include "cpu/oracle/ccd_rounding.hpp"
 
-#include "cpu/ccd_library.hpp"
+#include "core/ccd_cover.hpp"
 
 #include <glcollide/error.hpp>
 
@@ -27,14 +27,30 @@ bool belowPowerOfTwo(const mpz_class& n, const mpz_class& d, long e) {
     return lhs < rhs;
 }
 
+/// The binary exponent e with 2^e <= |x| < 2^(e+1), x != 0: the bit lengths give it within one.
+long binaryExponent(const mpq_class& x) {
+    const mpz_class n = abs(x.get_num()), d = x.get_den();
+    long e = bitLength(n) - bitLength(d);
+    if (belowPowerOfTwo(n, d, e)) --e;
+    return e;
+}
+
+/// x * 2^k, exactly.
+mpq_class timesPowerOfTwo(const mpq_class& x, long k) {
+    mpq_class r;
+    if (k >= 0)
+        mpq_mul_2exp(r.get_mpq_t(), x.get_mpq_t(), static_cast<mp_bitcnt_t>(k));
+    else
+        mpq_div_2exp(r.get_mpq_t(), x.get_mpq_t(), static_cast<mp_bitcnt_t>(-k));
+    return r;
+}
+
 } // namespace
 
 float nearestFloat(const mpq_class& x) {
     if (sgn(x) == 0) return 0.0f;
     const mpz_class n = abs(x.get_num()), d = x.get_den();
-    // The binary exponent e with 2^e <= |x| < 2^(e+1): the bit lengths give it within one.
-    long e = bitLength(n) - bitLength(d);
-    if (belowPowerOfTwo(n, d, e)) --e;
+    const long e = binaryExponent(x);
     if (e >= 128) throw Error("the value " + x.get_str() + " is outside float range (|v| <= 3.4028235e38)");
     if (e < -150) return sgn(x) < 0 ? -0.0f : 0.0f; // |x| < 2^-150: below half the least subnormal
     // The weight of the significand's last bit: 2^(e-23) for normal floats, 2^-149 for subnormals.
@@ -68,26 +84,36 @@ float floatAtLeast(const mpq_class& x) {
 
 float coverRounding(const std::array<glm::vec3, 8>& points, const mpq_class& minSeparation,
                     const mpq_class& roundingError) {
-    const float cover = floatAtLeast(minSeparation + 2 * roundingError);
-    if (cover == 0.0f) return 0.0f;
     float largest = 0.0f;
     for (const glm::vec3& p : points)
         largest = std::max({largest, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-    const float scale = shader::glcCcdNormalizingScale(largest);
-    const float leastNormal = std::numeric_limits<float>::min(); // 2^-126
-    // 2^-126 / scale: a power of two, exact where it is normal (scale <= 1); below 2^-126 otherwise.
-    return std::max({cover, leastNormal, leastNormal / scale});
+    return ccdCoveredSeparation(floatAtLeast(minSeparation + 2 * roundingError), largest);
+}
+
+std::array<long, 3> contactAxisScale(const RationalCcdQuery& query) {
+    std::array<long, 3> scale{};
+    for (int k = 0; k < 3; ++k) {
+        mpq_class largest = 0;
+        for (const RationalPoint& p : query) {
+            const mpq_class& x = k == 0 ? p.x : k == 1 ? p.y : p.z;
+            if (abs(x) > largest) largest = abs(x);
+        }
+        scale[static_cast<std::size_t>(k)] = sgn(largest) == 0 ? 0 : -(binaryExponent(largest) + 1);
+    }
+    return scale;
 }
 
 RoundedCcdQuery roundCcdQuery(const RationalCcdQuery& query, const mpq_class& minSeparation) {
     RoundedCcdQuery rounded;
+    if (sgn(minSeparation) == 0) rounded.axisScale = contactAxisScale(query);
     rounded.roundingError = 0;
     for (std::size_t i = 0; i < query.size(); ++i) {
         const mpq_class* exact[3] = {&query[i].x, &query[i].y, &query[i].z};
         for (int k = 0; k < 3; ++k) {
-            const float f = nearestFloat(*exact[k]);
+            const mpq_class x = timesPowerOfTwo(*exact[k], rounded.axisScale[static_cast<std::size_t>(k)]);
+            const float f = nearestFloat(x);
             rounded.points[i][k] = f;
-            const mpq_class error = abs(*exact[k] - mpq_class(f));
+            const mpq_class error = abs(x - mpq_class(f));
             if (error > rounded.roundingError) rounded.roundingError = error;
         }
     }

@@ -26,23 +26,35 @@ struct RoundedCcdQuery {
     std::array<glm::vec3, 8> points;
     /// The float CCD's minimum separation: minSeparation + 2 * roundingError rounded up to a float
     /// (raised, when it is not 0, to a value the float CCD's normalization keeps normal: see
-    /// coverRounding). 0 only when minSeparation is 0 and every coordinate is a float.
+    /// coverRounding). 0 only when minSeparation is 0 and every (scaled) coordinate is a float.
     float minSeparation = 0.0f;
-    /// The largest |x - nearestFloat(x)| over the query's 24 coordinates, exactly.
+    /// The largest |x - nearestFloat(x)| over the query's 24 (scaled) coordinates, exactly.
     mpq_class roundingError;
+    /// Contact queries (minSeparation 0) only: axis k was multiplied by 2^axisScale[k] before
+    /// rounding; 0 otherwise.
+    std::array<long, 3> axisScale{};
 };
 
 /// Rounds every coordinate to the nearest float and covers the rounding: the float CCD (which
 /// excludes a box only when one coordinate of F exceeds its minimum separation there, per axis)
 /// answering "no contact within RoundedCcdQuery::minSeparation" for the rounded points implies
 /// that the original points never come within `minSeparation` (docs/ccd.md). `minSeparation` >= 0.
-/// Throws Error when a coordinate or the widened separation does not fit in a float.
+/// For a contact query (minSeparation 0) each axis is first scaled by the power of two that brings
+/// its largest magnitude into [0.5, 1) (contactAxisScale): contact and its time are the same for
+/// any scaling of an axis, and the cover, one number for the three axes, then weighs on each axis
+/// in proportion to its own magnitude, as the float CCD's error bound does. Times of impact need
+/// no mapping back. Throws Error when a coordinate or the widened separation does not fit in a
+/// float.
 RoundedCcdQuery roundCcdQuery(const RationalCcdQuery& query, const mpq_class& minSeparation);
 
+/// Per axis, the exponent k with 2^k * (the axis's largest coordinate magnitude) in [0.5, 1)
+/// (0 for an axis whose coordinates are all 0).
+std::array<long, 3> contactAxisScale(const RationalCcdQuery& query);
+
 /// The cover alone: the least float >= minSeparation + 2 * roundingError, raised when it is not 0
-/// to at least 2^-126 and to at least 2^-126 / s, where s is the float CCD's normalizing scale for
-/// `points` (glcCcdNormalizingScale), so that neither the separation nor its normalized value is
-/// subnormal, which a device that flushes subnormals would read as 0.
+/// to ccdSeparationFloor (core/ccd_cover.hpp) of the largest coordinate magnitude of `points`, so
+/// that neither the separation nor its value normalized inside the float CCD is subnormal, which
+/// a device that flushes subnormals would read as 0.
 float coverRounding(const std::array<glm::vec3, 8>& points, const mpq_class& minSeparation,
                     const mpq_class& roundingError);
 
