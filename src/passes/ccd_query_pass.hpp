@@ -1,9 +1,12 @@
 #pragma once
 // CcdQueryPass: a batch of independent continuous-collision queries (vertex-face or edge-edge,
 // linear motion over t in [0, 1]) answered on the GPU by the conservative float CCD of
-// shaders/common/ccd.glsl, one invocation per query (shaders/passes/ccd_query.comp). Used by
-// `glcollide query ccd`, the CCD GL tests and the CCD benchmark. C++ twin: cpu/ccd_library.hpp
-// (the same GLSL compiled as C++); method and guarantees: docs/ccd.md.
+// shaders/common/ccd.glsl, one invocation per query (shaders/passes/ccd_query.comp); queries that
+// run out of budget continue on halves of their time interval, one dispatch per round
+// (passes/ccd_continuation.hpp). Used by `glcollide query ccd`, the CCD GL tests and the CCD
+// benchmark. C++ twin: cpu/ccd_library.hpp (the same GLSL compiled as C++), continued by the same
+// host code; method and guarantees: docs/ccd.md, "glcollide query ccd". Inputs that are not floats
+// (rationals, doubles) are rounded with their rounding covered by cpu::roundCcdQuery first.
 
 #include "gl/program.hpp"
 
