@@ -31,6 +31,9 @@
 #define GLC_BIND_QUERY_RESULTS 22     // uint[pairs]: tri-tri query output, 1 = the closed triangles intersect
 #define GLC_BIND_QUERY_STATS 23       // uint[3]: tri-tri query (robust): exact fallbacks, undecided pairs,
                                       // pairs the exact pass could not finish (an error)
+// CCD queries (src/passes/ccd_query_pass.cpp) take the tri-tri query slots: a query batch runs alone.
+#define GLC_BIND_CCD_QUERIES GLC_BIND_QUERY_TRIANGLES // float[25 * queries]: 8 points xyz (4 at t = 0, the same 4 at t = 1), minimum separation
+#define GLC_BIND_CCD_RESULTS GLC_BIND_QUERY_RESULTS   // uint[3 * queries]: bit 0 may collide, bit 1 capped; time of impact (float bits); boxes evaluated
 #define GLC_BIND_HEALTH 24             // GpuHealth: the first non-finite node NodeUpdate produced
 #define GLC_BIND_UNDECIDED 25          // uint[]: robust TriTri: items the filtered pass left to the exact pass
                                        // (candidate indices; query: pair indices)

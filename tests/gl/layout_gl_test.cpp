@@ -53,6 +53,9 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"QueryTrianglesBuf", GLC_BIND_QUERY_TRIANGLES},
     {"QueryResultsBuf", GLC_BIND_QUERY_RESULTS},
     {"QueryStatsBuf", GLC_BIND_QUERY_STATS},
+    // CCD queries (src/passes/ccd_query_pass.cpp)
+    {"CcdQueriesBuf", GLC_BIND_CCD_QUERIES},
+    {"CcdResultsBuf", GLC_BIND_CCD_RESULTS},
     // non-finite check of NodeUpdate (EngineOptions::checkFinite)
     {"ContactForcesBuf", GLC_BIND_CONTACT_FORCES},
     {"HealthBuf", GLC_BIND_HEALTH},

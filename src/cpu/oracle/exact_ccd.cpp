@@ -1,8 +1,11 @@
 #include "cpu/oracle/exact_ccd.hpp"
 
+#include "cpu/oracle/ccd_query_csv.hpp"
+
+#include <glcollide/error.hpp>
+
 #include <algorithm>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -366,72 +369,19 @@ RationalCcdQuery rationalQuery(const std::array<glm::dvec3, 8>& points) {
     return q;
 }
 
-namespace {
-
-/// Reads a CCD query CSV (8 rows per query; each row the numerator and denominator of x, y and
-/// z, then the ground truth when the file has a 7th column). truthColumn: 7 fields required
-/// (true), or 6 or 7 fields, the same in every row (false; a 7th column is then still checked
-/// for consistency within a query).
-std::vector<SampleCcdQuery> readCcdCsv(const std::string& path, bool truthColumn) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot open");
-    std::vector<SampleCcdQuery> queries;
-    std::string line;
-    int lineNumber = 0;
-    std::size_t columns = 0; // of the first row
-    auto fail = [&](const std::string& why) {
-        throw std::runtime_error(path + ":" + std::to_string(lineNumber) + ": " + why);
-    };
-    while (std::getline(in, line)) {
-        ++lineNumber;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        std::vector<mpz_class> fields;
-        std::stringstream row(line);
-        std::string field;
-        while (std::getline(row, field, ',')) {
-            mpz_class value;
-            // GMP ignores white space inside the digits: "1, 2" is read as 1 and 2, as the
-            // benchmark's README example writes its rows.
-            if (field.find_first_not_of(" \t") == std::string::npos || value.set_str(field, 10) != 0)
-                fail("not an integer: '" + field + "'");
-            fields.push_back(value);
-        }
-        if (truthColumn && fields.size() != 7)
-            fail("expected 7 fields, found " + std::to_string(fields.size()));
-        if (!truthColumn && fields.size() != 6 && fields.size() != 7)
-            fail("expected 6 or 7 fields, found " + std::to_string(fields.size()));
-        if (lineNumber == 1) columns = fields.size();
-        if (fields.size() != columns)
-            fail("expected " + std::to_string(columns) + " fields as in line 1, found " +
-                 std::to_string(fields.size()));
-        const bool truth = columns == 7 && fields[6] != 0;
-        const int row8 = (lineNumber - 1) % 8;
-        if (row8 == 0)
-            queries.push_back({{}, truth});
-        else if (truth != queries.back().truth)
-            fail("ground truth differs within a query");
-        RationalPoint point;
-        mpq_class* coords[3] = {&point.x, &point.y, &point.z};
-        for (int k = 0; k < 3; ++k) {
-            if (sgn(fields[2 * k + 1]) == 0) fail("zero denominator");
-            *coords[k] = mpq_class(fields[2 * k], fields[2 * k + 1]);
-            coords[k]->canonicalize();
-        }
-        queries.back().points[row8] = point;
-    }
-    if (lineNumber % 8 != 0) fail("the file does not end with a whole query (8 rows)");
-    return queries;
-}
-
-} // namespace
-
 std::vector<SampleCcdQuery> readSampleCcdQueries(const std::string& path) {
-    return readCcdCsv(path, true);
+    std::vector<SampleCcdQuery> queries;
+    for (CcdCsvQuery& q : readCcdQueryCsv(path)) {
+        if (!q.truth)
+            throw Error(path + ":" + std::to_string(q.lines[0]) + ": the query has no ground-truth column");
+        queries.push_back({std::move(q.points), *q.truth});
+    }
+    return queries;
 }
 
 std::vector<RationalCcdQuery> readCcdQueryPoints(const std::string& path) {
     std::vector<RationalCcdQuery> points;
-    for (SampleCcdQuery& q : readCcdCsv(path, false)) points.push_back(std::move(q.points));
+    for (CcdCsvQuery& q : readCcdQueryCsv(path)) points.push_back(std::move(q.points));
     return points;
 }
 
