@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # CI's smoke run of `glcollide bench` (the built-in smoke suite: every experiment kind, tiny
-# scenes, one frame; the bvh experiment at quick sizes, also alone with --only bvh) and checks of
+# scenes, one frame; the bvh experiment at quick sizes, also alone with --only bvh; the ccd experiment
+# on the Sample-Queries unit-tests files, its counts checked against their truth column) and checks of
 # what it writes: Google Benchmark JSON with the run context,
 # one entry per pass, well-formed SVG plots, the Markdown report; and clear errors for a bad
 # suite and an unknown experiment.
