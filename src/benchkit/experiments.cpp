@@ -1,6 +1,7 @@
 #include "benchkit/experiments.hpp"
 
 #include "benchkit/bvh_experiment.hpp"
+#include "benchkit/ccd_experiment.hpp"
 #include "benchkit/oscillator.hpp"
 #include "benchkit/paper_fused_tri_tri.hpp"
 
@@ -735,8 +736,9 @@ ExperimentResult runExperiment(const Experiment& experiment, const Progress& pro
     ExperimentResult out;
     out.experiment = experiment;
     std::size_t done = 0;
-    const std::size_t total = experiment.kind == ExperimentKind::Bvh
-                                  ? bvhRunCount(experiment)
+    const std::size_t total = experiment.kind == ExperimentKind::Bvh ? bvhRunCount(experiment)
+                              : experiment.kind == ExperimentKind::Ccd
+                                  ? ccdRunCount(experiment)
                                   : experiment.scenes.size() * experiment.configs.size() +
                                         experiment.caseFamilies.size() * experiment.configs.size();
     const Progress counted = [&](const std::string& what) {
@@ -762,6 +764,9 @@ ExperimentResult runExperiment(const Experiment& experiment, const Progress& pro
         break;
     case ExperimentKind::Bvh:
         runBvhExperiment(experiment, out, counted);
+        break;
+    case ExperimentKind::Ccd:
+        runCcdExperiment(experiment, out, counted);
         break;
     }
     return out;

@@ -79,12 +79,13 @@ std::string readFile(const std::filesystem::path& path, const std::string& what)
 
 ExperimentKind parseKind(const json& experiment, const Where& at) {
     const std::string kind = stringAt(experiment, at, "kind");
-    for (ExperimentKind k : {ExperimentKind::Scaling, ExperimentKind::BroadPhase, ExperimentKind::NarrowPhase,
-                             ExperimentKind::Integration, ExperimentKind::Contact, ExperimentKind::Bvh})
+    for (ExperimentKind k :
+         {ExperimentKind::Scaling, ExperimentKind::BroadPhase, ExperimentKind::NarrowPhase,
+          ExperimentKind::Integration, ExperimentKind::Contact, ExperimentKind::Bvh, ExperimentKind::Ccd})
         if (kind == kindName(k)) return k;
     (at / "kind")
         .fail("unknown kind \"" + kind +
-              "\" (expected scaling, broad_phase, narrow_phase, integration, contact or bvh)");
+              "\" (expected scaling, broad_phase, narrow_phase, integration, contact, bvh or ccd)");
 }
 
 /// A scene is inline (an object in the scene format) or a path relative to the suite; either may
@@ -195,6 +196,74 @@ BvhSpec parseBvhSpec(const json& e, const Where& at, const std::vector<ConfigEnt
     return b;
 }
 
+/// A list of numbers under `key` (integers when `integers`), each in [lo, hi].
+std::vector<double> numbersAt(const json& object, const Where& at, const char* key, bool integers, double lo,
+                              double hi) {
+    std::vector<double> values;
+    if (!object.contains(key)) return values;
+    const json& list = object.at(key);
+    if (!list.is_array()) (at / key).fail("expected an array of numbers");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        const bool ok = integers ? list[i].is_number_integer() : list[i].is_number();
+        if (!ok || list[i].get<double>() < lo || list[i].get<double>() > hi)
+            (at / key / i)
+                .fail(std::string("expected ") + (integers ? "an integer" : "a number") + " in " +
+                      std::to_string(lo) + " ... " + std::to_string(hi));
+        values.push_back(list[i].get<double>());
+    }
+    return values;
+}
+
+constexpr const char* kCcdSetNames[] = {"sample-queries", "sample-queries unit-tests", "cloth-funnel",
+                                        "cloth-ball"};
+
+/// Names of CCD query sets under `key` (each one of kCcdSetNames; `allowSample`: the Sample-Queries too).
+std::vector<std::string> ccdSetNames(const json& object, const Where& at, const char* key, bool allowSample) {
+    std::vector<std::string> names;
+    if (!object.contains(key)) return names;
+    const json& list = object.at(key);
+    if (!list.is_array()) (at / key).fail("expected an array of set names");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        const std::string name = list[i].is_string() ? list[i].get<std::string>() : "";
+        const bool known = std::any_of(std::begin(kCcdSetNames), std::end(kCcdSetNames),
+                                       [&](const char* n) { return name == n; });
+        if (!known || (!allowSample && name.rfind("sample-queries", 0) == 0))
+            (at / key / i)
+                .fail(allowSample ? "unknown set (expected sample-queries, sample-queries unit-tests, "
+                                    "cloth-funnel or cloth-ball)"
+                                  : "unknown step (expected cloth-funnel or cloth-ball)");
+        names.push_back(name);
+    }
+    return names;
+}
+
+CcdSpec parseCcdSpec(const json& e, const Where& at) {
+    CcdSpec c;
+    c.sets = ccdSetNames(e, at, "sets", true);
+    if (c.sets.empty()) (at / "sets").fail("a ccd experiment needs a non-empty list of query sets");
+    for (double b : numbersAt(e, at, "budgets", true, 1, 1 << 24)) c.budgets.push_back(static_cast<int>(b));
+    c.minSeparations = numbersAt(e, at, "min_separations", false, 0, 1e30);
+    for (double k : numbersAt(e, at, "scale_exponents", true, -100, 100))
+        c.scaleExponents.push_back(static_cast<int>(k));
+    if (e.contains("peer")) {
+        if (!e.at("peer").is_boolean()) (at / "peer").fail("expected true or false");
+        c.peer = e.at("peer").get<bool>();
+    }
+    c.peerTimeoutSeconds = intAt(e, at, "peer_timeout_seconds", c.peerTimeoutSeconds, 1, 86400);
+    c.engineSets = ccdSetNames(e, at, "engine_sets", false);
+    if (e.contains("engine_thickness")) {
+        const json& v = e.at("engine_thickness");
+        if (!v.is_number() || !(v.get<double>() > 0))
+            (at / "engine_thickness").fail("expected a thickness > 0 (m)");
+        c.engineThickness = v.get<double>();
+    }
+    return c;
+}
+
+constexpr const char* kCcdKeys[] = {
+    "sets",        "budgets",         "min_separations", "scale_exponents", "peer", "peer_timeout_seconds",
+    "engine_sets", "engine_thickness"};
+
 constexpr const char* kBvhKeys[] = {"table_faces",         "scaling_faces",  "octree_max_faces",
                                     "slow_run_seconds",    "fold_layers",    "cloth_patch",
                                     "cpu_check_max_faces", "engine_configs", "scene_configs"};
@@ -202,10 +271,33 @@ constexpr const char* kBvhKeys[] = {"table_faces",         "scaling_faces",  "oc
 Experiment parseExperiment(const json& e, const Where& at, const std::filesystem::path& baseDir, int warmup,
                            int frames) {
     allowOnly(e, at,
-              {"name", "kind", "title", "scenes", "configs", "warmup_frames", "frames", "reference",
-               "reference_factor", "case_families", "table_faces", "scaling_faces", "octree_max_faces",
-               "slow_run_seconds", "fold_layers", "cloth_patch", "cpu_check_max_faces", "engine_configs",
-               "scene_configs"});
+              {"name",
+               "kind",
+               "title",
+               "scenes",
+               "configs",
+               "warmup_frames",
+               "frames",
+               "reference",
+               "reference_factor",
+               "case_families",
+               "table_faces",
+               "scaling_faces",
+               "octree_max_faces",
+               "slow_run_seconds",
+               "fold_layers",
+               "cloth_patch",
+               "cpu_check_max_faces",
+               "engine_configs",
+               "scene_configs",
+               "sets",
+               "budgets",
+               "min_separations",
+               "scale_exponents",
+               "peer",
+               "peer_timeout_seconds",
+               "engine_sets",
+               "engine_thickness"});
     Experiment x;
     x.kind = parseKind(e, at);
     x.name = stringAt(e, at, "name");
@@ -215,10 +307,21 @@ Experiment parseExperiment(const json& e, const Where& at, const std::filesystem
     x.warmupFrames = intAt(e, at, "warmup_frames", warmup, 0, 1000);
     x.frames = intAt(e, at, "frames", frames, 1, 100000);
     // A bvh experiment generates its cloths; further scenes are optional.
-    if (x.kind != ExperimentKind::Bvh || e.contains("scenes"))
+    // A ccd experiment reads its query sets (no scenes) and has one configuration unless told.
+    const bool ccd = x.kind == ExperimentKind::Ccd;
+    if (ccd && e.contains("scenes")) (at / "scenes").fail("a ccd experiment has sets, not scenes");
+    if (!ccd && (x.kind != ExperimentKind::Bvh || e.contains("scenes")))
         x.scenes = parseList<SceneEntry>(
             e, at, "scenes", [&](const json& s, const Where& w) { return parseSceneEntry(s, w, baseDir); });
-    x.configs = parseList<ConfigEntry>(e, at, "configs", parseConfig);
+    if (ccd && !e.contains("configs"))
+        x.configs = {ConfigEntry{"glcollide GPU"}};
+    else
+        x.configs = parseList<ConfigEntry>(e, at, "configs", parseConfig);
+    if (ccd)
+        x.ccd = parseCcdSpec(e, at);
+    else
+        for (const char* key : kCcdKeys)
+            if (e.contains(key)) (at / key).fail("only ccd experiments have this key");
     if (x.kind == ExperimentKind::Bvh) {
         x.bvh = parseBvhSpec(e, at, x.configs);
         if (x.bvh.tableFaces.empty() && x.bvh.scalingFaces.empty() && x.scenes.empty())
@@ -279,6 +382,8 @@ const char* kindName(ExperimentKind kind) {
         return "contact";
     case ExperimentKind::Bvh:
         return "bvh";
+    case ExperimentKind::Ccd:
+        return "ccd";
     }
     return "unknown";
 }

@@ -18,6 +18,8 @@ enum class ExperimentKind {
     Contact,     ///< deepest penetration and intersecting pairs left after the contact response
     Bvh,         ///< BVH vs octree on folded cloth and mesh scenes: per-pass times, equal candidates
                  ///< (bvh_experiment.hpp)
+    Ccd,         ///< continuous collision queries against ground truth, beside Tight-Inclusion, and
+                 ///< swept against discrete detection as an engine workload (ccd_experiment.hpp)
 };
 
 const char* kindName(ExperimentKind kind);
@@ -66,6 +68,20 @@ struct BvhSpec {
     std::vector<std::string> sceneConfigs;  ///< configs run on `scenes`; empty: all
 };
 
+/// The `ccd` kind's query sets and parts (docs/benchmarks.md, "The ccd experiment").
+struct CcdSpec {
+    /// Query sets: "sample-queries" (every Sample-Queries file), "sample-queries unit-tests" (its
+    /// unit-tests files only), "cloth-funnel", "cloth-ball" (listed pairs); each in vf and ee.
+    std::vector<std::string> sets;
+    std::vector<int> budgets;            ///< budget sweep on the first set (empty: none)
+    std::vector<double> minSeparations;  ///< minimum-separation sweep (m) on the first set (empty: none)
+    std::vector<int> scaleExponents;     ///< k of the 2^k scaling of every coordinate (empty: none)
+    bool peer = true;                    ///< run Tight-Inclusion when its driver is there
+    int peerTimeoutSeconds = 900;        ///< per driver call
+    std::vector<std::string> engineSets; ///< steps timed as one detection: "cloth-funnel", "cloth-ball"
+    double engineThickness = 1e-4;       ///< m, the detection's thickness on those steps
+};
+
 struct Experiment {
     ExperimentKind kind = ExperimentKind::Scaling;
     std::string name;  ///< unique in the suite; names output files
@@ -78,6 +94,7 @@ struct Experiment {
     int referenceFactor = 16;              ///< integration: reference substeps / first configuration's
     std::vector<std::string> caseFamilies; ///< narrow phase: triangle-pair families also measured
     BvhSpec bvh;                           ///< kind bvh only
+    CcdSpec ccd;                           ///< kind ccd only
 };
 
 struct Suite {

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # CI's smoke run of `glcollide bench` (the built-in smoke suite: every experiment kind, tiny
-# scenes, one frame; the bvh experiment at quick sizes, also alone with --only bvh) and checks of
+# scenes, one frame; the bvh experiment at quick sizes, also alone with --only bvh; the ccd experiment
+# on the Sample-Queries unit-tests files, its counts checked against their truth column) and checks of
 # what it writes: Google Benchmark JSON with the run context,
 # one entry per pass, well-formed SVG plots, the Markdown report; and clear errors for a bad
 # suite and an unknown experiment.
@@ -19,9 +20,11 @@ check "table on stdout" grep -q "== broad_phase" "$work/stdout"
 check "progress on stderr" grep -q "glcollide bench: broad_phase 1/3" "$work/stderr"
 check "report.md" grep -q "### Broad phase (smoke)" "$out/report.md"
 check "report.md has the bvh seed tables" grep -q "Seed Tables 1-3 layout" "$out/report.md"
+check "report.md has the ccd tables" grep -q "CCD query sets: glcollide GPU" "$out/report.md"
+check "the smoke ccd run says the peer is off" grep -q "Tight-Inclusion: not run" "$out/report.md"
 check "headline.md" grep -q "least error: config" "$out/headline.md"
 
-python3 - "$out" <<'PY'
+GLCOLLIDE_SAMPLE_QUERIES="$(cd "$(dirname "$0")/../data/external/ccd-sample-queries" && pwd)" python3 - "$out" <<'PY'
 import json, os, sys, xml.dom.minidom
 out = sys.argv[1]
 doc = json.load(open(os.path.join(out, "bench.json")))
@@ -34,7 +37,7 @@ for b in doc["benchmarks"]:
         assert key in b, b["name"] + " lacks " + key
     assert b["time_unit"] == "ms"
 # Every experiment kind and every pass of a collision run are there.
-for prefix in ["broad_phase/", "narrow_phase/", "integration_ballistic/", "integration_cloth/", "contact/", "scaling/", "bvh/"]:
+for prefix in ["broad_phase/", "narrow_phase/", "integration_ballistic/", "integration_cloth/", "contact/", "scaling/", "bvh/", "ccd/"]:
     assert any(n.startswith(prefix) for n in names), "no entry for " + prefix
 for p in ["BBUpdate", "BBCollision", "TriTri", "ContactResponse", "NodeUpdate", "gpu_total", "wall"]:
     assert "broad_phase/two tet boxes/octree d2/" + p in names, "missing pass " + p
@@ -76,6 +79,26 @@ for want in ["Seed Tables 1-3 layout", "Cost exponent", "two tet spheres touchin
     assert any(want in t for t in titles), "no table " + want
 seed = [t for t in summary["tables"] if t["title"].startswith("Seed Tables 1-3 layout")][0]
 assert seed["rows"][0][0] == "2,244" and seed["rows"][0][2] == "23.94 ms", seed["rows"][0]
+# The ccd experiment (smoke: the Sample-Queries unit-tests files, no peer): its query counts and
+# true positives equal those counted here from the files' own truth column, with no false negative.
+import glob
+data = os.environ["GLCOLLIDE_SAMPLE_QUERIES"] + "/unit-tests"
+for kind, folder in [("vf", "vertex-face"), ("ee", "edge-edge")]:
+    rows = []
+    for f in sorted(glob.glob(os.path.join(data, folder, "*.csv"))):
+        rows += [line.strip().split(",") for line in open(f) if line.strip()]
+    queries, positives = len(rows) // 8, sum(int(r[6]) for r in rows[::8])
+    b = [b for b in doc["benchmarks"] if b["name"] == "ccd/sample-queries unit-tests %s/glcollide GPU/gpu_total" % kind]
+    assert b, "no ccd entry for " + kind
+    b = b[0]
+    assert b["queries"] == queries and b["truth_positives"] == positives, (kind, b["queries"], queries, b["truth_positives"], positives)
+    assert b["false_negatives"] == 0, b["name"]
+    assert b["positives"] == positives + b["false_positives"], b["name"]
+    assert b["queries_per_second_wall"] > 0, b["name"]
+ccd = [s for s in doc["experiment_summaries"] if s["experiment"] == "ccd"][0]
+ccd_titles = [t["title"] for t in ccd["tables"]]
+for want in ["CCD query sets", "budget", "minimum separation", "2^k"]:
+    assert any(want in t for t in ccd_titles), "no ccd table " + want
 svgs = [f for f in os.listdir(out) if f.endswith(".svg")]
 assert len(svgs) >= 6, svgs
 for f in svgs:

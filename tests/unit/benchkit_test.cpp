@@ -4,6 +4,7 @@
 // curves whose answers are known).
 
 #include "benchkit/bvh_experiment.hpp"
+#include "benchkit/ccd_experiment.hpp"
 #include "benchkit/folded_cloth.hpp"
 #include "benchkit/oscillator.hpp"
 #include "benchkit/report.hpp"
@@ -112,6 +113,71 @@ TEST(BenchkitSuite, BvhKeys) {
     EXPECT_THAT(
         errorOf(suiteWith(R"("kind": "scaling", "table_faces": [100], )" + sceneList() + ", " + configs)),
         HasSubstr("/experiments/0/table_faces: only bvh experiments have this key"));
+}
+
+TEST(BenchkitSuite, CcdKeys) {
+    const Suite s = parseSuite(suiteWith(R"("kind": "ccd", "sets": ["sample-queries", "cloth-ball"],
+        "budgets": [256, 21844], "min_separations": [0, 1e-4], "scale_exponents": [-20, 20], "peer": false,
+        "peer_timeout_seconds": 60, "engine_sets": ["cloth-funnel"], "engine_thickness": 0.001)"),
+                               {}, "t.json");
+    const Experiment& e = s.experiments.at(0);
+    EXPECT_EQ(e.kind, ExperimentKind::Ccd);
+    EXPECT_TRUE(e.scenes.empty());
+    ASSERT_EQ(e.configs.size(), 1u); // one configuration unless told
+    EXPECT_EQ(e.ccd.sets, (std::vector<std::string>{"sample-queries", "cloth-ball"}));
+    EXPECT_EQ(e.ccd.budgets, (std::vector<int>{256, 21844}));
+    EXPECT_EQ(e.ccd.minSeparations, (std::vector<double>{0, 1e-4}));
+    EXPECT_EQ(e.ccd.scaleExponents, (std::vector<int>{-20, 20}));
+    EXPECT_FALSE(e.ccd.peer);
+    EXPECT_EQ(e.ccd.peerTimeoutSeconds, 60);
+    EXPECT_EQ(e.ccd.engineSets, (std::vector<std::string>{"cloth-funnel"}));
+    EXPECT_EQ(e.ccd.engineThickness, 0.001);
+    // The built-in suites run it: every set in default, one small set without the peer in smoke.
+    for (const Suite& suite : {defaultSuite(), smokeSuite()}) {
+        const auto ccd = std::find_if(suite.experiments.begin(), suite.experiments.end(),
+                                      [](const Experiment& x) { return x.kind == ExperimentKind::Ccd; });
+        ASSERT_NE(ccd, suite.experiments.end()) << suite.name;
+        EXPECT_EQ(ccd->ccd.peer, suite.name == "default");
+    }
+
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "ccd")")),
+                HasSubstr("/experiments/0/sets: a ccd experiment needs a non-empty list of query sets"));
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "ccd", "sets": ["funnel"])")),
+                HasSubstr("/experiments/0/sets/0: unknown set"));
+    EXPECT_THAT(
+        errorOf(suiteWith(R"("kind": "ccd", "sets": ["cloth-ball"], "engine_sets": ["sample-queries"])")),
+        HasSubstr("/experiments/0/engine_sets/0: unknown step"));
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "ccd", "sets": ["cloth-ball"], "budgets": [0])")),
+                HasSubstr("/experiments/0/budgets/0: expected an integer"));
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "ccd", "sets": ["cloth-ball"], )" + sceneList())),
+                HasSubstr("/experiments/0/scenes: a ccd experiment has sets, not scenes"));
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "scaling", "sets": ["cloth-ball"], )" + sceneList() +
+                                  R"(, "configs": [{"name": "c"}])")),
+                HasSubstr("/experiments/0/sets: only ccd experiments have this key"));
+}
+
+// The tally against ground truth: a set with every combination of truth and answer, each repeated
+// a different number of times, so that swapping or merging two categories changes a count.
+TEST(BenchkitCcd, TallyCountsEachKindOfAnswerAgainstTheTruth) {
+    std::vector<std::uint8_t> answers;
+    std::vector<bool> truth;
+    const auto add = [&](bool t, std::uint8_t a, int times) {
+        for (int i = 0; i < times; ++i) {
+            truth.push_back(t);
+            answers.push_back(a);
+        }
+    };
+    add(true, 1, 5);   // true positives
+    add(true, 0, 2);   // false negatives
+    add(false, 7, 3);  // false positives (any non-zero answer means "may collide")
+    add(false, 0, 11); // true negatives
+    const CcdTally t = tallyCcd(answers, truth);
+    EXPECT_EQ(t.queries, 21u);
+    EXPECT_EQ(t.truthPositives, 7u);
+    EXPECT_EQ(t.positives, 8u);
+    EXPECT_EQ(t.falseNegatives, 2u);
+    EXPECT_EQ(t.falsePositives, 3u);
+    EXPECT_THROW((void)tallyCcd({1}, {true, false}), Error);
 }
 
 TEST(BenchkitSeed, TablesAsPrinted) {
