@@ -133,6 +133,13 @@ vec3 glcCcdMonomialSum(bool edgeEdge, vec3 mp, vec3 ma, vec3 mb, vec3 mc, float 
     return (1.0f + 2.0f * t1) * sum;
 }
 
+// gamma_N = N u / (1 - N u) for N roundings, enlarged by 2^-20 of itself: its own evaluation and
+// the bound's (at most 16 roundings of positive terms: relative error < 2^-20 in any order).
+float glcCcdGamma(float roundings) {
+    float gamma = roundings * GLC_CCD_UNIT_ROUNDOFF / (1.0f - roundings * GLC_CCD_UNIT_ROUNDOFF);
+    return gamma * (1.0f + 9.5367431640625e-7f);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Projection on a direction (both passes). |F|_2 >= n . F / |n|_2 for any n, and n . F is
 // multilinear in (t, u, v) like F, so n . F > minSeparation |n|_2 at every corner of a box drops it.
@@ -176,6 +183,11 @@ float glcCcdDirectionLength(vec3 n) {
 // 2), so the quantized F is within 4 * 2^-29 = 2^-27 of the float query's F. A coordinate flushed
 // to zero (|x| < 2^-126) quantizes to 0 either way: inside the same bound.
 const float GLC_CCD_QUANTUM_ERROR = 7.450580596923828e-09f; // 2^-27
+// Relative error of a projection n . f computed from converted exact values f: |f - exact| <=
+// 5.0001 * 2^-24 |f| from the conversion, then three products and two sums; even with a compiler
+// distributing n over the six pieces of each conversion (18 monomials, 19 roundings in any order),
+// |computed - n . exact| <= gamma_19 |n| . |f| < 2^-19.7 |n| . |f|. 2^-18 covers it.
+const float GLC_CCD_EXACT_PROJECTION_ERROR = 3.814697265625e-6f; // 2^-18
 
 struct GlcCcdExactQuery {
     ivec3 g0, g1, h0, h1, k0, k1; // F = (g0 + t g1) + u (h0 + t h1) + v (k0 + t k1), units 2^-29
@@ -318,14 +330,8 @@ bool glcCcdFloatSearch(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e
                        float delta, int budget) {
     // Per point and axis, the larger magnitude of its two positions (exact).
     vec3 m0 = max(abs(s0), abs(e0)), m1 = max(abs(s1), abs(e1)), m2 = max(abs(s2), abs(e2)), m3 = max(abs(s3), abs(e3));
-    // gamma_N = N u / (1 - N u): |computed F - exact F| <= gamma_N * (monomial sum) + flush term.
-    // Enlarged by 2^-20 of itself: the bound's own evaluation has at most 16 roundings of
-    // positive terms (relative error < 2^-20 in any order). The same for the projection's N_D.
-    float gamma = GLC_CCD_ROUNDINGS * GLC_CCD_UNIT_ROUNDOFF / (1.0f - GLC_CCD_ROUNDINGS * GLC_CCD_UNIT_ROUNDOFF);
-    gamma = gamma * (1.0f + 9.5367431640625e-7f);
-    float gammaProjection = GLC_CCD_DIRECTION_ROUNDINGS * GLC_CCD_UNIT_ROUNDOFF /
-                            (1.0f - GLC_CCD_DIRECTION_ROUNDINGS * GLC_CCD_UNIT_ROUNDOFF);
-    gammaProjection = gammaProjection * (1.0f + 9.5367431640625e-7f);
+    // |computed F - exact F| <= gamma_N * (monomial sum) + flush term; the projection's N_D alike.
+    float gamma = glcCcdGamma(GLC_CCD_ROUNDINGS), gammaProjection = glcCcdGamma(GLC_CCD_DIRECTION_ROUNDINGS);
 
     glcCcdStack[0] = 0.0f; glcCcdStack[1] = 1.0f; glcCcdStack[2] = 0.0f; glcCcdStack[3] = 1.0f;
     glcCcdStack[4] = 0.0f; glcCcdStack[5] = 1.0f;
@@ -450,7 +456,7 @@ bool glcCcdRefute(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e0, ve
         if (n != vec3(0.0f)) {
             vec3 an = abs(n);
             float reach = delta * glcCcdDirectionLength(n) + (GLC_CCD_QUANTUM_ERROR + GLC_CCD_FLUSH_BOUND) * (an.x + an.y + an.z);
-            if (glcCcdProjectionClear(n, f0, f1, f2, f3, f4, f5, f6, f7, reach, 3.814697265625e-6f)) continue; // 2^-18
+            if (glcCcdProjectionClear(n, f0, f1, f2, f3, f4, f5, f6, f7, reach, GLC_CCD_EXACT_PROJECTION_ERROR)) continue;
         }
 
         vec3 width = hi - lo;
