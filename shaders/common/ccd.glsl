@@ -141,14 +141,16 @@ float glcCcdGamma(float roundings) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Projection on a direction (both passes). |F|_2 >= n . F / |n|_2 for any n, and n . F is
-// multilinear in (t, u, v) like F, so n . F > minSeparation |n|_2 at every corner of a box drops it.
+// Projection on a direction (both passes). |F|_inf >= n . F / |n|_1 for any n (Hoelder), and
+// n . F is multilinear in (t, u, v) like F, so n . F > minSeparation |n|_1 at every corner of a box
+// drops it with the same guarantee as the axis test: |F|_inf > minSeparation on the whole box
+// (a rounding cover that widens minSeparation per coordinate stays valid, see query ccd).
 
 // A direction for the box: the normal of the triangle (vertex-face) or the cross product of the two
 // edges (edge-edge) at time t, rounded to integers of magnitude < 2^11 (zero when the cross product
 // is below 2^-100, a degenerate triangle or parallel edges). Any direction is sound; integers make
-// n . n and sum |n_i| exact, and the rounding through trunc() keeps a compiler from expanding n
-// into the projection (the error bounds below hold for the values of n, not of its formula).
+// |n|_1 exact, and the rounding through trunc() keeps a compiler from expanding n into the
+// projection (the error bounds below hold for the values of n, not of its formula).
 vec3 glcCcdDirection(bool edgeEdge, vec3 p, vec3 a, vec3 b, vec3 c) {
     vec3 raw = edgeEdge ? cross(a - p, c - b) : cross(b - a, c - a);
     vec3 m = abs(raw);
@@ -161,10 +163,10 @@ vec3 glcCcdDirection(bool edgeEdge, vec3 p, vec3 a, vec3 b, vec3 c) {
     return trunc(raw * scale);
 }
 
-// An upper bound of |n|_2 for an integer direction (n . n < 3 * 2^22 is exact; GLSL's sqrt is
-// within a few ulp, far inside 2^-16).
-float glcCcdDirectionLength(vec3 n) {
-    return sqrt(dot(n, n)) * (1.0f + 1.52587890625e-5f); // 2^-16
+// |n|_1 of an integer direction (exact: three integers below 2^11).
+float glcCcdDirectionNorm(vec3 n) {
+    vec3 a = abs(n);
+    return a.x + a.y + a.z;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -381,9 +383,8 @@ bool glcCcdFloatSearch(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e
         // each flushed operation loses < 2^-126, weighted by at most 3 * 2^11.
         vec3 n = glcCcdDirection(edgeEdge, 0.5f * (pA + pB), 0.5f * (aA + aB), 0.5f * (bA + bB), 0.5f * (cA + cB));
         if (n != vec3(0.0f)) {
-            vec3 an = abs(n);
-            float reach = delta * glcCcdDirectionLength(n) + gammaProjection * dot(an, monomials) +
-                          GLC_CCD_FLUSH_BOUND * (an.x + an.y + an.z);
+            float norm = glcCcdDirectionNorm(n);
+            float reach = (delta + GLC_CCD_FLUSH_BOUND) * norm + gammaProjection * dot(abs(n), monomials);
             if (glcCcdProjectionClear(n, f[0], f[1], f[2], f[3], f[4], f[5], f[6], f[7], reach, 0.0f)) continue;
         }
 
@@ -454,8 +455,7 @@ bool glcCcdRefute(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e0, ve
         float tm = 0.5f * (t0 + t1);
         vec3 n = glcCcdDirection(edgeEdge, glcCcdAt(s0, e0, tm), glcCcdAt(s1, e1, tm), glcCcdAt(s2, e2, tm), glcCcdAt(s3, e3, tm));
         if (n != vec3(0.0f)) {
-            vec3 an = abs(n);
-            float reach = delta * glcCcdDirectionLength(n) + (GLC_CCD_QUANTUM_ERROR + GLC_CCD_FLUSH_BOUND) * (an.x + an.y + an.z);
+            float reach = (delta + GLC_CCD_QUANTUM_ERROR + GLC_CCD_FLUSH_BOUND) * glcCcdDirectionNorm(n);
             if (glcCcdProjectionClear(n, f0, f1, f2, f3, f4, f5, f6, f7, reach, GLC_CCD_EXACT_PROJECTION_ERROR)) continue;
         }
 

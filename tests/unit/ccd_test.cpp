@@ -369,7 +369,8 @@ CCD_TEST(MinimumSeparationCountsEuclideanDistance) {
     const FloatQuery beside = vertexThrough({1 + s, -s, -1}, {1 + s, -s, 1});
     const FloatQuery edges = edgeAcross({0, -1, d}, {0, 1, d}, {0, -1, d}, {0, 1, d});
     // Over a face whose normal is (1, 1, 1) / sqrt3, at distance d along it, sliding parallel to it:
-    // the projection on the normal must measure d with |n|_2, not with a shorter norm of n.
+    // the projection n . F = d |n|_2 on the normal must be compared with minSeparation |n|_1 (a
+    // shorter norm of n, such as max |n_i|, would drop it).
     const vec3 centroid(1 / 3.0f, 1 / 3.0f, 1 / 3.0f), lift = vec3(d / std::sqrt(3.0f)), slide(0.1f, -0.1f, 0);
     const vec3 ta(1, 0, 0), tb(0, 1, 0), tc(0, 0, 1);
     const FloatQuery tilted = vf(centroid + lift + slide, ta, tb, tc, centroid + lift - slide, ta, tb, tc);
