@@ -3,7 +3,9 @@
 // queries; the conservative float CCD (shaders/common/ccd.glsl, compiled as C++) against the
 // oracle: never a false negative (on hard families, random near-degenerate families and every
 // benchmark query rounded to float), never a time of impact later than the exact one, and the
-// same answers with every coordinate scaled by 2^k, k = -20 ... 20.
+// same answers with every coordinate scaled by 2^k, k = -20 ... 20; its error bounds (float corner
+// values, projections on the normal, the refutation's quantization and exact values) against
+// exact rational values; and its false positives against the benchmark's ground truth.
 // This file is compiled twice: into glcollide_unit_tests with the project's flags, and into
 // glcollide_relaxed_float_tests with fast-math, FMA contraction and FTZ/DAZ (tests/CMakeLists.txt),
 // where the float CCD must keep every guarantee (docs/ccd.md, "Error bound").
@@ -307,11 +309,11 @@ std::vector<FloatQuery> hardFamilies() {
         vf({-1, -1, -1}, a, a, a, {1, 1, 2}, a, a, a),                     // and missing it
         vf({0.2f, 0.2f, 0}, a, b, c, {0.2f, 0.2f, 5}, {0, 0, 5}, {1, 0, 5}, {0, 1, 5}), // moving together
         vf({0.25f, 0.25f, 1}, a, b, c, {0.25f, 0.25f, 1}, {0, 0, 2}, {1, 0, 2},
-           {0, 1, 2}),                                              // face hits a still vertex
-        vf({w, 0.25f, 2 * w}, a, tilted, c, {w, 0.25f, 2 * w}, a, tilted, c),          // resting off the grid
-        vf({w, 0.1f, 2 * w}, a, tilted, c, {w2, 0.6f, 2 * w2}, a, tilted, c),          // sliding off the grid
+           {0, 1, 2}),                                                        // face hits a still vertex
+        vf({w, 0.25f, 2 * w}, a, tilted, c, {w, 0.25f, 2 * w}, a, tilted, c), // resting off the grid
+        vf({w, 0.1f, 2 * w}, a, tilted, c, {w2, 0.6f, 2 * w2}, a, tilted, c), // sliding off the grid
         vf({0.125f, 0.1f, 0.25f + 0x1p-20f}, a, tilted, c, {0.125f, 0.6f, 0.25f + 0x1p-20f}, a, tilted,
-           c), // sliding 2^-20 above the tilted face
+           c),                                                      // sliding 2^-20 above the tilted face
         edgeAcross({0, -1, 1}, {0, 1, 1}, {0, -1, -1}, {0, 1, -1}), // crossing at t = 1/2
         edgeAcross({1, -1, 1}, {1, 1, 1}, {1, -1, -1}, {1, 1, -1}), // grazing A's end
         edgeAcross({1 + 0x1p-23f, -1, 1}, {1 + 0x1p-23f, 1, 1}, {1 + 0x1p-23f, -1, -1},
@@ -371,7 +373,8 @@ CCD_TEST(MinimumSeparationCountsEuclideanDistance) {
     // Over a face whose normal is (1, 1, 1) / sqrt3, at distance d along it, sliding parallel to it:
     // the projection n . F = d |n|_2 on the normal must be compared with minSeparation |n|_1 (a
     // shorter norm of n, such as max |n_i|, would drop it).
-    const vec3 centroid(1 / 3.0f, 1 / 3.0f, 1 / 3.0f), lift = vec3(d / std::sqrt(3.0f)), slide(0.1f, -0.1f, 0);
+    const vec3 centroid(1 / 3.0f, 1 / 3.0f, 1 / 3.0f), lift = vec3(d / std::sqrt(3.0f)),
+                                                       slide(0.1f, -0.1f, 0);
     const vec3 ta(1, 0, 0), tb(0, 1, 0), tc(0, 0, 1);
     const FloatQuery tilted = vf(centroid + lift + slide, ta, tb, tc, centroid + lift - slide, ta, tb, tc);
     for (const FloatQuery& query : {over, beside, edges, tilted}) {
@@ -417,8 +420,9 @@ CCD_TEST(RefutesNearMissesTheFloatBoundCannotSeparate) {
     const FloatQuery overFace =
         vf({0.125f, 0.1f, 0.25f + h}, a, tilted, c, {0.125f, 0.6f, 0.25f + h}, a, tilted, c);
     // An edge sliding past another one at sqrt2 2^-21, along a diagonal normal.
-    const FloatQuery pastEdge = ee({-1, 0, 0}, {1, 0, 0}, {-0.5f, -0.5f - s, -0.5f + s}, {-0.5f, 0.5f - s, 0.5f + s},
-                                   {-1, 0, 0}, {1, 0, 0}, {0.5f, -0.5f - s, -0.5f + s}, {0.5f, 0.5f - s, 0.5f + s});
+    const FloatQuery pastEdge =
+        ee({-1, 0, 0}, {1, 0, 0}, {-0.5f, -0.5f - s, -0.5f + s}, {-0.5f, 0.5f - s, 0.5f + s}, {-1, 0, 0},
+           {1, 0, 0}, {0.5f, -0.5f - s, -0.5f + s}, {0.5f, 0.5f - s, 0.5f + s});
     for (const FloatQuery& query : {overFace, pastEdge}) {
         EXPECT_FALSE(oracle(query).touch);
         // The float search alone, on the normalized query (the largest coordinate, 1, becomes 1/2).
@@ -426,8 +430,8 @@ CCD_TEST(RefutesNearMissesTheFloatBoundCannotSeparate) {
         for (int i = 0; i < 8; ++i) n[i] = query.p[i] * 0.5f;
         shader::glcCcdBoxes = 0;
         shader::glcCcdCapped = false;
-        EXPECT_TRUE(shader::glcCcdFloatSearch(query.kind == Kind::EdgeEdge, n[0], n[1], n[2], n[3], n[4], n[5],
-                                              n[6], n[7], 0.0f, kBudget));
+        EXPECT_TRUE(shader::glcCcdFloatSearch(query.kind == Kind::EdgeEdge, n[0], n[1], n[2], n[3], n[4],
+                                              n[5], n[6], n[7], 0.0f, kBudget));
         for (int k = -20; k <= 20; ++k) {
             const FloatAnswer answer = floatCcd(scaled(query, k));
             EXPECT_FALSE(answer.mayCollide) << k;
@@ -600,7 +604,8 @@ mpq_class exactF(bool edgeEdge, const std::array<mpq_class, 8>& x, const mpq_cla
                  const mpq_class& v) {
     auto at = [&](int k) { return mpq_class(x[k] + t * (x[k + 4] - x[k])); };
     const mpq_class P = at(0), A = at(1), B = at(2), C = at(3);
-    return edgeEdge ? mpq_class((P + u * (A - P)) - (B + v * (C - B))) : mpq_class(P - A - u * (B - A) - v * (C - A));
+    return edgeEdge ? mpq_class((P + u * (A - P)) - (B + v * (C - B)))
+                    : mpq_class(P - A - u * (B - A) - v * (C - A));
 }
 
 // The projection of the corner values on the direction of the box (the float search's second
@@ -620,8 +625,8 @@ CCD_TEST(ProjectionStaysWithinItsErrorBound) {
         if (n == vec3(0.0f)) continue;
         ++projected;
         const float computed = dot(n, shader::glcCcdF(b.edgeEdge, P, A, B, C, b.u, b.v));
-        const vec3 m0 = max(abs(p[0]), abs(p[4])), m1 = max(abs(p[1]), abs(p[5])), m2 = max(abs(p[2]), abs(p[6])),
-                   m3 = max(abs(p[3]), abs(p[7]));
+        const vec3 m0 = max(abs(p[0]), abs(p[4])), m1 = max(abs(p[1]), abs(p[5])),
+                   m2 = max(abs(p[2]), abs(p[6])), m3 = max(abs(p[3]), abs(p[7]));
         const float bound =
             gamma * dot(abs(n), shader::glcCcdMonomialSum(b.edgeEdge, m0, m1, m2, m3, b.t, b.u, b.v));
         mpq_class exact = 0;
@@ -654,12 +659,13 @@ CCD_TEST(ExactCornerValuesStayWithinTheirErrorBounds) {
         const shader::GlcCcdExactQuery q =
             shader::glcCcdExact(b.edgeEdge, p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7]);
         const unsigned T = shader::glcCcdGrid(b.t), U = shader::glcCcdGrid(b.u), V = shader::glcCcdGrid(b.v);
-        const vec3 f(shader::glcCcdExactCorners(q.g0.x, q.g1.x, q.h0.x, q.h1.x, q.k0.x, q.k1.x, T, U, U, V, V).x,
-                     shader::glcCcdExactCorners(q.g0.y, q.g1.y, q.h0.y, q.h1.y, q.k0.y, q.k1.y, T, U, U, V, V).x,
-                     shader::glcCcdExactCorners(q.g0.z, q.g1.z, q.h0.z, q.h1.z, q.k0.z, q.k1.z, T, U, U, V, V).x);
-        const vec3 n = shader::glcCcdDirection(b.edgeEdge, shader::glcCcdAt(p[0], p[4], b.t),
-                                               shader::glcCcdAt(p[1], p[5], b.t), shader::glcCcdAt(p[2], p[6], b.t),
-                                               shader::glcCcdAt(p[3], p[7], b.t));
+        const vec3 f(
+            shader::glcCcdExactCorners(q.g0.x, q.g1.x, q.h0.x, q.h1.x, q.k0.x, q.k1.x, T, U, U, V, V).x,
+            shader::glcCcdExactCorners(q.g0.y, q.g1.y, q.h0.y, q.h1.y, q.k0.y, q.k1.y, T, U, U, V, V).x,
+            shader::glcCcdExactCorners(q.g0.z, q.g1.z, q.h0.z, q.h1.z, q.k0.z, q.k1.z, T, U, U, V, V).x);
+        const vec3 n = shader::glcCcdDirection(
+            b.edgeEdge, shader::glcCcdAt(p[0], p[4], b.t), shader::glcCcdAt(p[1], p[5], b.t),
+            shader::glcCcdAt(p[2], p[6], b.t), shader::glcCcdAt(p[3], p[7], b.t));
         mpq_class projection = 0;
         for (int axis = 0; axis < 3; ++axis) {
             std::array<mpq_class, 8> x, quantized;
@@ -669,12 +675,15 @@ CCD_TEST(ExactCornerValuesStayWithinTheirErrorBounds) {
                 quantized[k] = mpq_class(static_cast<long>(std::ldexp(static_cast<double>(p[k][axis]), 29))) /
                                mpq_class(1L << 29);
             }
-            const mpq_class F = exactF(b.edgeEdge, x, b.t, b.u, b.v), Q = exactF(b.edgeEdge, quantized, b.t, b.u, b.v);
+            const mpq_class F = exactF(b.edgeEdge, x, b.t, b.u, b.v),
+                            Q = exactF(b.edgeEdge, quantized, b.t, b.u, b.v);
             const mpq_class quantization = abs(Q - F), conversion = abs(mpq_class(f[axis]) - Q);
-            EXPECT_LE(quantization, mpq_class(shader::GLC_CCD_QUANTUM_ERROR)) << "query " << i << " axis " << axis;
+            EXPECT_LE(quantization, mpq_class(shader::GLC_CCD_QUANTUM_ERROR))
+                << "query " << i << " axis " << axis;
             const mpq_class relative = mpq_class(5.0001 * 0x1p-24) * abs(Q);
             EXPECT_LE(conversion, relative) << "query " << i << " axis " << axis;
-            worstQuantization = std::max(worstQuantization, quantization.get_d() / shader::GLC_CCD_QUANTUM_ERROR);
+            worstQuantization =
+                std::max(worstQuantization, quantization.get_d() / shader::GLC_CCD_QUANTUM_ERROR);
             if (Q != 0) worstConversion = std::max(worstConversion, conversion.get_d() / relative.get_d());
             projection += mpq_class(n[axis]) * Q;
         }
@@ -738,18 +747,19 @@ CCD_TEST(NeverMissesASampleQueryRoundedToFloatAtAnyScale) {
     }
     for (int kind = 0; kind < 2; ++kind)
         for (const Tally* t : {&tally[kind], &llvmpipe[kind]}) {
-            std::printf("%s, budget %d: %d queries, %d contacts of the float query; false negatives %d, false "
-                        "positives %d, capped %d; against the original ground truth: false negatives %d, false "
-                        "positives %d; boxes per query %.1f (most %d)\n",
-                        kind == 0 ? "vertex-face" : "edge-edge", t == &tally[kind] ? kBudget : kLlvmpipeBudget,
-                        t->queries, t->contacts, t->falseNegatives, t->falsePositives, t->capped,
-                        t->truthFalseNegatives, t->truthFalsePositives, double(t->boxes) / t->queries, t->mostBoxes);
+            std::printf(
+                "%s, budget %d: %d queries, %d contacts of the float query; false negatives %d, false "
+                "positives %d, capped %d; against the original ground truth: false negatives %d, false "
+                "positives %d; boxes per query %.1f (most %d)\n",
+                kind == 0 ? "vertex-face" : "edge-edge", t == &tally[kind] ? kBudget : kLlvmpipeBudget,
+                t->queries, t->contacts, t->falseNegatives, t->falsePositives, t->capped,
+                t->truthFalseNegatives, t->truthFalsePositives, double(t->boxes) / t->queries, t->mostBoxes);
             EXPECT_EQ(t->falseNegatives, 0);
             EXPECT_EQ(t->truthFalseNegatives, 0);
         }
     for (const auto& [set, fp] : perSet)
-        std::printf("  %s: false positives against the ground truth %d vertex-face, %d edge-edge\n", set.c_str(),
-                    fp[0], fp[1]);
+        std::printf("  %s: false positives against the ground truth %d vertex-face, %d edge-edge\n",
+                    set.c_str(), fp[0], fp[1]);
     EXPECT_EQ(tally[0].queries, 3085);
     EXPECT_EQ(tally[1].queries, 4194);
     EXPECT_EQ(lateTimes, 0);
