@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -98,6 +99,18 @@ struct CollisionStats {
     std::uint32_t bvhNodeVisits = 0;
     std::uint32_t bvhRebuilds = 0;
     std::uint32_t bvhRounds = 0;
+    /// Continuous detection (collision.detection = continuous), last substep unless said: the
+    /// vertex-face and edge-edge pairs tested are vertexFacePairs and edgeEdgePairs (of the swept
+    /// candidates); those that may touch during the substep; pairs whose refinement ran out of
+    /// budget (answered "may touch"), and summed over the frame; boxes of (t, u, v) evaluated
+    /// (modulo 2^32); the earliest time of impact of any substep of the frame, as a fraction of
+    /// its substep (+inf when nothing may touch).
+    std::uint32_t ccdVertexFaceHits = 0;
+    std::uint32_t ccdEdgeEdgeHits = 0;
+    std::uint32_t ccdCapped = 0;
+    std::uint32_t ccdCappedInFrame = 0;
+    std::uint32_t ccdBoxes = 0;
+    float ccdEarliestToi = std::numeric_limits<float>::infinity();
 };
 
 /// The first non-finite state NodeUpdate produced (EngineOptions::checkFinite).
@@ -126,6 +139,7 @@ struct StepStats {
     double wallMilliseconds = 0.0; ///< CPU wall time of step(), including the wait for timings
     std::vector<PassTiming> passes;
     bool collisions = false; ///< the collision passes ran (then `collision` is filled)
+    bool continuous = false; ///< continuous detection (then the collision.ccd* fields are filled)
     CollisionStats collision;
     SolverStats solver;
     /// Compute dispatches per substep in this frame, counted as issued (the implicit solver issues
@@ -225,6 +239,10 @@ class Engine {
     [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> readIntersectingPairs() const;
     /// Candidate face pairs of the last substep's broad phase (sorted). Reads back.
     [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> readCandidatePairs() const;
+    /// Continuous detection: each node's earliest time of impact in the last substep, as a
+    /// fraction of the substep in [0, 1], never later than the true one; +inf for a node no pair
+    /// may touch. Empty under discrete detection.
+    [[nodiscard]] std::vector<float> readTimesOfImpact() const;
     /// Runs the broad and narrow phase on the current positions without moving anything (no forces,
     /// no contact response, no timing): afterwards readCandidatePairs() / readIntersectingPairs()
     /// describe exactly the state readPositions() returns (after step() they describe the positions

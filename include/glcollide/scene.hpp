@@ -85,7 +85,22 @@ struct BvhSettings {
     std::uint32_t visitsPerRound = 16384;
 };
 
-/// Precision of the triangle-triangle test (docs/collisions.md).
+/// When contacts are looked for (`collision.detection`; docs/ccd.md, "In the engine").
+enum class Detection : std::uint8_t {
+    Discrete,  ///< at the start of each substep: pairs within the thickness
+    Continuous ///< over each substep: swept boxes, vertex-face / edge-edge CCD, times of impact
+};
+
+/// Settings of the continuous detection (`collision.ccd` in a scene).
+struct CcdSettings {
+    /// Boxes of (t, u, v) one pair's refinement may evaluate before it answers "may touch" at its
+    /// lower bound (counted in --stats as capped). At most 21,844: llvmpipe ends a shader
+    /// invocation after 65,535 loop iterations and a box costs three.
+    std::uint32_t budget = 4096;
+    /// m, >= 0: the pairs that count as touching come within this distance; 0 = true contact.
+    double minSeparation = 0.0;
+};
+
 /// How the contact response acts (docs/collisions.md, decision 0019).
 enum class ContactResponse : std::uint8_t {
     Penalty, ///< penalty force k·(h − d) − c·v_n within the thickness (elastic: bodies bounce)
@@ -108,6 +123,8 @@ struct CollisionSettings {
     ContactResponse response = ContactResponse::Penalty;
     std::uint32_t initialCapacity = 4096; ///< >= 1: first size of every pair list (grown on overflow)
     BvhSettings bvh;                      ///< used by BroadPhase::Bvh
+    Detection detection = Detection::Discrete;
+    CcdSettings ccd; ///< used by Detection::Continuous
 };
 
 /// How a substep advances the nodes (docs/integration.md).

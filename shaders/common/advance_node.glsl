@@ -10,6 +10,16 @@ uniform float u_restitution;
 uniform float u_friction;
 #endif
 
+// The two halves of the step, written once: NodeUpdate runs both in one invocation, continuous
+// detection runs the velocity half (with the prediction x1 = x + h·v) in NodePredict before the
+// collision stages and the position half in NodeUpdate after them.
+vec3 advancedVelocity(vec3 v, float w, vec3 f) {
+    return v + (u_h * w) * f;
+}
+vec3 advancedPosition(vec3 x, vec3 v) {
+    return x + u_h * v;
+}
+
 void advanceNode(uint i, vec3 f, uint substep) {
     vec4 p = g_positions[i];
     float w = p.w;
@@ -17,8 +27,8 @@ void advanceNode(uint i, vec3 f, uint substep) {
         g_velocities[i] = vec4(0.0);
         return;
     }
-    vec3 v = g_velocities[i].xyz + (u_h * w) * f;
-    vec3 x = p.xyz + u_h * v;
+    vec3 v = advancedVelocity(g_velocities[i].xyz, w, f);
+    vec3 x = advancedPosition(p.xyz, v);
 #ifdef GLC_GROUND
     if (x.y < u_groundHeight) {
         x.y = u_groundHeight;

@@ -31,6 +31,9 @@
 #define GLC_BIND_QUERY_RESULTS 22     // uint[pairs]: tri-tri query output, 1 = the closed triangles intersect
 #define GLC_BIND_QUERY_STATS 23       // uint[3]: tri-tri query (robust): exact fallbacks, undecided pairs,
                                       // pairs the exact pass could not finish (an error)
+// CCD queries (src/passes/ccd_query_pass.cpp) take the tri-tri query slots: a query batch runs alone.
+#define GLC_BIND_CCD_QUERIES GLC_BIND_QUERY_TRIANGLES // float[25 * queries]: 8 points xyz (4 at t = 0, the same 4 at t = 1), minimum separation
+#define GLC_BIND_CCD_RESULTS GLC_BIND_QUERY_RESULTS   // uint[3 * queries]: bit 0 may collide, bit 1 capped; time of impact (float bits); boxes evaluated
 #define GLC_BIND_HEALTH 24             // GpuHealth: the first non-finite node NodeUpdate produced
 #define GLC_BIND_UNDECIDED 25          // uint[]: robust TriTri: items the filtered pass left to the exact pass
                                        // (candidate indices; query: pair indices)
@@ -61,12 +64,18 @@
 #define GLC_BIND_SOLVER_PARTIALS_PQ 45    // float[groups]: per work group p·q
 #define GLC_BIND_SOLVER_STATE 46          // GpuSolverState
 #define GLC_BIND_HEAVY_NODES 47           // uint[]: nodes with more than GLC_HEAVY_ROW springs, ascending
+// Continuous collision detection (docs/ccd.md, "In the engine").
+#define GLC_BIND_PREDICTED_POSITIONS 48   // vec4[nodes]: x1, where the integrator puts the node at the end of
+                                          // the substep (NodePredict); w inverse mass. x0 is binding 0.
+#define GLC_BIND_NODE_TOI 49              // uint[nodes]: bits of the node's earliest time of impact in the
+                                          // substep, in [0, 1] (non-negative floats order like their bits:
+                                          // atomicMin); +inf bits when none
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 48
+#define GLC_BINDING_COUNT 50
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -158,14 +167,25 @@ struct GpuListCounter {
     uint capacity;
 };
 
+// Statistics of the collision pipeline, by id: GpuCollisionCounters.stats[GLC_STAT_*]. Their
+// names, reset values and owners (reset when detect() starts, or by the stage that writes them
+// each time it runs) are in one table, passes::kCollisionStats (append_lists.cpp).
+#define GLC_STAT_EXACT_FALLBACKS 0u   // robust TriTri: predicates the exact pass evaluated in integers
+#define GLC_STAT_CONTACTS 1u          // vertex-face and edge-edge contacts that produced a force
+#define GLC_STAT_BVH_UNFINISHED 2u    // BVH traversal: queries that used up their rounds (the stage reruns with more)
+#define GLC_STAT_BVH_NODE_VISITS 3u   // BVH traversal: nodes whose box was tested (the tree-quality figure)
+#define GLC_STAT_EXACT_ERRORS 4u      // robust TriTri: pairs the exact pass could not finish (glcExactFailed;
+                                      // never by construction): detect() throws, no answer is used
+#define GLC_STAT_CCD_VERTEX_FACE_HITS 5u // CCD: vertex-face pairs that may touch during the substep
+#define GLC_STAT_CCD_EDGE_EDGE_HITS 6u   // CCD: edge-edge pairs that may touch during the substep
+#define GLC_STAT_CCD_CAPPED 7u           // CCD: pairs whose refinement ran out of budget ("may touch")
+#define GLC_STAT_CCD_BOXES 8u            // CCD: boxes of (t, u, v) evaluated (modulo 2^32)
+#define GLC_STAT_CCD_EARLIEST_TOI 9u     // CCD: bits of the earliest time of impact of the substep (+inf: none)
+#define GLC_STAT_COUNT 10
+
 struct GpuCollisionCounters {
     GpuListCounter lists[GLC_LIST_COUNT]; // indexed by GLC_LIST_*
-    uint exactFallbackCount; // robust TriTri: predicates the exact pass evaluated in integers
-    uint contactCount;       // vertex-face and edge-edge contacts that produced a force
-    uint bvhUnfinished;      // BVH traversal: queries that used up their rounds (the stage reruns with more)
-    uint bvhNodeVisits;      // BVH traversal: nodes whose box was tested (the tree-quality figure)
-    uint exactErrorCount;    // robust TriTri: pairs the exact pass could not finish (glcExactFailed;
-                             // never by construction): detect() throws, no answer is used
+    uint stats[GLC_STAT_COUNT];           // indexed by GLC_STAT_*
 };
 
 // Written by NodeUpdate when a node's new position or velocity is not finite (EngineOptions::

@@ -1,4 +1,5 @@
 #version 430 core
+// glcollide-features: GLC_SWEPT
 // All-pairs broad phase (the reference): one invocation per face pair f < g over the upper
 // triangle of the faces x faces grid, in 2D tiles the host walks (u_tileOriginX/Y). A valid pair
 // whose face boxes overlap is appended to the candidate list as (f, g). O(faces^2): a reference for

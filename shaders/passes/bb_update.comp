@@ -1,4 +1,5 @@
 #version 430 core
+// glcollide-features: GLC_SWEPT
 // BBUpdate — refit the leaf boxes of the AABB-octree to the current node positions (seeds/002,
 // Alg. 1 "BBUpdate Compute Shader"). Each leaf box is the union of the current vertices of the
 // faces assigned to it (src/model/octree_layout.cpp), inflated by half the contact thickness; a box without
@@ -14,6 +15,7 @@ layout(std430, binding = GLC_BIND_BOXES) writeonly buffer BoxesBuf { GpuBox g_bo
 layout(std430, binding = GLC_BIND_FACES) readonly buffer FacesBuf { uint g_faceIndices[]; };
 layout(std430, binding = GLC_BIND_BOX_FACE_LIST) readonly buffer BoxFaceListBuf { uint g_boxFaceList[]; };
 layout(std430, binding = GLC_BIND_BOX_FACE_OFFSETS) readonly buffer BoxFaceOffsetsBuf { uint g_boxFaceOffsets[]; };
+#include "common/face_bounds.glsl"
 
 uniform uint u_boxCount;
 uniform float u_halfThickness; // m: float(0.5 * thickness), as model::halfThicknessFloat
@@ -31,11 +33,7 @@ void main() {
     uint end = g_boxFaceOffsets[box + 1u];
     for (uint k = g_boxFaceOffsets[box] + t; k < end; k += uint(GLC_BB_UPDATE_GROUP)) {
         uint face = g_boxFaceList[k];
-        for (uint c = 0u; c < 3u; ++c) {
-            vec3 p = g_positions[g_faceIndices[3u * face + c]].xyz;
-            lo = min(lo, p);
-            hi = max(hi, p);
-        }
+        for (uint c = 0u; c < 3u; ++c) addNodeBounds(g_faceIndices[3u * face + c], lo, hi);
     }
     s_lo[t] = lo;
     s_hi[t] = hi;

@@ -1,4 +1,5 @@
 #version 430 core
+// glcollide-features: GLC_SWEPT
 // BvhRefit: every node's box from the current positions, bottom-up (Karras 2012, section 4):
 // invocation i writes leaf i's inflated face box, then climbs. At each parent the first of the
 // two children to arrive stops (atomicAdd on the parent's visit counter returns 0); the second
@@ -20,6 +21,7 @@ layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsB
 layout(std430, binding = GLC_BIND_BVH_BOXES) coherent buffer BvhBoxesBuf { GpuBox g_boxes[]; };
 layout(std430, binding = GLC_BIND_BVH_LINKS) readonly buffer BvhLinksBuf { uvec4 g_links[]; };
 layout(std430, binding = GLC_BIND_BVH_VISITS) coherent buffer BvhVisitsBuf { uint g_visits[]; };
+#include "common/face_bounds.glsl"
 
 uniform uint u_faceCount;
 uniform float u_halfThickness; // m: float(0.5 * thickness), as model::halfThicknessFloat
@@ -30,7 +32,7 @@ void main() {
     uint node = bvhLeafNode(i, u_faceCount);
     uvec3 f = faceNodes(g_links[node].x);
     vec3 lo, hi;
-    faceBox(g_positions[f.x].xyz, g_positions[f.y].xyz, g_positions[f.z].xyz, u_halfThickness, lo, hi);
+    faceBoxOfNodes(f, u_halfThickness, lo, hi);
     g_boxes[node].lo = vec4(lo, 0.0);
     g_boxes[node].hi = vec4(hi, 0.0);
     uint parent = g_links[node].z;

@@ -59,6 +59,6 @@ void main() {
         }
     }
     g_resume[q] = node;
-    if (node != GLC_BVH_NONE && u_lastRound != 0u) atomicAdd(g_counters.bvhUnfinished, 1u);
-    atomicAdd(g_counters.bvhNodeVisits, visits);
+    if (node != GLC_BVH_NONE && u_lastRound != 0u) atomicAdd(g_counters.stats[GLC_STAT_BVH_UNFINISHED], 1u);
+    atomicAdd(g_counters.stats[GLC_STAT_BVH_NODE_VISITS], visits);
 }

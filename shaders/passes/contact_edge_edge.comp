@@ -52,5 +52,5 @@ void main() {
     uvec2 item = g_edgeEdge[i]; // (3*fa+e, 3*fb+g)
     uvec3 a = faceNodes(item.x / 3u), b = faceNodes(item.y / 3u);
     uint e = item.x % 3u, g = item.y % 3u;
-    if (edgeEdge(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]) != 0u) atomicAdd(g_counters.contactCount, 1u);
+    if (edgeEdge(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]) != 0u) atomicAdd(g_counters.stats[GLC_STAT_CONTACTS], 1u);
 }

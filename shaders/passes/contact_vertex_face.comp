@@ -93,5 +93,5 @@ void main() {
     uvec2 item = g_vertexFace[i]; // (node, face)
     GpuFaceInfo info = g_faceInfo[item.y];
     bool closed = g_objects[info.object].closed != 0u;
-    if (vertexFace(item.x, faceNodes(item.y), info.owned, closed) != 0u) atomicAdd(g_counters.contactCount, 1u);
+    if (vertexFace(item.x, faceNodes(item.y), info.owned, closed) != 0u) atomicAdd(g_counters.stats[GLC_STAT_CONTACTS], 1u);
 }

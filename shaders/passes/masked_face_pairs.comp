@@ -1,4 +1,5 @@
 #version 430 core
+// glcollide-features: GLC_SWEPT
 // Masked broad phase, step 2 (the paper's scheme, seeds/002 Alg. 3 line 9): one invocation per
 // face pair f < g over the upper triangle of the faces x faces grid, in 2D tiles the host walks; a
 // pair whose leaf boxes' mask entry (box_mask.comp) is 0 returns at once, the rest are appended to

@@ -1,5 +1,5 @@
 #version 430 core
-// glcollide-features: GLC_FORCES GLC_GROUND GLC_CONTACTS GLC_CHECK_FINITE
+// glcollide-features: GLC_FORCES GLC_GROUND GLC_CONTACTS GLC_CHECK_FINITE GLC_PREDICT
 // NodeUpdate — one symplectic Euler substep (v += h w f; x += h v), pinned nodes (w = 0) held,
 // optional ground plane with restitution and Coulomb friction on the velocity.
 // The NodeUpdate stage of the AABB-octree pipeline (seeds/002, Table 2).
@@ -7,6 +7,10 @@
 // fixed-point contact forces of ContactResponse and clear them for the next substep.
 // GLC_CHECK_FINITE: record the first non-finite new position or velocity in GpuHealth (a bit test
 // on the exponent, which no compiler may fold away the way it may fold isnan/isinf).
+// GLC_PREDICT (NodePredict, continuous detection; docs/ccd.md "In the engine"): only the
+// velocity half, v += h w f, and the predicted end position x1 = x + h v into
+// GLC_BIND_PREDICTED_POSITIONS; x stays the start of the substep for the collision stages, and
+// NodeUpdate (without GLC_FORCES) then adds the contact forces and moves x.
 // Twin: cpu::nodeUpdate.
 #include "common/layout.glsl"
 
@@ -28,8 +32,26 @@ layout(std430, binding = GLC_BIND_HEALTH) buffer HealthBuf { GpuHealth g_health;
 uniform uint u_substep; // index of this substep within its frame
 #endif
 
+#ifdef GLC_PREDICT
+layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) writeonly buffer PredictedPositionsBuf { vec4 g_predicted[]; };
+#endif
+
 uniform uint u_nodeCount;
 #include "common/advance_node.glsl"
+
+#ifdef GLC_PREDICT
+void predictNode(uint i, vec3 f) {
+    vec4 p = g_positions[i];
+    if (p.w <= 0.0) { // pinned: held
+        g_velocities[i] = vec4(0.0);
+        g_predicted[i] = p;
+        return;
+    }
+    vec3 v = advancedVelocity(g_velocities[i].xyz, p.w, f);
+    g_velocities[i] = vec4(v, 0.0);
+    g_predicted[i] = vec4(advancedPosition(p.xyz, v), p.w);
+}
+#endif
 
 void main() {
     uint i = globalIndex();
@@ -42,7 +64,9 @@ void main() {
     f += vec3(g_contactForces[i].xyz) / u_contactForceScale;
     g_contactForces[i] = ivec4(0);
 #endif
-#ifdef GLC_CHECK_FINITE
+#if defined(GLC_PREDICT)
+    predictNode(i, f);
+#elif defined(GLC_CHECK_FINITE)
     advanceNode(i, f, u_substep);
 #else
     advanceNode(i, f, 0u);

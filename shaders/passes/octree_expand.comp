@@ -1,4 +1,5 @@
 #version 430 core
+// glcollide-features: GLC_SWEPT
 // Octree broad phase, step 2 of BBCollision: expands the overlapping leaf-box pairs of
 // octree_box_pairs.comp into candidate face pairs. One work group per box pair (indirect dispatch
 // from the box-pair count; more than 65535 pairs spill into y), looping over faces(i) x faces(j);

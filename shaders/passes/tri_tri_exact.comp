@@ -25,7 +25,7 @@ void main() {
     uvec3 a = faceNodes(pair.x), b = faceNodes(pair.y);
     bool hit = glcTriTriExact(g_positions[a.x].xyz, g_positions[a.y].xyz, g_positions[a.z].xyz,
                               g_positions[b.x].xyz, g_positions[b.y].xyz, g_positions[b.z].xyz);
-    if (glcExactEvaluations != 0u) atomicAdd(g_counters.exactFallbackCount, glcExactEvaluations);
-    if (glcExactFailed) atomicAdd(g_counters.exactErrorCount, 1u); // no answer: the host throws
+    if (glcExactEvaluations != 0u) atomicAdd(g_counters.stats[GLC_STAT_EXACT_FALLBACKS], glcExactEvaluations);
+    if (glcExactFailed) atomicAdd(g_counters.stats[GLC_STAT_EXACT_ERRORS], 1u); // no answer: the host throws
     else if (hit) GLC_APPEND(GLC_LIST_INTERSECTIONS, g_intersections, pair)
 }

@@ -42,6 +42,21 @@ struct QueryTriTriOptions {
 /// glcollide query tritri: one line `1` (the closed triangles intersect) or `0` per data row.
 int queryTriTriCommand(const QueryTriTriOptions& options);
 
+struct QueryCcdOptions {
+    std::string inPath;              ///< CSV of CCD queries, the CCD benchmark's layout (docs/ccd.md)
+    std::string outPath;             ///< empty: answers on stdout
+    std::string kind;                ///< vf (vertex-face) or ee (edge-edge)
+    bool toi = false;                ///< append ",<time of impact>" to each answer
+    std::string minSeparation = "0"; ///< decimal, read exactly
+    int budget = 21844;              ///< boxes per query and piece (passes::kDefaultCcdBudget)
+    int rounds = 4;                  ///< continuation rounds (passes::kDefaultCcdContinuationRounds)
+    std::string device;
+};
+
+/// glcollide query ccd: one line `1` (the primitives may come within the minimum separation during
+/// [0, 1]) or `0` per query, with `--toi` followed by ",<time of impact>".
+int queryCcdCommand(const QueryCcdOptions& options);
+
 struct BenchOptions {
     std::string suite;                      ///< file, or "default" / "smoke" (built in); empty: default
     std::string outDir = "glcollide-bench"; ///< "{device}" is replaced by the renderer's slug

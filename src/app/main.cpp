@@ -58,6 +58,38 @@ int main(int argc, char** argv) {
     tritriCmd->add_option("--device", tritri.device,
                           "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
 
+    glcollide::app::QueryCcdOptions ccd;
+    CLI::App* ccdCmd = queryCmd->add_subcommand(
+        "ccd",
+        "Continuous collision detection for each query of a CSV (the CCD benchmark's layout: 8 rows per "
+        "query, 4 points at t = 0 then at t = 1); prints 1 (may come within the minimum separation) or 0 "
+        "per query");
+    ccdCmd
+        ->add_option("--in", ccd.inPath,
+                     "CSV of queries: rows x,y,z as 6 integers (numerator,denominator pairs) or 3 decimals, "
+                     "optional ground-truth column (ignored); blank lines and # comment lines are skipped")
+        ->required();
+    ccdCmd->add_option("--kind", ccd.kind, "vf (vertex, triangle) or ee (edge, edge)")
+        ->check(CLI::IsMember({"vf", "ee"}))
+        ->required();
+    ccdCmd->add_option("--out", ccd.outPath,
+                       "Write the answers here (default: stdout) and a summary to stdout");
+    ccdCmd->add_flag("--toi", ccd.toi, "Append the time of impact (never later than the true one; 1 when 0)");
+    ccdCmd
+        ->add_option("--min-separation", ccd.minSeparation,
+                     "Answer 1 when the primitives may come within this distance (decimal, >= 0)")
+        ->default_val("0");
+    ccdCmd
+        ->add_option("--budget", ccd.budget,
+                     "Boxes per query and piece before answering 1 as capped (at most 21844 on llvmpipe)")
+        ->capture_default_str();
+    ccdCmd
+        ->add_option("--rounds", ccd.rounds,
+                     "Rounds in which capped queries continue on halves of their time interval (0: none)")
+        ->capture_default_str();
+    ccdCmd->add_option("--device", ccd.device,
+                       "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
+
     glcollide::app::BenchOptions bench;
     CLI::App* benchCmd = cli.add_subcommand(
         "bench",
@@ -109,6 +141,7 @@ int main(int argc, char** argv) {
         }
         if (infoCmd->parsed()) return glcollide::app::infoCommand(info);
         if (tritriCmd->parsed()) return glcollide::app::queryTriTriCommand(tritri);
+        if (ccdCmd->parsed()) return glcollide::app::queryCcdCommand(ccd);
         if (benchCmd->parsed()) return glcollide::app::benchCommand(bench);
         if (renderCmd->parsed()) return glcollide::app::renderCommand(render);
     } catch (const glcollide::Error& e) {

@@ -55,6 +55,20 @@ nlohmann::json frameRecord(const Engine& engine) {
                                {"bvh_node_visits", c.bvhNodeVisits},
                                {"bvh_rebuilds", c.bvhRebuilds},
                                {"bvh_rounds", c.bvhRounds}};
+        if (s.continuous) {
+            // The earliest time of impact as a fraction of a substep; null when nothing may touch.
+            const nlohmann::json earliest =
+                std::isfinite(c.ccdEarliestToi) ? nlohmann::json(c.ccdEarliestToi) : nlohmann::json(nullptr);
+            record["ccd"] = {{"swept_candidate_pairs", c.candidatePairs},
+                             {"vertex_face_pairs_tested", c.vertexFacePairs},
+                             {"edge_edge_pairs_tested", c.edgeEdgePairs},
+                             {"vertex_face_may_touch", c.ccdVertexFaceHits},
+                             {"edge_edge_may_touch", c.ccdEdgeEdgeHits},
+                             {"capped_pairs", c.ccdCapped},
+                             {"capped_pairs_in_frame", c.ccdCappedInFrame},
+                             {"boxes", c.ccdBoxes},
+                             {"earliest_toi", earliest}};
+        }
     }
     return record;
 }

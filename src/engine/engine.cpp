@@ -64,6 +64,7 @@ struct Engine::Impl {
     std::optional<passes::NodeForcePass> nodeForce;
     std::optional<passes::SpringUpdatePass> springUpdate;
     std::optional<passes::NodeUpdatePass> nodeUpdate;
+    std::optional<passes::NodePredictPass> nodePredict;
     std::optional<passes::ImplicitSolverPass> implicitSolve;
     std::optional<passes::FrameStepPass> frameStep;
     FrameStepParams frameStepParams;
@@ -134,6 +135,7 @@ void Engine::Impl::chooseSubsteps() {
     }
     substeps.substepLength = dt / substeps.substeps;
     plan.nodeUpdateParams.h = substeps.substepLength;
+    plan.nodePredictParams.h = substeps.substepLength;
     plan.implicitParams.h = substeps.substepLength;
     plan.contact.substep = substeps.substepLength;
 }
@@ -149,6 +151,7 @@ gl::Buffer Engine::Impl::makeBuffer(passes::BufferId id) {
     };
     switch (id) {
     case BufferId::Positions:
+    case BufferId::PredictedPositions: // x1 = x0 until the first NodePredict
         return gl::makeBuffer(label, packNodes(m.positions, &m.inverseMasses));
     case BufferId::Velocities:
         return gl::makeBuffer(label, packNodes(m.velocities, nullptr));
@@ -236,6 +239,7 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
     for (passes::PassId id : d.passIds) d.passNames.emplace_back(passes::passName(id));
     d.stats.substeps = d.substeps.substeps;
     d.stats.collisions = d.plan.collisions;
+    d.stats.continuous = d.plan.continuous;
     for (const std::string& name : d.passNames) d.stats.passes.push_back({name, 0.0});
     m_impl = std::move(impl);
 }
@@ -260,6 +264,9 @@ void Engine::Impl::makePass(engine::Stage stage) {
         break;
     case Stage::NodeUpdate:
         nodeUpdate.emplace(plan.nodeUpdateParams);
+        break;
+    case Stage::NodePredict:
+        nodePredict.emplace(plan.nodePredictParams);
         break;
     case Stage::FrameStep: {
         FrameStepParams& f = frameStepParams;
@@ -329,6 +336,12 @@ void addSubstepCounts(const passes::CollisionCounts& counts, CollisionStats& c) 
     c.bvhNodeVisits = counts.bvhNodeVisits;
     c.bvhRebuilds += counts.bvhRebuilt ? 1u : 0u;
     c.bvhRounds = counts.bvhRounds;
+    c.ccdVertexFaceHits = counts.ccdVertexFaceHits;
+    c.ccdEdgeEdgeHits = counts.ccdEdgeEdgeHits;
+    c.ccdCapped = counts.ccdCapped;
+    c.ccdBoxes = counts.ccdBoxes;
+    c.ccdEarliestToi = std::min(c.ccdEarliestToi, counts.ccdEarliestToi);
+    c.ccdCappedInFrame += counts.ccdCapped;
 }
 } // namespace
 
@@ -357,9 +370,13 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             // detect() cleared the response's contact counter; it is read after the last substep.
             if (lastOfFrame) {
                 glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-                collision->counters().download(offsetof(gpu::GpuCollisionCounters, contactCount),
+                collision->counters().download(offsetof(gpu::GpuCollisionCounters, stats) +
+                                                   GLC_STAT_CONTACTS * sizeof(std::uint32_t),
                                                sizeof stats.collision.contacts, &stats.collision.contacts);
             }
+            break;
+        case Stage::NodePredict:
+            run(*nodePredict, plan.nodePredictParams);
             break;
         case Stage::NodeUpdate:
             run(*nodeUpdate, plan.nodeUpdateParams, static_cast<std::uint32_t>(index));
@@ -475,6 +492,14 @@ std::vector<std::array<std::uint32_t, 2>> Engine::readCandidatePairs() const {
     if (!m_impl->collision) return {};
     const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Transfer, m_impl->glFeatures);
     return m_impl->collision->readCandidates();
+}
+
+std::vector<float> Engine::readTimesOfImpact() const {
+    if (!m_impl->collision || !m_impl->collision->continuous()) return {};
+    const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Transfer, m_impl->glFeatures);
+    std::vector<float> toi(nodeCount());
+    m_impl->collision->nodeToi().download(0, toi.size() * sizeof(float), toi.data());
+    return toi;
 }
 
 CollisionStats Engine::detectCollisions() {

@@ -11,11 +11,17 @@ std::vector<Stage> PipelinePlan::stages() const {
     std::vector<Stage> s;
     if (nodeForce) s.push_back(Stage::NodeForce);
     if (springUpdate) s.push_back(Stage::SpringUpdate);
-    // Contacts are found at the start of the substep.
-    if (collisions) s.push_back(Stage::CollisionDetection);
+    // Discrete detection: contacts are found at the start of the substep.
+    if (collisions && !continuous) s.push_back(Stage::CollisionDetection);
     // Implicit Euler: the springs' solve comes before the contact response, which then acts on
     // the solved velocities (and NodeUpdate adds it: Bridson et al. 2002's order).
     if (implicitSolve) s.push_back(Stage::ImplicitSolve);
+    // Continuous detection: the velocities the integrator gives and the end positions x1 they
+    // lead to, then the collision stages over [x0, x1].
+    if (continuous) {
+        s.push_back(Stage::NodePredict);
+        s.push_back(Stage::CollisionDetection);
+    }
     if (collisions) s.push_back(Stage::ContactResponse);
     if (nodeUpdate) s.push_back(Stage::NodeUpdate);
     return s;
@@ -32,12 +38,16 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
         case Stage::SpringUpdate:
             p.push_back(PassId::SpringUpdate);
             break;
+        case Stage::NodePredict:
+            p.push_back(PassId::NodePredict);
+            break;
         case Stage::CollisionDetection:
             // The broad phase's passes come from its factory entry; TriTri tests its candidates;
             // FeaturePairs expands them into the feature pairs ContactResponse reads.
             for (PassId id : passes::broadPhasePasses(collision.broadPhase)) p.push_back(id);
             p.push_back(PassId::TriTri);
             p.push_back(PassId::FeaturePairs);
+            if (continuous) p.push_back(PassId::Ccd);
             break;
         case Stage::ImplicitSolve:
             p.push_back(PassId::ImplicitSolve);
@@ -81,6 +91,7 @@ std::vector<passes::BufferId> PipelinePlan::bufferIds() const {
     }
     if (collisions) b.push_back(BufferId::ContactForces);
     if (nodeUpdateParams.checkFinite) b.push_back(BufferId::Health);
+    if (continuous) b.push_back(BufferId::PredictedPositions);
     return b;
 }
 
@@ -133,6 +144,13 @@ PipelinePlan planPipeline(const Scene& scene) {
         plan.springUpdate = false; // the solver gathers the springs itself
         plan.nodeForce = false;
         nu.forces = false; // v is the solve's; NodeUpdate adds the contact forces (if any) and moves x
+    }
+    plan.continuous = plan.collisions && scene.collision.detection == Detection::Continuous;
+    if (plan.continuous) {
+        // NodePredict applies the forces (v += h·M⁻¹f; nothing under implicit Euler, whose solve
+        // set v) and NodeUpdate only adds the contact forces and moves x.
+        plan.nodePredictParams = nu;
+        nu.forces = false;
     }
     nu.contactForceScale = plan.contact.forceScale;
     nu.ground = fx.has(Effect::Ground);

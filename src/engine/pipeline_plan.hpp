@@ -21,6 +21,7 @@ namespace glcollide::engine {
 enum class Stage : std::uint8_t {
     NodeForce,          ///< external forces alone (scenes without springs)
     SpringUpdate,       ///< spring forces plus the external force
+    NodePredict,        ///< continuous detection: v += h·M⁻¹f and the predicted end positions x1
     CollisionDetection, ///< broad phase, TriTri and FeaturePairs (their own PassIds)
     ImplicitSolve,      ///< implicit Euler: the springs' linear solve, v += Δv
     ContactResponse,    ///< contact forces or impulses on the feature pairs
@@ -48,6 +49,10 @@ struct PipelinePlan {
     bool collisions = false;
     bool betweenObjects = false; ///< pairs of faces of different objects
     bool selfCollisions = false; ///< pairs of faces of one object that share no node
+    /// collision.detection = continuous: NodePredict computes x1 before the collision stages,
+    /// which run on [x0, x1] (swept boxes, CCD); NodeUpdate then runs without forces.
+    bool continuous = false;
+    NodeUpdateParams nodePredictParams; ///< NodePredict's forces and h (continuous only)
     CollisionSettings collision;
     ContactParams contact;
 

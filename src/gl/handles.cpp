@@ -69,6 +69,13 @@ void Buffer::upload(std::size_t offset, std::size_t bytes, const void* data) {
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 }
 
+void Buffer::fill32(std::uint32_t word) {
+    if (bytes() == 0) return;
+    glBindBuffer(GL_COPY_WRITE_BUFFER, name());
+    glClearBufferData(GL_COPY_WRITE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &word);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+}
+
 void Buffer::download(std::size_t offset, std::size_t bytes, void* out) const {
     if (bytes == 0) return;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -59,6 +59,8 @@ class Buffer {
     explicit operator bool() const { return static_cast<bool>(m_handle); }
 
     void upload(std::size_t offset, std::size_t bytes, const void* data);
+    /// Sets every 32-bit word of the buffer to `word` on the GPU (glClearBufferData, GL 4.3).
+    void fill32(std::uint32_t word);
     /// Reads back after a GL_BUFFER_UPDATE_BARRIER_BIT barrier (issued here).
     void download(std::size_t offset, std::size_t bytes, void* out) const;
     /// glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, this).

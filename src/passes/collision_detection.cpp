@@ -9,6 +9,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <bit>
 
 namespace glcollide::passes {
 namespace {
@@ -61,6 +62,7 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const mode
     context.halfThickness = model::halfThicknessFloat(s.thickness);
     context.boxPairCapacity = config.boxPairCapacity;
     context.substepsPerFrame = config.substepsPerFrame;
+    context.sweptBoxes = s.detection == Detection::Continuous;
     m_broadPhase = createBroadPhase(context);
     m_broadPhase->addStages(m_chain, *m_lists);
     m_narrowPhase.addStages(m_chain, *m_lists);
@@ -68,6 +70,16 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const mode
     // likeliest to overflow) reruns only the expansion (decision 0018).
     m_featurePairs.addStages(m_chain, *m_lists, initial(config.vertexFaceCapacity),
                              initial(config.edgeEdgeCapacity));
+    if (s.detection == Detection::Continuous) {
+        m_ccd.emplace(static_cast<std::uint32_t>(model.nodeCount()), s.ccd.budget,
+                      static_cast<float>(s.ccd.minSeparation));
+        m_ccd->addStages(m_chain, *m_lists);
+    }
+}
+
+const gl::Buffer& CollisionDetection::nodeToi() const {
+    static const gl::Buffer kNone;
+    return m_ccd ? m_ccd->nodeToi() : kNone;
 }
 
 std::vector<std::string> CollisionDetection::passNames() const {
@@ -82,6 +94,11 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
                     std::to_string(buffers.faceCount));
     bindRequired(buffers.positions, GLC_BIND_NODE_POSITIONS, "CollisionDetection", "positions");
     bindRequired(buffers.faces, GLC_BIND_FACES, "CollisionDetection", "faces");
+    if (m_ccd) {
+        bindRequired(buffers.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, "CollisionDetection",
+                     "predictedPositions");
+        m_ccd->bind();
+    }
     m_tables.bind();
     m_broadPhase->bind();
     m_broadPhase->prepare();
@@ -94,7 +111,7 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
     m_counts.candidates = l.count(GLC_LIST_CANDIDATES);
     m_counts.intersections = l.count(GLC_LIST_INTERSECTIONS);
     m_counts.undecided = l.count(GLC_LIST_UNDECIDED); // 0 with fast precision
-    m_counts.exactFallbacks = l.exactFallbacks();
+    m_counts.exactFallbacks = l.stat(GLC_STAT_EXACT_FALLBACKS);
     m_counts.reruns = reruns;
     m_counts.boxPairGrowths = l.growths(GLC_LIST_BOX_PAIRS);
     m_counts.candidateGrowths = l.growths(GLC_LIST_CANDIDATES);
@@ -102,13 +119,18 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
     const BroadPhaseStats broad = m_broadPhase->stats();
     m_counts.bvhRebuilt = broad.rebuilt;
     m_counts.bvhRounds = broad.rounds;
-    m_counts.bvhNodeVisits = l.bvhNodeVisits();
+    m_counts.bvhNodeVisits = l.stat(GLC_STAT_BVH_NODE_VISITS);
     m_counts.vertexFacePairs = l.count(GLC_LIST_VERTEX_FACE);
     m_counts.edgeEdgePairs = l.count(GLC_LIST_EDGE_EDGE);
     m_counts.vertexFaceGrowths = l.growths(GLC_LIST_VERTEX_FACE);
     m_counts.edgeEdgeGrowths = l.growths(GLC_LIST_EDGE_EDGE);
     m_counts.vertexFacePairsWithoutOwnership = 6 * std::uint64_t{m_counts.candidates};
     m_counts.edgeEdgePairsWithoutOwnership = 9 * std::uint64_t{m_counts.candidates};
+    m_counts.ccdVertexFaceHits = l.stat(GLC_STAT_CCD_VERTEX_FACE_HITS);
+    m_counts.ccdEdgeEdgeHits = l.stat(GLC_STAT_CCD_EDGE_EDGE_HITS);
+    m_counts.ccdCapped = l.stat(GLC_STAT_CCD_CAPPED);
+    m_counts.ccdBoxes = l.stat(GLC_STAT_CCD_BOXES);
+    m_counts.ccdEarliestToi = std::bit_cast<float>(l.stat(GLC_STAT_CCD_EARLIEST_TOI));
     return m_counts;
 }
 
@@ -149,6 +171,7 @@ std::vector<const gl::Buffer*> CollisionDetection::allBuffers() const {
     std::vector<const gl::Buffer*> all = {&m_tables.faceInfo, &m_tables.objects};
     for (const gl::Buffer* b : m_broadPhase->buffers()) all.push_back(b);
     for (const gl::Buffer* b : m_lists->buffers()) all.push_back(b);
+    if (m_ccd) all.push_back(&m_ccd->nodeToi());
     return all;
 }
 

@@ -16,6 +16,7 @@
 #include "gl/handles.hpp"
 #include "passes/broad_phase/broad_phase.hpp"
 #include "passes/collision/append_lists.hpp"
+#include "passes/collision/feature_ccd.hpp"
 #include "passes/collision/feature_pairs.hpp"
 #include "passes/collision/narrow_phase.hpp"
 #include "passes/collision/stage_chain.hpp"
@@ -26,6 +27,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +69,11 @@ struct CollisionCounts {
     /// What a face-pair expansion without ownership would test: 6 vertex-face and 9 edge-edge
     /// pairs per candidate.
     std::uint64_t vertexFacePairsWithoutOwnership = 0, edgeEdgePairsWithoutOwnership = 0;
+    /// Continuous detection (the Ccd stage): feature pairs that may touch during the substep,
+    /// pairs whose refinement ran out of budget, boxes evaluated (modulo 2^32) and the earliest
+    /// time of impact in [0, 1] (+inf when none may touch).
+    std::uint32_t ccdVertexFaceHits = 0, ccdEdgeEdgeHits = 0, ccdCapped = 0, ccdBoxes = 0;
+    float ccdEarliestToi = 0.0f;
 };
 
 /// The per-face and per-object tables of the collision kernels and the contact response.
@@ -91,7 +98,8 @@ class CollisionDetection {
     [[nodiscard]] std::vector<PassId> passes() const { return m_chain.passes(); }
     [[nodiscard]] std::vector<std::string> passNames() const;
 
-    /// Runs the chain on buffers.positions (binding 0) and buffers.faces (7); grows lists and
+    /// Runs the chain on buffers.positions (binding 0) and buffers.faces (7), and with continuous
+    /// detection (settings.detection) on buffers.predictedPositions too; grows lists and
     /// reruns stages on overflow; throws Error when a list would outgrow config.listByteLimit.
     /// Brackets each stage with timer section passIndex(pass) when `timer` is not null. Ends with
     /// a storage barrier, so later passes may read the lists. One read-back per call, plus one
@@ -114,6 +122,10 @@ class CollisionDetection {
     [[nodiscard]] const gl::Buffer& boxes() const { return broadPhaseBuffer("boxes"); }
     [[nodiscard]] const model::OctreeLayout& layout() const { return m_layout; }
     [[nodiscard]] const CollisionCounts& lastCounts() const { return m_counts; }
+    /// Continuous detection: uint per node, the bits of its earliest time of impact in the last
+    /// detect() (+inf bits: none); an empty buffer under discrete detection.
+    [[nodiscard]] const gl::Buffer& nodeToi() const;
+    [[nodiscard]] bool continuous() const { return m_ccd.has_value(); }
 
     /// Read-backs for tests and tools, sorted.
     [[nodiscard]] std::vector<std::array<std::uint32_t, 2>> readCandidates() const;
@@ -138,6 +150,7 @@ class CollisionDetection {
     std::unique_ptr<BroadPhase> m_broadPhase;
     NarrowPhase m_narrowPhase;
     FeaturePairs m_featurePairs;
+    std::optional<FeatureCcd> m_ccd; ///< continuous detection only
     StageChain m_chain;
     CollisionCounts m_counts;
 };

@@ -10,8 +10,10 @@ namespace glcollide::passes {
 namespace {
 
 constexpr std::array<const char*, kBufferIdCount> kBufferLabels = {
-    "positions",      "velocities", "faces",           "forces",       "springs",       "nodeSpringOffsets",
-    "nodeSpringList", "heavyNodes", "nodeFaceOffsets", "nodeFaceList", "contactForces", "health"};
+    "positions",         "velocities",        "faces",          "forces",
+    "springs",           "nodeSpringOffsets", "nodeSpringList", "heavyNodes",
+    "nodeFaceOffsets",   "nodeFaceList",      "contactForces",  "health",
+    "predictedPositions"};
 
 template <typename F> void forEach(const DeviceBuffers& b, F&& f) {
     for (std::size_t i = 0; i < kBufferIdCount; ++i)
@@ -54,6 +56,8 @@ const gl::Buffer& DeviceBuffers::operator[](BufferId id) const {
         return contactForces;
     case BufferId::Health:
         return health;
+    case BufferId::PredictedPositions:
+        return predictedPositions;
     }
     throw Error("DeviceBuffers: unknown buffer id " + std::to_string(static_cast<int>(id)));
 }

@@ -25,9 +25,10 @@ enum class BufferId : std::uint8_t {
     NodeFaceOffsets,
     NodeFaceList,
     ContactForces,
-    Health
+    Health,
+    PredictedPositions
 };
-inline constexpr std::size_t kBufferIdCount = 12;
+inline constexpr std::size_t kBufferIdCount = 13;
 
 /// The buffer's label: its GL object label and its name in `run`'s output and --stats.
 const char* bufferLabel(BufferId id);
@@ -49,6 +50,9 @@ struct DeviceBuffers {
     gl::Buffer nodeFaceList;    ///< uint[3 * faceCount] (NodeForce with wind)
     gl::Buffer contactForces;   ///< ivec4 fixed point (collisions: ContactResponse → NodeUpdate)
     gl::Buffer health;          ///< GpuHealth (NodeUpdate with EngineOptions::checkFinite)
+    /// vec4: x1, the end of the substep as the integrator predicts it (NodePredict; continuous
+    /// detection reads [positions, predictedPositions])
+    gl::Buffer predictedPositions;
 
     /// The buffer `id` names.
     [[nodiscard]] gl::Buffer& operator[](BufferId id);

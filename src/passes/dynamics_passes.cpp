@@ -100,6 +100,20 @@ void NodeUpdatePass::dispatch(const DeviceBuffers& b, const NodeUpdateParams& pa
     finish(m_program, b.nodeCount);
 }
 
+NodePredictPass::NodePredictPass(const NodeUpdateParams& config)
+    : m_config(config),
+      m_program("node_update", config.forces ? std::vector<std::string>{"GLC_PREDICT", "GLC_FORCES"}
+                                             : std::vector<std::string>{"GLC_PREDICT"}) {}
+
+void NodePredictPass::dispatch(const DeviceBuffers& b, const NodeUpdateParams& params) const {
+    bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
+    bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
+    bindRequired(b.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, kName, "predictedPositions");
+    if (m_config.forces) bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
+    m_program.set("u_h", static_cast<float>(params.h));
+    finish(m_program, b.nodeCount);
+}
+
 namespace {
 std::vector<std::string> frameStepDefines(const FrameStepParams& c) {
     std::vector<std::string> d = externalForceDefines(c.external);

@@ -56,6 +56,21 @@ class NodeUpdatePass {
     gl::ComputeProgram m_program;
 };
 
+/// Continuous detection's first half of NodeUpdate (node_update.comp with GLC_PREDICT): the
+/// velocity step with the forces (none under implicit Euler, whose solve already set v) and the
+/// predicted end positions into buffers.predictedPositions. NodeUpdate then runs without forces.
+class NodePredictPass {
+  public:
+    static constexpr PassId kId = PassId::NodePredict;
+    static constexpr const char* kName = passName(kId);
+    explicit NodePredictPass(const NodeUpdateParams& config);
+    void dispatch(const DeviceBuffers& buffers, const NodeUpdateParams& params) const;
+
+  private:
+    NodeUpdateParams m_config;
+    gl::ComputeProgram m_program;
+};
+
 /// Every substep of a frame in one dispatch (shaders/passes/frame_step.comp): for small scenes
 /// without collisions and without heavy rows.
 /// Substeps one FrameStep dispatch may run (at most kFrameStepSubstepsPerDispatch) so that none of

@@ -13,6 +13,7 @@ namespace glcollide::passes {
 enum class PassId : std::uint8_t {
     NodeForce,
     SpringUpdate,
+    NodePredict, ///< continuous detection: v += h·M⁻¹f and the predicted end positions x1 = x + h·v
     BBUpdate,
     BBCollision,
     BvhBuild,    ///< linear BVH: Morton codes, radix sort, hierarchy (when the cadence rebuilds)
@@ -20,17 +21,19 @@ enum class PassId : std::uint8_t {
     BvhTraverse, ///< linear BVH: candidate face pairs
     TriTri,
     FeaturePairs, ///< Representative Triangles: candidate face pairs -> vertex-face, edge-edge pairs
+    Ccd,          ///< continuous detection: vertex-face and edge-edge CCD over the substep, times of impact
     ContactResponse,
     ImplicitSolve, ///< implicit Euler: assemble A·Δv = b, conjugate gradients, v += Δv
     NodeUpdate,
     FrameStep ///< a small scene's whole frame (SpringUpdate + NodeUpdate per substep) in one dispatch
 };
 
-inline constexpr std::size_t kPassCount = 13;
+inline constexpr std::size_t kPassCount = 15;
 
 inline constexpr std::array<const char*, kPassCount> kPassNames = {
-    "NodeForce", "SpringUpdate", "BBUpdate",        "BBCollision",   "BvhBuild",   "BvhRefit", "BvhTraverse",
-    "TriTri",    "FeaturePairs", "ContactResponse", "ImplicitSolve", "NodeUpdate", "FrameStep"};
+    "NodeForce", "SpringUpdate",    "NodePredict",   "BBUpdate",   "BBCollision",
+    "BvhBuild",  "BvhRefit",        "BvhTraverse",   "TriTri",     "FeaturePairs",
+    "Ccd",       "ContactResponse", "ImplicitSolve", "NodeUpdate", "FrameStep"};
 
 constexpr const char* passName(PassId id) {
     return kPassNames[static_cast<std::size_t>(id)];

@@ -277,16 +277,15 @@ class BodyReader {
 
 } // namespace
 
-SurfaceMesh readPly(const std::filesystem::path& path) {
+PlyMesh readPlyAsStored(const std::filesystem::path& path) {
     const std::string file = path.string();
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(file + ": cannot open file");
     const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     const Header header = parseHeader(text, file);
 
-    std::vector<glm::dvec3> positions;
-    std::vector<Face> faces;
-    std::vector<std::size_t> faceLines; // ASCII only
+    PlyMesh mesh;
+    std::vector<glm::dvec3>& positions = mesh.positions;
     bool haveVertices = false;
     BodyReader body(text, header, file);
     for (const Element& e : header.elements) {
@@ -350,13 +349,20 @@ SurfaceMesh readPly(const std::filesystem::path& path) {
                 positions.push_back(position);
             }
             for (std::size_t j = 2; j < polygon.size(); ++j) {
-                faces.push_back({polygon[0], polygon[j - 1], polygon[j]});
-                if (body.line() != 0) faceLines.push_back(body.line());
+                mesh.faces.push_back({polygon[0], polygon[j - 1], polygon[j]});
+                mesh.faceElement.push_back(mesh.faceElements);
+                if (body.line() != 0) mesh.faceLines.push_back(body.line());
             }
+            if (isFace) ++mesh.faceElements;
         }
     }
     if (!haveVertices) throw Error(file + ": the PLY file has no element 'vertex'");
-    return weldSurface(std::move(positions), faces, file, faceLines);
+    return mesh;
+}
+
+SurfaceMesh readPly(const std::filesystem::path& path) {
+    PlyMesh mesh = readPlyAsStored(path);
+    return weldSurface(std::move(mesh.positions), mesh.faces, path.string(), mesh.faceLines);
 }
 
 } // namespace glcollide::detail

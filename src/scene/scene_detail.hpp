@@ -47,6 +47,23 @@ SurfaceMesh readObj(const std::filesystem::path& path);
 /// (ASCII, header) or byte offset (binary).
 SurfaceMesh readPly(const std::filesystem::path& path);
 
+/// A PLY file's vertices and faces as stored, before welding: vertex i is the file's vertex i
+/// (positions exact: every PLY float or double is a double), polygons split into fans, each
+/// triangle with the index of the face element it came from (faceElement) and, for ASCII files,
+/// its line (faceLines; empty for binary files). faceElements: how many face elements were read
+/// (faces.size() equals it exactly when every face is a triangle).
+struct PlyMesh {
+    std::vector<glm::dvec3> positions;
+    std::vector<Face> faces;
+    std::vector<std::uint64_t> faceElement;
+    std::vector<std::size_t> faceLines;
+    std::uint64_t faceElements = 0;
+};
+
+/// The PLY reader of readPly without weldSurface: for data whose vertex and face numbering
+/// matters (the CCD query sets name primitives by index). Same errors as readPly's reading.
+PlyMesh readPlyAsStored(const std::filesystem::path& path);
+
 /// Welds exactly equal positions (+0 = -0), drops faces that welding collapsed and positions no
 /// face uses (keeping the order of first appearance). Throws Error naming `file` (and the face's
 /// source line from `faceLines`, when given) for a non-finite position, a zero-area face (three

@@ -487,10 +487,23 @@ BvhSettings parseBvh(const Ctx& c, const json& j, const Ptr& p) {
     return s;
 }
 
+CcdSettings parseCcd(const Ctx& c, const json& j, const Ptr& p) {
+    checkObject(c, j, p, {"budget", "min_separation"});
+    CcdSettings s;
+    if (const json* v = find(j, "budget")) {
+        // llvmpipe ends a shader invocation after 65,535 loop iterations; a box costs three.
+        if (!v->is_number_integer() || v->get<long long>() < 1 || v->get<long long>() > 21844)
+            c.fail(p / "budget", "expected an integer in 1 ... 21844, got " + shown(*v));
+        s.budget = static_cast<std::uint32_t>(v->get<long long>());
+    }
+    if (const json* v = find(j, "min_separation")) s.minSeparation = nonNegative(c, *v, p / "min_separation");
+    return s;
+}
+
 CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p,
                 {"broad_phase", "octree_depth", "precision", "response", "thickness", "stiffness", "damping",
-                 "initial_capacity", "bvh"});
+                 "initial_capacity", "bvh", "detection", "ccd"});
     CollisionSettings s;
     if (const json* v = find(j, "broad_phase")) {
         const std::optional<BroadPhase> kind = broadPhaseFromName(string(c, *v, p / "broad_phase"));
@@ -499,6 +512,17 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
         s.broadPhase = *kind;
     }
     if (const json* v = find(j, "bvh")) s.bvh = parseBvh(c, *v, p / "bvh");
+    if (const json* v = find(j, "detection")) {
+        const std::string name = string(c, *v, p / "detection");
+        if (name == "discrete")
+            s.detection = Detection::Discrete;
+        else if (name == "continuous")
+            s.detection = Detection::Continuous;
+        else
+            c.fail(p / "detection",
+                   "unknown detection " + shown(*v) + "; expected \"discrete\" or \"continuous\"");
+    }
+    if (const json* v = find(j, "ccd")) s.ccd = parseCcd(c, *v, p / "ccd");
     if (const json* v = find(j, "octree_depth")) {
         if (!v->is_number_integer() || v->get<long long>() < 1 || v->get<long long>() > 3)
             c.fail(p / "octree_depth",

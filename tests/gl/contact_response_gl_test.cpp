@@ -117,7 +117,7 @@ GpuResult runGpu(const Soup& s, const ContactParams& params, std::uint32_t listC
     lists.counters().download(0, sizeof c, &c);
     for (const glm::ivec4& q : r.fixedPoint)
         r.forces.push_back(glm::dvec3(q.x, q.y, q.z) / params.forceScale);
-    r.contacts = c.contactCount;
+    r.contacts = c.stats[GLC_STAT_CONTACTS];
     r.pairs = {readList(lists, GLC_LIST_VERTEX_FACE), readList(lists, GLC_LIST_EDGE_EDGE)};
     EXPECT_EQ(c.lists[GLC_LIST_VERTEX_FACE].count, r.pairs.vertexFace.size());
     EXPECT_EQ(c.lists[GLC_LIST_EDGE_EDGE].count, r.pairs.edgeEdge.size());

@@ -53,6 +53,9 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"QueryTrianglesBuf", GLC_BIND_QUERY_TRIANGLES},
     {"QueryResultsBuf", GLC_BIND_QUERY_RESULTS},
     {"QueryStatsBuf", GLC_BIND_QUERY_STATS},
+    // CCD queries (src/passes/ccd_query_pass.cpp)
+    {"CcdQueriesBuf", GLC_BIND_CCD_QUERIES},
+    {"CcdResultsBuf", GLC_BIND_CCD_RESULTS},
     // non-finite check of NodeUpdate (EngineOptions::checkFinite)
     {"ContactForcesBuf", GLC_BIND_CONTACT_FORCES},
     {"HealthBuf", GLC_BIND_HEALTH},
@@ -77,6 +80,9 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"PartialsPqBuf", GLC_BIND_SOLVER_PARTIALS_PQ},
     {"SolverStateBuf", GLC_BIND_SOLVER_STATE},
     {"HeavyNodesBuf", GLC_BIND_HEAVY_NODES},
+    // continuous detection (docs/ccd.md, "In the engine")
+    {"PredictedPositionsBuf", GLC_BIND_PREDICTED_POSITIONS},
+    {"NodeToiBuf", GLC_BIND_NODE_TOI},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {
@@ -205,9 +211,7 @@ TEST(LayoutGl, CollisionStructsMatchCpp) {
          offsetof(gpu::GpuCollisionCounters, lists) + offsetof(gpu::GpuListCounter, count)},
         {"g_counters.lists[0].capacity",
          offsetof(gpu::GpuCollisionCounters, lists) + offsetof(gpu::GpuListCounter, capacity)},
-        {"g_counters.exactFallbackCount", offsetof(gpu::GpuCollisionCounters, exactFallbackCount)},
-        {"g_counters.contactCount", offsetof(gpu::GpuCollisionCounters, contactCount)},
-        {"g_counters.exactErrorCount", offsetof(gpu::GpuCollisionCounters, exactErrorCount)},
+        {"g_counters.stats[0]", offsetof(gpu::GpuCollisionCounters, stats)},
     };
     for (const auto& [name, offset] : members)
         EXPECT_EQ(resourceProperty(p, GL_BUFFER_VARIABLE, name, GL_OFFSET), static_cast<GLint>(offset))

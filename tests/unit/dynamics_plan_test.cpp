@@ -70,6 +70,40 @@ TEST(PipelinePlan, StagesStateTheSubstepOrderOnce) {
     EXPECT_EQ(plan.passes(), std::vector<std::string>{"FrameStep"});
 }
 
+// Continuous detection: the integrator's velocities and the predicted end positions come first,
+// the collision stages then run over the substep and NodeUpdate only adds the contact forces.
+TEST(PipelinePlan, ContinuousDetectionPredictsBeforeItDetects) {
+    using engine::Stage;
+    Scene scene = twoNodeScene(10, 0, 1);
+    scene.bodies[0].faces = {{0, 1, 0}};
+    scene.effects = {Effect::Gravity, Effect::Springs, Effect::Collisions};
+    scene.collision.detection = Detection::Continuous;
+    engine::PipelinePlan plan = engine::planPipeline(scene);
+    EXPECT_TRUE(plan.continuous);
+    EXPECT_EQ(plan.stages(),
+              (std::vector<Stage>{Stage::SpringUpdate, Stage::NodePredict, Stage::CollisionDetection,
+                                  Stage::ContactResponse, Stage::NodeUpdate}));
+    EXPECT_EQ(plan.passes(),
+              (std::vector<std::string>{"SpringUpdate", "NodePredict", "BBUpdate", "BBCollision", "TriTri",
+                                        "FeaturePairs", "Ccd", "ContactResponse", "NodeUpdate"}));
+    EXPECT_TRUE(plan.nodePredictParams.forces); // v += h·M⁻¹f happens once, in NodePredict
+    EXPECT_FALSE(plan.nodeUpdateParams.forces);
+    EXPECT_TRUE(plan.nodeUpdateParams.contacts);
+    const std::vector<std::string> buffers = plan.buffers();
+    EXPECT_EQ(buffers.back(), "predictedPositions");
+    scene.time.integrator = Integrator::ImplicitEuler;
+    plan = engine::planPipeline(scene);
+    EXPECT_EQ(plan.stages(),
+              (std::vector<Stage>{Stage::ImplicitSolve, Stage::NodePredict, Stage::CollisionDetection,
+                                  Stage::ContactResponse, Stage::NodeUpdate}));
+    EXPECT_FALSE(plan.nodePredictParams.forces); // the solve set v
+    // Without a collision effect there is nothing to detect: discrete or continuous, the same plan.
+    scene.effects = {Effect::Gravity, Effect::Springs};
+    plan = engine::planPipeline(scene);
+    EXPECT_FALSE(plan.continuous);
+    EXPECT_EQ(plan.stages(), (std::vector<Stage>{Stage::ImplicitSolve, Stage::NodeUpdate}));
+}
+
 TEST(PipelinePlan, EmptySceneRunsNothing) {
     Scene scene;
     scene.effects = {Effect::Gravity};

@@ -273,6 +273,16 @@ TEST(SceneJson, SettingsAndEffects) {
     EXPECT_EQ(c.collision.stiffness, 500.0);
     EXPECT_EQ(c.collision.damping, 0.1);
     EXPECT_EQ(c.collision.initialCapacity, 1u);
+    EXPECT_EQ(c.collision.detection, Detection::Discrete) << "documented default";
+    EXPECT_EQ(c.collision.ccd.budget, 4096u) << "documented default";
+    EXPECT_EQ(c.collision.ccd.minSeparation, 0.0) << "documented default";
+    const Scene cc = parse(scene(
+        kCloth,
+        R"("collision": {"detection": "continuous", "ccd": {"budget": 21844, "min_separation": 0.001}})",
+        R"(["springs", "self_collisions"])"));
+    EXPECT_EQ(cc.collision.detection, Detection::Continuous);
+    EXPECT_EQ(cc.collision.ccd.budget, 21844u);
+    EXPECT_EQ(cc.collision.ccd.minSeparation, 0.001);
     // Effects listed without their key use the documented defaults.
     const Scene d = parse(scene(kCloth, "", R"(["springs", "wind", "ground"])"));
     EXPECT_EQ(d.wind.velocity, glm::dvec3(0));
@@ -336,6 +346,15 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
                 HasSubstr("/collision/bvh/visits_per_round: expected an integer in 1 ... 65534, got 65535"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"bvh": {"depth": 3}})", collide)),
                 HasSubstr("/collision/bvh"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"detection": "swept"})", collide)),
+                HasSubstr("/collision/detection: unknown detection \"swept\"; expected \"discrete\" or "
+                          "\"continuous\""));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"ccd": {"budget": 21845}})", collide)),
+                HasSubstr("/collision/ccd/budget: expected an integer in 1 ... 21844, got 21845"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"ccd": {"min_separation": -1}})", collide)),
+                HasSubstr("/collision/ccd/min_separation"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"ccd": {"tolerance": 1}})", collide)),
+                HasSubstr("/collision/ccd/tolerance: unknown key"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"octree_depth": 4})", collide)),
                 HasSubstr("/collision/octree_depth: expected an integer 1, 2 or 3"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"precision": "exact"})", collide)),

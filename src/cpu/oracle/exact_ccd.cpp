@@ -1,8 +1,11 @@
 #include "cpu/oracle/exact_ccd.hpp"
 
+#include "cpu/oracle/ccd_query_csv.hpp"
+
+#include <glcollide/error.hpp>
+
 #include <algorithm>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -367,42 +370,31 @@ RationalCcdQuery rationalQuery(const std::array<glm::dvec3, 8>& points) {
 }
 
 std::vector<SampleCcdQuery> readSampleCcdQueries(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot open");
     std::vector<SampleCcdQuery> queries;
-    std::string line;
-    int lineNumber = 0;
-    auto fail = [&](const std::string& why) {
-        throw std::runtime_error(path + ":" + std::to_string(lineNumber) + ": " + why);
-    };
-    while (std::getline(in, line)) {
-        ++lineNumber;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        std::vector<mpz_class> fields;
-        std::stringstream row(line);
-        std::string field;
-        while (std::getline(row, field, ',')) {
-            mpz_class value;
-            if (field.empty() || value.set_str(field, 10) != 0) fail("not an integer: '" + field + "'");
-            fields.push_back(value);
-        }
-        if (fields.size() != 7) fail("expected 7 fields, found " + std::to_string(fields.size()));
-        const int row8 = (lineNumber - 1) % 8;
-        if (row8 == 0)
-            queries.push_back({{}, fields[6] != 0});
-        else if ((fields[6] != 0) != queries.back().truth)
-            fail("ground truth differs within a query");
-        RationalPoint point;
-        mpq_class* coords[3] = {&point.x, &point.y, &point.z};
-        for (int k = 0; k < 3; ++k) {
-            if (sgn(fields[2 * k + 1]) == 0) fail("zero denominator");
-            *coords[k] = mpq_class(fields[2 * k], fields[2 * k + 1]);
-            coords[k]->canonicalize();
-        }
-        queries.back().points[row8] = point;
+    for (CcdCsvQuery& q : readCcdQueryCsv(path)) {
+        if (!q.truth)
+            throw Error(path + ":" + std::to_string(q.lines[0]) + ": the query has no ground-truth column");
+        queries.push_back({std::move(q.points), *q.truth});
     }
-    if (lineNumber % 8 != 0) fail("the file does not end with a whole query (8 rows)");
     return queries;
+}
+
+std::vector<RationalCcdQuery> readCcdQueryPoints(const std::string& path) {
+    std::vector<RationalCcdQuery> points;
+    for (CcdCsvQuery& q : readCcdQueryCsv(path)) points.push_back(std::move(q.points));
+    return points;
+}
+
+void writeSampleCcdQueries(const std::string& path, const std::vector<SampleCcdQuery>& queries) {
+    std::ofstream out(path, std::ios::binary);
+    if (!out) throw std::runtime_error(path + ": cannot open for writing");
+    for (const SampleCcdQuery& q : queries)
+        for (const RationalPoint& p : q.points) {
+            for (const mpq_class* c : {&p.x, &p.y, &p.z})
+                out << c->get_num().get_str() << ',' << c->get_den().get_str() << ',';
+            out << (q.truth ? 1 : 0) << '\n';
+        }
+    if (!out.flush()) throw std::runtime_error(path + ": cannot write");
 }
 
 } // namespace glcollide::cpu

@@ -47,7 +47,19 @@ struct SampleCcdQuery {
 };
 
 /// Reads a Sample-Queries CSV file (8 rows per query, 7 integer fields per row: numerator and
-/// denominator of x, y and z, then the ground truth). Throws std::runtime_error naming the line.
+/// denominator of x, y and z, then the ground truth) with readCcdQueryCsv (ccd_query_csv.hpp), which
+/// also reads rows of decimal numbers; every query must have its ground truth. Throws Error (a
+/// std::runtime_error) naming the line.
 std::vector<SampleCcdQuery> readSampleCcdQueries(const std::string& path);
+
+/// Reads the points of a CCD query CSV with or without the ground-truth column: rows of 6 integer
+/// fields (the Scalable-CCD dataset's queries/*.csv) or 7 (Sample-Queries), the same in every row;
+/// spaces around the numbers are allowed (readCcdQueryCsv). Throws glcollide::Error naming the line.
+std::vector<RationalCcdQuery> readCcdQueryPoints(const std::string& path);
+
+/// Writes queries in the Sample-Queries layout (7 fields per row, fractions in lowest terms, the
+/// 7th the truth as 0 or 1), so that readSampleCcdQueries and the benchmark's readers read them
+/// back exactly. Throws std::runtime_error naming the file.
+void writeSampleCcdQueries(const std::string& path, const std::vector<SampleCcdQuery>& queries);
 
 } // namespace glcollide::cpu

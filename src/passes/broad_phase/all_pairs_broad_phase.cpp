@@ -6,7 +6,8 @@
 namespace glcollide::passes {
 
 AllPairsBroadPhase::AllPairsBroadPhase(const BroadPhaseContext& c)
-    : m_faceCount(static_cast<std::uint32_t>(c.model.faceCount())), m_facePairs("all_face_pairs") {
+    : m_faceCount(static_cast<std::uint32_t>(c.model.faceCount())),
+      m_facePairs("all_face_pairs", faceBoxDefines(c)) {
     m_facePairs.set("u_pairRules", c.pairRules);
     m_facePairs.set("u_faceCount", m_faceCount);
     m_facePairs.set("u_halfThickness", c.halfThickness);

@@ -10,10 +10,11 @@
 // candidate list GLC_LIST_CANDIDATES; they may use lists of their own (declared in AppendLists,
 // grown and rerun by the chain like any other).
 //
-// Room for continuous collision detection: a broad phase reads node positions from binding
-// GLC_BIND_NODE_POSITIONS. A swept broad phase would also read the substep's start positions and
-// bound each face over both (BroadPhaseContext::sweptBoxes); no kind supports that yet, and
-// createBroadPhase() refuses it rather than ignore it.
+// Continuous collision detection: a broad phase reads node positions from binding
+// GLC_BIND_NODE_POSITIONS (x0, the start of the substep). With BroadPhaseContext::sweptBoxes it
+// also reads the predicted end positions (GLC_BIND_PREDICTED_POSITIONS) and bounds each face over
+// both (shaders/common/face_bounds.glsl, built with GLC_SWEPT: faceBoxDefines): every kind then
+// yields the face pairs whose swept boxes overlap.
 
 #include "gl/handles.hpp"
 #include "passes/collision/append_lists.hpp"
@@ -26,6 +27,7 @@
 #include <glcollide/scene.hpp>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace glcollide::passes {
@@ -46,6 +48,11 @@ struct BroadPhaseContext {
     /// Substeps per frame, for cadences counted in frames (the BVH's rebuild).
     std::uint32_t substepsPerFrame = 1;
 };
+
+/// The defines of the kernels that bound faces (face_bounds.glsl): GLC_SWEPT for swept boxes.
+inline std::vector<std::string> faceBoxDefines(const BroadPhaseContext& c) {
+    return c.sweptBoxes ? std::vector<std::string>{"GLC_SWEPT"} : std::vector<std::string>{};
+}
 
 /// What a broad phase did in the last detect(), beyond the list counts.
 struct BroadPhaseStats {

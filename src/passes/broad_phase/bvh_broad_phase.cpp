@@ -55,7 +55,8 @@ BvhBroadPhase::BvhBroadPhase(const BroadPhaseContext& c)
       m_visits(gl::makeBuffer("bvhVisits",
                               std::vector<std::uint32_t>(std::max<std::uint32_t>(1, m_faceCount) - 1))),
       m_resume("bvhResume", std::size_t{m_faceCount} * sizeof(std::uint32_t)), m_boundsProgram("bvh_bounds"),
-      m_morton("bvh_morton"), m_hierarchy("bvh_hierarchy"), m_refit("bvh_refit"), m_traverse("bvh_traverse") {
+      m_morton("bvh_morton"), m_hierarchy("bvh_hierarchy"), m_refit("bvh_refit", faceBoxDefines(c)),
+      m_traverse("bvh_traverse") {
     if (m_visitsPerRound < 1 || m_visitsPerRound > 65534)
         throw Error("collision: bvh visits_per_round must be in 1 ... 65534 (llvmpipe ends a loop after "
                     "65535 iterations)");
@@ -81,7 +82,7 @@ void BvhBroadPhase::addStages(StageChain& chain, AppendLists& lists) {
                {GLC_LIST_CANDIDATES},
                [this, &lists] { traverse(lists); },
                [this, &lists] {
-                   const std::uint32_t unfinished = lists.bvhUnfinished();
+                   const std::uint32_t unfinished = lists.stat(GLC_STAT_BVH_UNFINISHED);
                    if (unfinished == 0) return false;
                    // A stackless traversal of a valid tree visits each of its 2n - 1 nodes at
                    // most once per query: a query unfinished after that many visits is walking a
@@ -122,7 +123,7 @@ void BvhBroadPhase::refit() {
 }
 
 void BvhBroadPhase::traverse(AppendLists& lists) {
-    lists.resetTraversalStatistics();
+    lists.resetStats({GLC_STAT_BVH_UNFINISHED, GLC_STAT_BVH_NODE_VISITS});
     m_traverse.use();
     for (std::uint32_t round = 0; round < m_rounds; ++round) {
         m_traverse.set("u_firstRound", round == 0 ? 1u : 0u);

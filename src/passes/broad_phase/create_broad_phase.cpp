@@ -29,7 +29,6 @@ std::vector<PassId> broadPhasePasses(glcollide::BroadPhase kind) {
 }
 
 std::unique_ptr<BroadPhase> createBroadPhase(const BroadPhaseContext& context) {
-    if (context.sweptBoxes) throw Error("collision: no broad phase supports swept boxes yet");
     switch (context.settings.broadPhase) {
     case glcollide::BroadPhase::Octree:
         return std::make_unique<OctreeBroadPhase>(context);

@@ -9,7 +9,8 @@ namespace glcollide::passes {
 LeafBoxes::LeafBoxes(const BroadPhaseContext& c)
     : m_boxCount(c.layout.boxCount), m_boxes("boxes", std::size_t{c.layout.boxCount} * sizeof(gpu::GpuBox)),
       m_boxFaceOffsets(gl::makeBuffer("boxFaceOffsets", c.layout.boxFaces.offsets)),
-      m_boxFaceList(gl::makeBuffer("boxFaceList", c.layout.boxFaces.items)), m_refit("bb_update") {
+      m_boxFaceList(gl::makeBuffer("boxFaceList", c.layout.boxFaces.items)),
+      m_refit("bb_update", faceBoxDefines(c)) {
     m_refit.set("u_boxCount", m_boxCount);
     m_refit.set("u_halfThickness", c.halfThickness);
 }

@@ -19,7 +19,7 @@ std::uint32_t checkedBoxCount(const model::OctreeLayout& layout) {
 MaskedBroadPhase::MaskedBroadPhase(const BroadPhaseContext& c)
     : m_leafBoxes(c), m_faceCount(static_cast<std::uint32_t>(c.model.faceCount())),
       m_mask("boxMask", std::size_t{checkedBoxCount(c.layout)} * c.layout.boxCount * sizeof(std::uint32_t)),
-      m_boxMask("box_mask"), m_facePairs("masked_face_pairs") {
+      m_boxMask("box_mask"), m_facePairs("masked_face_pairs", faceBoxDefines(c)) {
     for (const gl::ComputeProgram* p : {&m_boxMask, &m_facePairs}) {
         p->set("u_pairRules", c.pairRules);
         p->set("u_boxCount", c.layout.boxCount);

@@ -30,7 +30,8 @@ std::uint32_t expandSlices(const model::OctreeLayout& layout) {
 
 OctreeBroadPhase::OctreeBroadPhase(const BroadPhaseContext& c)
     : m_leafBoxes(c), m_boxPairCapacity(c.boxPairCapacity ? c.boxPairCapacity : c.settings.initialCapacity),
-      m_expandSlices(expandSlices(c.layout)), m_boxPairs("octree_box_pairs"), m_expand("octree_expand") {
+      m_expandSlices(expandSlices(c.layout)), m_boxPairs("octree_box_pairs"),
+      m_expand("octree_expand", faceBoxDefines(c)) {
     for (const gl::ComputeProgram* p : {&m_boxPairs, &m_expand}) {
         p->set("u_pairRules", c.pairRules);
         p->set("u_boxCount", c.layout.boxCount);

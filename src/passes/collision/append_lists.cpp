@@ -5,14 +5,34 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstddef>
 #include <string>
 
 namespace glcollide::passes {
 namespace {
+constexpr std::uint32_t kPlusInfinityBits = 0x7F800000u;
+
+// GLC_STAT_* in order: the one id -> name table of the collision statistics.
+constexpr std::array<CollisionStatSpec, GLC_STAT_COUNT> kCollisionStats = {{
+    {"exact_fallbacks", 0u, false},
+    {"contacts", 0u, false},
+    {"bvh_unfinished", 0u, true},
+    {"bvh_node_visits", 0u, true},
+    {"exact_errors", 0u, false},
+    {"ccd_vertex_face_hits", 0u, true},
+    {"ccd_edge_edge_hits", 0u, true},
+    {"ccd_capped", 0u, true},
+    {"ccd_boxes", 0u, true},
+    {"ccd_earliest_toi", kPlusInfinityBits, true},
+}};
 constexpr std::size_t kArgsPerList = 3 * sizeof(std::uint32_t); // glDispatchComputeIndirect's x, y, z
 } // namespace
+
+const CollisionStatSpec& collisionStat(std::uint32_t id) {
+    return kCollisionStats.at(id);
+}
 
 namespace {
 std::uint64_t deviceListByteLimit() {
@@ -26,6 +46,7 @@ AppendLists::AppendLists(std::uint64_t byteLimit)
     : m_byteLimit(byteLimit != 0 ? byteLimit : deviceListByteLimit()),
       m_counters("collisionCounters", sizeof(gpu::GpuCollisionCounters)),
       m_dispatchArgs("dispatchArgs", GLC_LIST_COUNT * kArgsPerList), m_argsProgram("list_dispatch_args") {
+    for (std::uint32_t id = 0; id < GLC_STAT_COUNT; ++id) m_stats.stats[id] = kCollisionStats[id].resetValue;
     writeCounters();
 }
 
@@ -66,8 +87,8 @@ void AppendLists::writeCounters() {
     // is written at once: one upload per reset, not one per field.
     gpu::GpuCollisionCounters c{};
     for (std::size_t i = 0; i < m_lists.size(); ++i) c.lists[i] = {m_lists[i].count, m_lists[i].capacity};
-    c.bvhUnfinished = m_stats.bvhUnfinished;
-    c.bvhNodeVisits = m_stats.bvhNodeVisits;
+    for (std::uint32_t id = 0; id < GLC_STAT_COUNT; ++id)
+        c.stats[id] = kCollisionStats[id].ownedByStage ? m_stats.stats[id] : kCollisionStats[id].resetValue;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after earlier shader writes to the counters
     m_counters.upload(0, sizeof c, &c);
 }
@@ -85,18 +106,16 @@ void AppendLists::readCounters() {
     gpu::GpuCollisionCounters c{};
     m_counters.download(0, sizeof c, &c);
     for (std::size_t i = 0; i < m_lists.size(); ++i) m_lists[i].count = c.lists[i].count;
-    m_exactFallbacks = c.exactFallbackCount;
     m_stats = c;
 }
 
-void AppendLists::resetTraversalStatistics() {
-    m_stats.bvhUnfinished = 0;
-    m_stats.bvhNodeVisits = 0;
-    constexpr std::uint32_t kZeros[2] = {0, 0};
-    static_assert(offsetof(gpu::GpuCollisionCounters, bvhNodeVisits) ==
-                  offsetof(gpu::GpuCollisionCounters, bvhUnfinished) + sizeof(std::uint32_t));
+void AppendLists::resetStats(std::initializer_list<std::uint32_t> ids) {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after earlier shader writes to the counters
-    m_counters.upload(offsetof(gpu::GpuCollisionCounters, bvhUnfinished), sizeof kZeros, kZeros);
+    for (std::uint32_t id : ids) {
+        m_stats.stats[id] = kCollisionStats.at(id).resetValue;
+        m_counters.upload(offsetof(gpu::GpuCollisionCounters, stats) + id * sizeof(std::uint32_t),
+                          sizeof(std::uint32_t), &m_stats.stats[id]);
+    }
 }
 
 void AppendLists::grow(std::uint32_t list) {

@@ -11,9 +11,22 @@
 
 #include <array>
 #include <cstdint>
+#include <initializer_list>
 #include <vector>
 
 namespace glcollide::passes {
+
+/// One statistic of GpuCollisionCounters.stats (GLC_STAT_* of layout.glsl): the one table its
+/// name, reset value and owner come from (collisionStat).
+struct CollisionStatSpec {
+    const char* name = "";        ///< snake_case, as in --stats JSON
+    std::uint32_t resetValue = 0; ///< what it starts from (bits of +inf for a minimum of floats)
+    /// Reset by the stage that writes it, each time that stage runs (resetStats), and kept by the
+    /// chain's resets, so a rerun of later stages alone does not lose it. Otherwise reset with
+    /// the list counts when detect() starts.
+    bool ownedByStage = false;
+};
+[[nodiscard]] const CollisionStatSpec& collisionStat(std::uint32_t id);
 
 /// What a list holds and where the kernels find it.
 struct ListSpec {
@@ -50,24 +63,19 @@ class AppendLists {
     [[nodiscard]] bool overflowed(std::uint32_t list) const { return count(list) > capacity(list); }
     /// Times grow() ran on the list since the last resetGrowths().
     [[nodiscard]] std::uint32_t growths(std::uint32_t list) const { return m_lists.at(list).growths; }
-    [[nodiscard]] std::uint32_t exactFallbacks() const { return m_exactFallbacks; }
-    /// Robust TriTri: pairs the exact pass could not finish at the last readCounters() (an error).
-    [[nodiscard]] std::uint32_t exactErrors() const { return m_stats.exactErrorCount; }
-    /// BVH traversal statistics at the last readCounters() (GpuCollisionCounters).
-    [[nodiscard]] std::uint32_t bvhUnfinished() const { return m_stats.bvhUnfinished; }
-    [[nodiscard]] std::uint32_t bvhNodeVisits() const { return m_stats.bvhNodeVisits; }
+    /// Statistic `id` (GLC_STAT_*) at the last readCounters().
+    [[nodiscard]] std::uint32_t stat(std::uint32_t id) const { return m_stats.stats[id]; }
     [[nodiscard]] const gl::Buffer& counters() const { return m_counters; }
 
     /// Binds the counters, the indirect arguments and every declared list to their bindings.
     void bind() const;
-    /// Zeroes the counts of `lists` and the statistics (exactFallbackCount, written by the last
-    /// stages, which rerun with any list; contactCount, which the response adds to after the
-    /// chain), keeping the other counts, in one upload of the counter block.
+    /// Zeroes the counts of `lists` and resets the statistics no stage owns (collisionStat),
+    /// keeping the other counts, in one upload of the counter block.
     void resetCounts(const std::vector<std::uint32_t>& lists);
     void resetGrowths();
-    /// Zeroes the BVH traversal's statistics on the GPU (the traversal stage, each time it runs:
-    /// resetCounts keeps them, so a rerun of later stages alone does not lose them).
-    void resetTraversalStatistics();
+    /// Resets the statistics `ids` on the GPU to their reset values: the stage that owns them,
+    /// each time it runs.
+    void resetStats(std::initializer_list<std::uint32_t> ids);
     /// One download of every counter.
     void readCounters();
     /// Reallocates an overflowed list with room for its exact count (the next power of two when
@@ -95,8 +103,7 @@ class AppendLists {
     std::array<List, GLC_LIST_COUNT> m_lists;
     gl::Buffer m_counters, m_dispatchArgs;
     gl::ComputeProgram m_argsProgram;
-    std::uint32_t m_exactFallbacks = 0;
-    gpu::GpuCollisionCounters m_stats{}; ///< the statistics fields at the last readCounters()
+    gpu::GpuCollisionCounters m_stats{}; ///< the counter block at the last readCounters()
 };
 
 } // namespace glcollide::passes

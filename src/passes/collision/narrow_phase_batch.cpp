@@ -61,7 +61,7 @@ TriTriQueryResult NarrowPhaseBatch::run(const std::vector<TriTriPair>& pairs) {
     if (found != 0)
         lists.storage(GLC_LIST_INTERSECTIONS).download(0, found * kPairBytes, intersections.data());
     for (const auto& pair : intersections) result.intersect.at(pair[0] / 2) = 1;
-    result.exactFallbacks = lists.exactFallbacks();
+    result.exactFallbacks = lists.stat(GLC_STAT_EXACT_FALLBACKS);
     result.undecidedPairs = lists.declared(GLC_LIST_UNDECIDED) ? lists.count(GLC_LIST_UNDECIDED) : 0;
     return result;
 }

@@ -1,0 +1,62 @@
+#version 430 core
+// Ccd — continuous collision detection of the substep's feature pairs (docs/ccd.md, "In the
+// engine"): one invocation per entry of GLC_LIST_VERTEX_FACE (u_edgeEdge = 0) or
+// GLC_LIST_EDGE_EDGE (u_edgeEdge = 1), indirect dispatch from the list's count. Each pair moves
+// linearly from x0 (binding 0, the start of the substep) to x1 (the predicted end positions of
+// NodePredict); the conservative float CCD of common/ccd.glsl decides whether it may touch
+// (minimum separation u_minSeparation) during the substep and gives a time of impact never later
+// than the true one. A pair that may touch lowers the time of impact of its four nodes and of the
+// substep with atomicMin on the bits of a non-negative float (they order like the floats: the
+// minimum, and so the result, does not depend on the order of the invocations). The refinement
+// stops after u_budget boxes: the pair then counts as "may touch" at its lower bound and in
+// GLC_STAT_CCD_CAPPED. CPU twin: cpu::featureCcd (src/cpu/ccd_twin.cpp).
+#include "common/layout.glsl"
+#include "common/lists.glsl"
+#include "common/face_nodes.glsl"
+
+layout(local_size_x = GLC_WORKGROUP_SIZE) in;
+#include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
+#include "common/ccd.glsl"
+
+layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
+layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) readonly buffer PredictedPositionsBuf { vec4 g_predicted[]; };
+layout(std430, binding = GLC_BIND_VERTEX_FACE_PAIRS) readonly buffer VertexFacePairsBuf { uvec2 g_vertexFace[]; };
+layout(std430, binding = GLC_BIND_EDGE_EDGE_PAIRS) readonly buffer EdgeEdgePairsBuf { uvec2 g_edgeEdge[]; };
+layout(std430, binding = GLC_BIND_NODE_TOI) buffer NodeToiBuf { uint g_nodeToi[]; };
+
+uniform uint u_edgeEdge;       // 0: vertex-face pairs, 1: edge-edge pairs
+uniform uint u_budget;         // boxes one pair may evaluate (llvmpipe: <= 21844, docs/ccd.md)
+uniform float u_minSeparation; // m: 0 for true contact
+
+// The pair's four nodes in the order of glcVertexFaceCcd / glcEdgeEdgeCcd.
+uvec4 pairNodes(uint i) {
+    if (u_edgeEdge == 0u) {
+        uvec2 item = g_vertexFace[i]; // (node, face)
+        uvec3 f = faceNodes(item.y);
+        return uvec4(item.x, f.x, f.y, f.z);
+    }
+    uvec2 item = g_edgeEdge[i]; // (3*fa+e, 3*fb+g): edge e from corner e to corner (e+1)%3
+    uvec3 a = faceNodes(item.x / 3u), b = faceNodes(item.y / 3u);
+    uint e = item.x % 3u, g = item.y % 3u;
+    return uvec4(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]);
+}
+
+void main() {
+    uint i = globalIndex();
+    uint list = u_edgeEdge == 0u ? GLC_LIST_VERTEX_FACE : GLC_LIST_EDGE_EDGE;
+    if (i >= storedCount(list)) return;
+    uvec4 n = pairNodes(i);
+    vec3 s0 = g_positions[n.x].xyz, s1 = g_positions[n.y].xyz, s2 = g_positions[n.z].xyz, s3 = g_positions[n.w].xyz;
+    vec3 e0 = g_predicted[n.x].xyz, e1 = g_predicted[n.y].xyz, e2 = g_predicted[n.z].xyz, e3 = g_predicted[n.w].xyz;
+    bool hit = glcCcdInclusion(u_edgeEdge != 0u, s0, s1, s2, s3, e0, e1, e2, e3, u_minSeparation, int(u_budget));
+    atomicAdd(g_counters.stats[GLC_STAT_CCD_BOXES], uint(glcCcdBoxes));
+    if (glcCcdCapped) atomicAdd(g_counters.stats[GLC_STAT_CCD_CAPPED], 1u);
+    if (!hit) return;
+    atomicAdd(g_counters.stats[u_edgeEdge == 0u ? GLC_STAT_CCD_VERTEX_FACE_HITS : GLC_STAT_CCD_EDGE_EDGE_HITS], 1u);
+    uint toi = floatBitsToUint(glcCcdToi); // in [0, 1]: non-negative, so the bits order like the values
+    atomicMin(g_counters.stats[GLC_STAT_CCD_EARLIEST_TOI], toi);
+    atomicMin(g_nodeToi[n.x], toi);
+    atomicMin(g_nodeToi[n.y], toi);
+    atomicMin(g_nodeToi[n.z], toi);
+    atomicMin(g_nodeToi[n.w], toi);
+}

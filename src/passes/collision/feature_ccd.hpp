@@ -1,0 +1,38 @@
+#pragma once
+// The Ccd stage of continuous detection (docs/ccd.md, "In the engine"): after FeaturePairs, one
+// kernel (feature_ccd.comp) runs the conservative float CCD of shaders/common/ccd.glsl on every
+// vertex-face and edge-edge pair of the swept candidates, over [x0, x1] of the substep, and
+// lowers each node's earliest time of impact (a buffer of float bits, one per node) and the
+// substep's (GLC_STAT_CCD_EARLIEST_TOI) with atomicMin: deterministic, no float atomics. It
+// appends to no list, so an overflow elsewhere reruns it with the stages before it; it resets
+// its statistics and the times of impact each time it runs. CPU twin: cpu::featureCcd.
+
+#include "gl/handles.hpp"
+#include "gl/program.hpp"
+#include "passes/collision/append_lists.hpp"
+#include "passes/collision/stage_chain.hpp"
+
+#include <cstdint>
+
+namespace glcollide::passes {
+
+class FeatureCcd {
+  public:
+    /// `budget`: boxes per pair (1 ... 21844, CcdSettings::budget); `minSeparation` in metres.
+    FeatureCcd(std::uint32_t nodeCount, std::uint32_t budget, float minSeparation);
+    /// Adds the Ccd stage to `chain`; call after FeaturePairs::addStages.
+    void addStages(StageChain& chain, AppendLists& lists);
+    /// Binds the per-node times of impact (GLC_BIND_NODE_TOI).
+    void bind() const;
+    /// uint per node: the bits of its earliest time of impact in [0, 1], +inf bits when none.
+    [[nodiscard]] const gl::Buffer& nodeToi() const { return m_nodeToi; }
+
+  private:
+    void run(AppendLists& lists);
+
+    std::uint32_t m_nodeCount;
+    gl::Buffer m_nodeToi;
+    gl::ComputeProgram m_program;
+};
+
+} // namespace glcollide::passes
