@@ -20,7 +20,12 @@
 // v, so over a box it is a convex combination of its 8 corner values: a box whose corner values
 // of one coordinate all exceed minSeparation + (their error bound) holds no contact and is
 // dropped. The error bound is proportional to the coordinates' magnitudes and holds for any
-// evaluation order (docs/ccd.md, "Error bound").
+// evaluation order (docs/ccd.md, "Error bound"). A second test projects F on the geometric normal
+// (a sliding contact shows no gap in any single axis).
+// When that float search says "may collide", a refutation pass repeats the search on the query
+// quantized to a 2^-29 grid with exact integer corner values (docs/ccd.md, "Exact refutation"):
+// if it drops every box, no contact exists and the answer becomes false. It removes the false
+// positives that the float error bound (about 2^-15 of the coordinates) cannot separate.
 //
 // GLSL subset shared with C++: no swizzles, no out/inout parameters, no array constructors,
 // float literals with `f`; results in GLC_PRIVATE globals (thread_local in C++).
@@ -63,6 +68,22 @@ const float GLC_CCD_FLUSH_BOUND = 7.8886090522101181e-31f; // 2^-100
 // separate it from the error). Range > 0; smaller gives fewer false positives and more boxes.
 // Suggested 1.
 const float GLC_CCD_ACCEPT_WIDTH = 1.0f;
+
+// GLC_CCD_DIRECTION_ROUNDINGS (N_D): as N, for the projection n . F of the corner values on a
+// direction n: fully expanded, 54 monomials of at most four factors, 56 roundings in the worst
+// order. Suggested 96 (the margin of N over 19); range >= 56.
+#define GLC_CCD_DIRECTION_ROUNDINGS 96.0f
+
+// GLC_CCD_REFUTE_WIDTH: the exact refutation gives up (the answer stays "may collide") at the
+// first box it cannot drop whose exact corner values span no more than this in every coordinate
+// (normalized units: the largest coordinate is in [0.5, 1)). It changes no guarantee, only how
+// close a miss it can still refute and how much work a true contact costs it. Range > 0;
+// suggested 2^-12 (2^-12 ... 2^-20 give the same Sample-Query answers; 2^-8 leaves 9 more
+// edge-edge false positives).
+const float GLC_CCD_REFUTE_WIDTH = 2.44140625e-4f; // 2^-12
+// GLC_CCD_REFUTE_SHARE: the float search may use all but budget / GLC_CCD_REFUTE_SHARE boxes, so
+// that a capped search still leaves the refutation some. Range >= 1; suggested 8.
+#define GLC_CCD_REFUTE_SHARE 8
 
 // GLC_CCD_TOI_TOLERANCE: once a box is accepted at time t_a, boxes starting later than
 // t_a - tolerance are not searched (their start times still bound the answer): the time of impact
@@ -113,34 +134,211 @@ vec3 glcCcdMonomialSum(bool edgeEdge, vec3 mp, vec3 ma, vec3 mb, vec3 mc, float 
     return (1.0f + 2.0f * t1) * sum;
 }
 
+// gamma_N = N u / (1 - N u) for N roundings, enlarged by 2^-20 of itself: its own evaluation and
+// the bound's (at most 16 roundings of positive terms: relative error < 2^-20 in any order).
+float glcCcdGamma(float roundings) {
+    float gamma = roundings * GLC_CCD_UNIT_ROUNDOFF / (1.0f - roundings * GLC_CCD_UNIT_ROUNDOFF);
+    return gamma * (1.0f + 9.5367431640625e-7f);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Projection on a direction (both passes). |F|_inf >= n . F / |n|_1 for any n (Hoelder), and
+// n . F is multilinear in (t, u, v) like F, so n . F > minSeparation |n|_1 at every corner of a box
+// drops it with the same guarantee as the axis test: |F|_inf > minSeparation on the whole box
+// (a rounding cover that widens minSeparation per coordinate stays valid, see query ccd).
+
+// A direction for the box: the normal of the triangle (vertex-face) or the cross product of the two
+// edges (edge-edge) at time t, rounded to integers of magnitude < 2^11 (zero when the cross product
+// is below 2^-100, a degenerate triangle or parallel edges). Any direction is sound; integers make
+// |n|_1 exact, and the rounding through trunc() keeps a compiler from expanding n into the
+// projection (the error bounds below hold for the values of n, not of its formula).
+vec3 glcCcdDirection(bool edgeEdge, vec3 p, vec3 a, vec3 b, vec3 c) {
+    vec3 raw = edgeEdge ? cross(a - p, c - b) : cross(b - a, c - a);
+    vec3 m = abs(raw);
+    float largest = max(m.x, max(m.y, m.z));
+    if (!(largest >= 7.8886090522101181e-31f)) return vec3(0.0f); // 2^-100; also NaN
+    // largest in [2^(E-127), 2^(E-126)) with E its biased exponent (27 ... 254): times
+    // 2^(137 - E) it lies in [2^10, 2^11). The scale's biased exponent 264 - E is in [10, 237].
+    int biasedExponent = int((floatBitsToUint(largest) >> 23) & 255u);
+    float scale = uintBitsToFloat(uint(264 - biasedExponent) << 23);
+    return trunc(raw * scale);
+}
+
+// |n|_1 of an integer direction (exact: three integers below 2^11).
+float glcCcdDirectionNorm(vec3 n) {
+    vec3 a = abs(n);
+    return a.x + a.y + a.z;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Exact corner values (the refutation pass). Every coordinate, normalized to |x| < 1, is truncated
+// to the grid 2^-29: X = int(x * 2^29), |X| < 2^29, |x - X 2^-29| < 2^-29. F of the quantized query
+// is then exact integer arithmetic: with t = T 2^-24, u = U 2^-24, v = V 2^-24 (box corners are
+// dyadic of level <= 24) and F = G(t) + u H(t) + v K(t), each of G, H, K linear in t,
+// F * 2^(29 + 48) = (G0 2^24 + T G1) 2^24 + U (H0 2^24 + T H1) + V (K0 2^24 + T K1),
+// |G0| < 2^30, |G1| < 2^31 (differences of differences: 32-bit ints), so |F 2^77| < 2^83: 96-bit
+// two's complement integers in a uvec3 (least significant limb in x), arithmetic modulo 2^96 that
+// is exact because every value fits. No floating-point operation decides anything here: the
+// compiler cannot change these values.
+
+// Quantization error: per coordinate < 2^-29; F combines the points with weights summing to at
+// most 4 at box corners (vertex-face: p - (1 - u - v) a - u b - v c with u, v in [0, 1]; edge-edge:
+// 2), so the quantized F is within 4 * 2^-29 = 2^-27 of the float query's F. A coordinate flushed
+// to zero (|x| < 2^-126) quantizes to 0 either way: inside the same bound.
+const float GLC_CCD_QUANTUM_ERROR = 7.450580596923828e-09f; // 2^-27
+// Relative error of a projection n . f computed from converted exact values f: |f - exact| <=
+// 5.0001 * 2^-24 |f| from the conversion, then three products and two sums; even with a compiler
+// distributing n over the six pieces of each conversion (18 monomials, 19 roundings in any order),
+// |computed - n . exact| <= gamma_19 |n| . |f| < 2^-19.7 |n| . |f|. 2^-18 covers it.
+const float GLC_CCD_EXACT_PROJECTION_ERROR = 3.814697265625e-6f; // 2^-18
+
+struct GlcCcdExactQuery {
+    ivec3 g0, g1, h0, h1, k0, k1; // F = (g0 + t g1) + u (h0 + t h1) + v (k0 + t k1), units 2^-29
+};
+
+ivec3 glcCcdQuantize(vec3 x) {
+    return ivec3(x * 536870912.0f); // times 2^29 (exact), then truncated toward zero
+}
+
+// s: the four points at t = 0 in glcCcdF's order (p, a, b, c), e: at t = 1; normalized.
+GlcCcdExactQuery glcCcdExact(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e0, vec3 e1, vec3 e2, vec3 e3) {
+    ivec3 p0 = glcCcdQuantize(s0), a0 = glcCcdQuantize(s1), b0 = glcCcdQuantize(s2), c0 = glcCcdQuantize(s3);
+    ivec3 p1 = glcCcdQuantize(e0), a1 = glcCcdQuantize(e1), b1 = glcCcdQuantize(e2), c1 = glcCcdQuantize(e3);
+    GlcCcdExactQuery q;
+    if (edgeEdge) { // (p - b) + u (a - p) + v (b - c)
+        q.g0 = p0 - b0; q.g1 = (p1 - p0) - (b1 - b0);
+        q.h0 = a0 - p0; q.h1 = (a1 - a0) - (p1 - p0);
+        q.k0 = b0 - c0; q.k1 = (b1 - b0) - (c1 - c0);
+    } else { // (p - a) + u (a - b) + v (a - c)
+        q.g0 = p0 - a0; q.g1 = (p1 - p0) - (a1 - a0);
+        q.h0 = a0 - b0; q.h1 = (a1 - a0) - (b1 - b0);
+        q.k0 = a0 - c0; q.k1 = (a1 - a0) - (c1 - c0);
+    }
+    return q;
+}
+
+uvec3 glcCcdWide(int v) {
+    uint sign = v < 0 ? 0xffffffffu : 0u;
+    return uvec3(uint(v), sign, sign);
+}
+
+uvec3 glcCcdAdd(uvec3 a, uvec3 b) {
+    uint c0, c1, c2;
+    uint x = uaddCarry(a.x, b.x, c0);
+    uint y = uaddCarry(a.y, b.y, c1);
+    y = uaddCarry(y, c0, c2);
+    return uvec3(x, y, a.z + b.z + c1 + c2);
+}
+
+uvec3 glcCcdShift24(uvec3 a) { // a * 2^24
+    return uvec3(a.x << 24, (a.y << 24) | (a.x >> 8), (a.z << 24) | (a.y >> 8));
+}
+
+uvec3 glcCcdTimes(uvec3 a, uint s) { // a * s modulo 2^96: two's complement a, unsigned s
+    uint h0, l0, h1, l1, c;
+    umulExtended(a.x, s, h0, l0);
+    umulExtended(a.y, s, h1, l1);
+    uint y = uaddCarry(l1, h0, c);
+    return uvec3(l0, y, a.z * s + h1 + c);
+}
+
+// c0 2^24 + T c1: a coefficient linear in t, at t = T 2^-24, in units of 2^-(29 + 24).
+uvec3 glcCcdLinearAt(int c0, int c1, uint T) {
+    return glcCcdAdd(glcCcdShift24(glcCcdWide(c0)), glcCcdTimes(glcCcdWide(c1), T));
+}
+
+// The value a * 2^-77 as a float, within a relative 5.0001 * 2^-24: six 16-bit pieces, each
+// converted exactly (below 2^24) and scaled by an exact power of two (>= 2^-77: never subnormal),
+// summed in whatever order: five roundings of non-negative terms.
+float glcCcdToFloat(uvec3 a) {
+    bool negative = (a.z >> 31) != 0u;
+    if (negative) a = glcCcdAdd(~a, uvec3(1u, 0u, 0u));
+    float m = float(a.z >> 16) * 8.0f + float(a.z & 0xffffu) * 1.220703125e-4f // 2^3, 2^-13
+              + float(a.y >> 16) * 1.862645149230957e-09f + float(a.y & 0xffffu) * 2.842170943040401e-14f // 2^-29, 2^-45
+              + float(a.x >> 16) * 4.336808689942018e-19f + float(a.x & 0xffffu) * 6.617444900424222e-24f; // 2^-61, 2^-77
+    return negative ? -m : m;
+}
+
+// One coordinate of the quantized F at time T and the four (u, v) corners (u0, v0), (u1, v0),
+// (u0, v1), (u1, v1), each exact before its conversion to float.
+vec4 glcCcdExactCorners(int g0, int g1, int h0, int h1, int k0, int k1, uint T, uint U0, uint U1, uint V0, uint V1) {
+    uvec3 G = glcCcdShift24(glcCcdLinearAt(g0, g1, T));
+    uvec3 H = glcCcdLinearAt(h0, h1, T), K = glcCcdLinearAt(k0, k1, T);
+    uvec3 hu0 = glcCcdTimes(H, U0), hu1 = glcCcdTimes(H, U1);
+    uvec3 kv0 = glcCcdAdd(G, glcCcdTimes(K, V0)), kv1 = glcCcdAdd(G, glcCcdTimes(K, V1));
+    return vec4(glcCcdToFloat(glcCcdAdd(kv0, hu0)), glcCcdToFloat(glcCcdAdd(kv0, hu1)),
+                glcCcdToFloat(glcCcdAdd(kv1, hu0)), glcCcdToFloat(glcCcdAdd(kv1, hu1)));
+}
+
+// A box corner as the integer numerator over 2^24 (exact: dyadic of level <= 24, in [0, 1]).
+uint glcCcdGrid(float x) {
+    return uint(x * 16777216.0f);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Which variable to halve: the one whose halving moves the corner values most, in units of
+// `unit` per coordinate; -1 when none can be halved. 0: t, 1: u, 2: v.
+int glcCcdSplitVariable(vec3 f0, vec3 f1, vec3 f2, vec3 f3, vec3 f4, vec3 f5, vec3 f6, vec3 f7, vec3 unit,
+                        bool canT, bool canU, bool canV) {
+    vec3 dt = max(max(abs(f1 - f0), abs(f3 - f2)), max(abs(f5 - f4), abs(f7 - f6))) / unit;
+    vec3 du = max(max(abs(f2 - f0), abs(f3 - f1)), max(abs(f6 - f4), abs(f7 - f5))) / unit;
+    vec3 dv = max(max(abs(f4 - f0), abs(f5 - f1)), max(abs(f6 - f2), abs(f7 - f3))) / unit;
+    float spreadT = canT ? max(dt.x, max(dt.y, dt.z)) : -1.0f;
+    float spreadU = canU ? max(du.x, max(du.y, du.z)) : -1.0f;
+    float spreadV = canV ? max(dv.x, max(dv.y, dv.z)) : -1.0f;
+    if (!canT && !canU && !canV) return -1;
+    if (spreadT >= spreadU && spreadT >= spreadV) return 0;
+    return spreadU >= spreadV ? 1 : 2;
+}
+
 // ---------------------------------------------------------------------------------------------
 // The inclusion search, shared by both kinds.
 
-bool glcCcdInclusion(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e0, vec3 e1, vec3 e2,
-                     vec3 e3, float minSeparation, int budget) {
-    glcCcdBoxes = 0;
-    glcCcdCapped = false;
-    // Normalize by a power of two (exact): the rest sees the same numbers at every scale 2^k.
-    vec3 largest = max(glcCcdAbsMax4(s0, s1, s2, s3), glcCcdAbsMax4(e0, e1, e2, e3));
-    float scale = glcCcdNormalizingScale(max(largest.x, max(largest.y, largest.z)));
-    s0 = s0 * scale; s1 = s1 * scale; s2 = s2 * scale; s3 = s3 * scale;
-    e0 = e0 * scale; e1 = e1 * scale; e2 = e2 * scale; e3 = e3 * scale;
-    largest = largest * scale;
-    float delta = max(minSeparation, 0.0f) * scale;
+// The worklist of both passes: boxes (t0, t1, u0, u1, v0, v1), depth-first, so it holds at most
+// one box per halving on the current path.
+GLC_PRIVATE float glcCcdStack[GLC_CCD_STACK_BOXES * 6];
 
+// Replaces the box at `base` (on top of the worklist) by its two halves in `variable` (0: t, 1: u,
+// 2: v), the earlier or lower half on top.
+void glcCcdPushHalves(int base, int variable) {
+    for (int k = 0; k < 6; ++k) { glcCcdStack[base + 6 + k] = glcCcdStack[base + k]; }
+    int low = base + 2 * variable; // this variable's lower end
+    float mid = 0.5f * (glcCcdStack[low] + glcCcdStack[low + 1]);
+    glcCcdStack[low] = mid;          // the upper half stays below, popped second
+    glcCcdStack[low + 6 + 1] = mid;  // the lower half on top, popped first
+}
+
+// +1 when n . f certainly exceeds reach, -1 when it is certainly below -reach, else 0, for a
+// computed n . f within reach_error + relative * |n| . |f| of the exact one (reach includes
+// reach_error). The factor 1 + 2^-20 covers the rounding of the margin's own positive terms.
+int glcCcdSide(vec3 n, vec3 f, float reach, float relative) {
+    float projection = dot(n, f);
+    float margin = (reach + relative * dot(abs(n), abs(f))) * (1.0f + 9.5367431640625e-7f);
+    return projection > margin ? 1 : (projection < -margin ? -1 : 0);
+}
+
+// True when the projection on n clears minSeparation on the same side at all 8 corners.
+bool glcCcdProjectionClear(vec3 n, vec3 f0, vec3 f1, vec3 f2, vec3 f3, vec3 f4, vec3 f5, vec3 f6, vec3 f7,
+                           float reach, float relative) {
+    int sides = glcCcdSide(n, f0, reach, relative) + glcCcdSide(n, f1, reach, relative) +
+                glcCcdSide(n, f2, reach, relative) + glcCcdSide(n, f3, reach, relative) +
+                glcCcdSide(n, f4, reach, relative) + glcCcdSide(n, f5, reach, relative) +
+                glcCcdSide(n, f6, reach, relative) + glcCcdSide(n, f7, reach, relative);
+    return sides == 8 || sides == -8;
+}
+
+// The float search (normalized inputs): true when some box may hold a contact; sets glcCcdToi,
+// glcCcdCapped and counts glcCcdBoxes.
+bool glcCcdFloatSearch(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e0, vec3 e1, vec3 e2, vec3 e3,
+                       float delta, int budget) {
     // Per point and axis, the larger magnitude of its two positions (exact).
     vec3 m0 = max(abs(s0), abs(e0)), m1 = max(abs(s1), abs(e1)), m2 = max(abs(s2), abs(e2)), m3 = max(abs(s3), abs(e3));
-    // gamma_N = N u / (1 - N u): |computed F - exact F| <= gamma_N * (monomial sum) + flush term.
-    float gamma = GLC_CCD_ROUNDINGS * GLC_CCD_UNIT_ROUNDOFF / (1.0f - GLC_CCD_ROUNDINGS * GLC_CCD_UNIT_ROUNDOFF);
-    // Enlarged by 2^-20 of itself: the bound's own evaluation has at most 16 roundings of
-    // positive terms (relative error < 2^-20 in any order).
-    gamma = gamma * (1.0f + 9.5367431640625e-7f);
+    // |computed F - exact F| <= gamma_N * (monomial sum) + flush term; the projection's N_D alike.
+    float gamma = glcCcdGamma(GLC_CCD_ROUNDINGS), gammaProjection = glcCcdGamma(GLC_CCD_DIRECTION_ROUNDINGS);
 
-    // Worklist of boxes (t0, t1, u0, u1, v0, v1), depth-first, earlier t popped first.
-    float stack[GLC_CCD_STACK_BOXES * 6];
-    int top = 0;
-    stack[0] = 0.0f; stack[1] = 1.0f; stack[2] = 0.0f; stack[3] = 1.0f; stack[4] = 0.0f; stack[5] = 1.0f;
-    top = 1;
+    glcCcdStack[0] = 0.0f; glcCcdStack[1] = 1.0f; glcCcdStack[2] = 0.0f; glcCcdStack[3] = 1.0f;
+    glcCcdStack[4] = 0.0f; glcCcdStack[5] = 1.0f;
+    int top = 1;
     float best = 2.0f;   // earliest accepted box's t0 (2: none)
     float lowest = 2.0f; // the least t0 of the boxes accepted or left unsearched
     float finest = 1.0f / float(1 << GLC_CCD_MAX_LEVEL);
@@ -149,8 +347,8 @@ bool glcCcdInclusion(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e0,
         if (glcCcdBoxes >= budget) { glcCcdCapped = true; break; }
         top = top - 1;
         int base = top * 6;
-        float t0 = stack[base], t1 = stack[base + 1], u0 = stack[base + 2], u1 = stack[base + 3];
-        float v0 = stack[base + 4], v1 = stack[base + 5];
+        float t0 = glcCcdStack[base], t1 = glcCcdStack[base + 1], u0 = glcCcdStack[base + 2], u1 = glcCcdStack[base + 3];
+        float v0 = glcCcdStack[base + 4], v1 = glcCcdStack[base + 5];
         if (t0 >= best - GLC_CCD_TOI_TOLERANCE) { // lowers the time of impact by less than the tolerance
             lowest = min(lowest, t0);
             continue;
@@ -173,57 +371,126 @@ bool glcCcdInclusion(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e0,
         vec3 lo = f[0], hi = f[0];
         for (int i = 1; i < 8; ++i) { lo = min(lo, f[i]); hi = max(hi, f[i]); }
         // Error bound of this box's corner values, and the threshold delta + errorBound.
-        vec3 errorBound = gamma * glcCcdMonomialSum(edgeEdge, m0, m1, m2, m3, t1, u1, v1) + vec3(GLC_CCD_FLUSH_BOUND);
+        vec3 monomials = glcCcdMonomialSum(edgeEdge, m0, m1, m2, m3, t1, u1, v1);
+        vec3 errorBound = gamma * monomials + vec3(GLC_CCD_FLUSH_BOUND);
         vec3 threshold = vec3(delta) + errorBound;
         threshold = threshold + threshold * 9.5367431640625e-7f; // its own two roundings: 2^-20 of it
         vec3 acceptWidth = GLC_CCD_ACCEPT_WIDTH * errorBound;
         // Drop the box when one coordinate is beyond the threshold at every corner.
         if (lo.x > threshold.x || lo.y > threshold.y || lo.z > threshold.z) continue;
         if (hi.x < -threshold.x || hi.y < -threshold.y || hi.z < -threshold.z) continue;
-
-        // How much each variable moves the corner values, in units of the error bound.
-        float spreadT = 0.0f, spreadU = 0.0f, spreadV = 0.0f;
-        for (int i = 0; i < 8; ++i) {
-            if ((i & 1) == 0) { vec3 d = abs(f[i + 1] - f[i]) / acceptWidth; spreadT = max(spreadT, max(d.x, max(d.y, d.z))); }
-            if ((i & 2) == 0) { vec3 d = abs(f[i + 2] - f[i]) / acceptWidth; spreadU = max(spreadU, max(d.x, max(d.y, d.z))); }
-            if ((i & 4) == 0) { vec3 d = abs(f[i + 4] - f[i]) / acceptWidth; spreadV = max(spreadV, max(d.x, max(d.y, d.z))); }
+        // Or when the projection on the normal at the box's middle time is: the computed n . F
+        // is within gamma_ND * sum_i |n_i| (monomial sum)_i of the exact one (docs/ccd.md), and
+        // each flushed operation loses < 2^-126, weighted by at most 3 * 2^11.
+        vec3 n = glcCcdDirection(edgeEdge, 0.5f * (pA + pB), 0.5f * (aA + aB), 0.5f * (bA + bB), 0.5f * (cA + cB));
+        if (n != vec3(0.0f)) {
+            float norm = glcCcdDirectionNorm(n);
+            float reach = (delta + GLC_CCD_FLUSH_BOUND) * norm + gammaProjection * dot(abs(n), monomials);
+            if (glcCcdProjectionClear(n, f[0], f[1], f[2], f[3], f[4], f[5], f[6], f[7], reach, 0.0f)) continue;
         }
-        bool canT = t1 - t0 > finest, canU = u1 - u0 > finest, canV = v1 - v0 > finest;
-        if (!canT) spreadT = -1.0f;
-        if (!canU) spreadU = -1.0f;
-        if (!canV) spreadV = -1.0f;
+
         vec3 width = hi - lo;
         bool narrow = width.x <= acceptWidth.x && width.y <= acceptWidth.y && width.z <= acceptWidth.z;
-        if (narrow || (!canT && !canU && !canV)) {
+        int split = glcCcdSplitVariable(f[0], f[1], f[2], f[3], f[4], f[5], f[6], f[7], acceptWidth,
+                                        t1 - t0 > finest, u1 - u0 > finest, v1 - v0 > finest);
+        if (narrow || split < 0) {
             best = min(best, t0); // may collide in this box; no contact in it before t0
             lowest = min(lowest, t0);
             continue;
         }
         if (top + 2 > GLC_CCD_STACK_BOXES) { glcCcdCapped = true; lowest = min(lowest, t0); break; } // unreachable: depth-first
-        // Halve the variable that moves the values most; push the later half of t first.
-        for (int k = 0; k < 6; ++k) { stack[base + 6 + k] = stack[base + k]; }
-        if (spreadT >= spreadU && spreadT >= spreadV) {
-            float mid = 0.5f * (t0 + t1);
-            stack[base] = mid;          // later half, popped second
-            stack[base + 6 + 1] = mid;  // earlier half, popped first
-        } else if (spreadU >= spreadV) {
-            float mid = 0.5f * (u0 + u1);
-            stack[base + 3] = mid;
-            stack[base + 6 + 2] = mid;
-        } else {
-            float mid = 0.5f * (v0 + v1);
-            stack[base + 5] = mid;
-            stack[base + 6 + 4] = mid;
-        }
+        glcCcdPushHalves(base, split); // halve the variable that moves the values most
         top = top + 2;
     }
     if (glcCcdCapped) {
         // Out of budget: every box still listed may hold a contact.
-        for (int i = 0; i < top; ++i) { lowest = min(lowest, stack[i * 6]); }
+        for (int i = 0; i < top; ++i) { lowest = min(lowest, glcCcdStack[i * 6]); }
         lowest = min(lowest, 1.0f);
     }
     glcCcdToi = min(lowest, 1.0f);
     return lowest <= 1.0f;
+}
+
+// The exact refutation (normalized inputs): true when every box of the quantized query is
+// dropped, so that no point comes within delta of the other primitive; false when it meets a box
+// it cannot drop that is narrower than GLC_CCD_REFUTE_WIDTH (or cannot be halved), or after
+// `budget` boxes. Counts glcCcdBoxes. docs/ccd.md, "Exact refutation".
+bool glcCcdRefute(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e0, vec3 e1, vec3 e2, vec3 e3,
+                  float delta, int budget) {
+    GlcCcdExactQuery q = glcCcdExact(edgeEdge, s0, s1, s2, s3, e0, e1, e2, e3);
+    // A coordinate of the float query's F exceeds delta where the quantized one exceeds
+    // delta + 2^-27 (+ the flush term); the computed value is within 5.0001 * 2^-24 of it relative.
+    float reachAxis = (delta + GLC_CCD_QUANTUM_ERROR + GLC_CCD_FLUSH_BOUND) * (1.0f + 9.5367431640625e-7f);
+    float finest = 1.0f / float(1 << GLC_CCD_MAX_LEVEL);
+    glcCcdStack[0] = 0.0f; glcCcdStack[1] = 1.0f; glcCcdStack[2] = 0.0f; glcCcdStack[3] = 1.0f;
+    glcCcdStack[4] = 0.0f; glcCcdStack[5] = 1.0f;
+    int top = 1;
+    int boxes = 0;
+    while (top > 0) {
+        if (boxes >= budget) return false;
+        top = top - 1;
+        int base = top * 6;
+        float t0 = glcCcdStack[base], t1 = glcCcdStack[base + 1], u0 = glcCcdStack[base + 2], u1 = glcCcdStack[base + 3];
+        float v0 = glcCcdStack[base + 4], v1 = glcCcdStack[base + 5];
+        if (!edgeEdge && u0 + v0 > 1.0f) continue;
+        boxes = boxes + 1;
+        glcCcdBoxes = glcCcdBoxes + 1;
+
+        uint T0 = glcCcdGrid(t0), T1 = glcCcdGrid(t1), U0 = glcCcdGrid(u0), U1 = glcCcdGrid(u1), V0 = glcCcdGrid(v0), V1 = glcCcdGrid(v1);
+        vec4 xA = glcCcdExactCorners(q.g0.x, q.g1.x, q.h0.x, q.h1.x, q.k0.x, q.k1.x, T0, U0, U1, V0, V1);
+        vec4 yA = glcCcdExactCorners(q.g0.y, q.g1.y, q.h0.y, q.h1.y, q.k0.y, q.k1.y, T0, U0, U1, V0, V1);
+        vec4 zA = glcCcdExactCorners(q.g0.z, q.g1.z, q.h0.z, q.h1.z, q.k0.z, q.k1.z, T0, U0, U1, V0, V1);
+        vec4 xB = glcCcdExactCorners(q.g0.x, q.g1.x, q.h0.x, q.h1.x, q.k0.x, q.k1.x, T1, U0, U1, V0, V1);
+        vec4 yB = glcCcdExactCorners(q.g0.y, q.g1.y, q.h0.y, q.h1.y, q.k0.y, q.k1.y, T1, U0, U1, V0, V1);
+        vec4 zB = glcCcdExactCorners(q.g0.z, q.g1.z, q.h0.z, q.h1.z, q.k0.z, q.k1.z, T1, U0, U1, V0, V1);
+        // Corner i: t from bit 0, u from bit 1, v from bit 2 (as in the float search).
+        vec3 f0 = vec3(xA.x, yA.x, zA.x), f1 = vec3(xB.x, yB.x, zB.x), f2 = vec3(xA.y, yA.y, zA.y), f3 = vec3(xB.y, yB.y, zB.y);
+        vec3 f4 = vec3(xA.z, yA.z, zA.z), f5 = vec3(xB.z, yB.z, zB.z), f6 = vec3(xA.w, yA.w, zA.w), f7 = vec3(xB.w, yB.w, zB.w);
+        vec3 lo = min(min(min(f0, f1), min(f2, f3)), min(min(f4, f5), min(f6, f7)));
+        vec3 hi = max(max(max(f0, f1), max(f2, f3)), max(max(f4, f5), max(f6, f7)));
+        if (lo.x > reachAxis || lo.y > reachAxis || lo.z > reachAxis) continue;
+        if (hi.x < -reachAxis || hi.y < -reachAxis || hi.z < -reachAxis) continue;
+        // The projection on the normal at the box's middle time: exact n . (quantized F) is within
+        // sum_i |n_i| 2^-27 of n . F; computed from the converted values it is within 2^-18 of
+        // |n| . |f| (any order, even distributed over the six pieces: 19 roundings).
+        float tm = 0.5f * (t0 + t1);
+        vec3 n = glcCcdDirection(edgeEdge, glcCcdAt(s0, e0, tm), glcCcdAt(s1, e1, tm), glcCcdAt(s2, e2, tm), glcCcdAt(s3, e3, tm));
+        if (n != vec3(0.0f)) {
+            float reach = (delta + GLC_CCD_QUANTUM_ERROR + GLC_CCD_FLUSH_BOUND) * glcCcdDirectionNorm(n);
+            if (glcCcdProjectionClear(n, f0, f1, f2, f3, f4, f5, f6, f7, reach, GLC_CCD_EXACT_PROJECTION_ERROR)) continue;
+        }
+
+        vec3 width = hi - lo;
+        int split = glcCcdSplitVariable(f0, f1, f2, f3, f4, f5, f6, f7, vec3(GLC_CCD_REFUTE_WIDTH), t1 - t0 > finest,
+                                        u1 - u0 > finest, v1 - v0 > finest);
+        if (split < 0 || (width.x <= GLC_CCD_REFUTE_WIDTH && width.y <= GLC_CCD_REFUTE_WIDTH && width.z <= GLC_CCD_REFUTE_WIDTH))
+            return false; // a box that may hold a contact at this resolution: give up
+        if (top + 2 > GLC_CCD_STACK_BOXES) return false; // unreachable: depth-first
+        glcCcdPushHalves(base, split);
+        top = top + 2;
+    }
+    return true;
+}
+
+bool glcCcdInclusion(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e0, vec3 e1, vec3 e2,
+                     vec3 e3, float minSeparation, int budget) {
+    glcCcdBoxes = 0;
+    glcCcdCapped = false;
+    // Normalize by a power of two (exact): the rest sees the same numbers at every scale 2^k.
+    vec3 largest = max(glcCcdAbsMax4(s0, s1, s2, s3), glcCcdAbsMax4(e0, e1, e2, e3));
+    float scale = glcCcdNormalizingScale(max(largest.x, max(largest.y, largest.z)));
+    s0 = s0 * scale; s1 = s1 * scale; s2 = s2 * scale; s3 = s3 * scale;
+    e0 = e0 * scale; e1 = e1 * scale; e2 = e2 * scale; e3 = e3 * scale;
+    float delta = max(minSeparation, 0.0f) * scale;
+
+    bool mayCollide = glcCcdFloatSearch(edgeEdge, s0, s1, s2, s3, e0, e1, e2, e3, delta,
+                                        budget - budget / GLC_CCD_REFUTE_SHARE);
+    if (mayCollide && glcCcdRefute(edgeEdge, s0, s1, s2, s3, e0, e1, e2, e3, delta, budget - glcCcdBoxes)) {
+        glcCcdToi = 1.0f; // every box dropped: no contact, and the answer is complete
+        glcCcdCapped = false;
+        return false;
+    }
+    return mayCollide;
 }
 
 bool glcVertexFaceCcd(vec3 p0, vec3 a0, vec3 b0, vec3 c0, vec3 p1, vec3 a1, vec3 b1, vec3 c1,

@@ -7,12 +7,18 @@
 #include "cpu/shader_library.hpp"
 
 #include <glm/common.hpp>
+#include <glm/exponential.hpp>
+#include <glm/vec4.hpp>
 
 namespace glcollide::shader {
 namespace {
 
 using glm::clamp;
+using glm::dot;
+using glm::sqrt;
+using glm::trunc;
 using glm::uintBitsToFloat;
+using vec4 = glm::vec4;
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"

@@ -20,8 +20,9 @@
 namespace glcollide::passes {
 
 /// The most boxes one query may evaluate on llvmpipe: its shaders end an invocation after 65,535
-/// loop iterations in all, and a query runs at most 3 * budget + 1 iterations (docs/ccd.md,
-/// "Tolerances"). Other devices have no such limit, and no forward-progress guarantee either.
+/// loop iterations in all, and a query runs at most 2 * budget + 77 iterations (docs/ccd.md,
+/// "Tolerances"; 21,844 even keeps 3 * budget + 1 below the limit). Other devices have no such
+/// limit, and no forward-progress guarantee either.
 inline constexpr int kMaxLlvmpipeCcdBudget = 21844;
 
 /// Boxes a query may evaluate before it answers "may collide" with its lower bound of the time of

@@ -3,7 +3,9 @@
 // queries; the conservative float CCD (shaders/common/ccd.glsl, compiled as C++) against the
 // oracle: never a false negative (on hard families, random near-degenerate families and every
 // benchmark query rounded to float), never a time of impact later than the exact one, and the
-// same answers with every coordinate scaled by 2^k, k = -20 ... 20.
+// same answers with every coordinate scaled by 2^k, k = -20 ... 20; its error bounds (float corner
+// values, projections on the normal, the refutation's quantization and exact values) against
+// exact rational values; and its false positives against the benchmark's ground truth.
 // This file is compiled twice: into glcollide_unit_tests with the project's flags, and into
 // glcollide_relaxed_float_tests with fast-math, FMA contraction and FTZ/DAZ (tests/CMakeLists.txt),
 // where the float CCD must keep every guarantee (docs/ccd.md, "Error bound").
@@ -18,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -283,6 +286,10 @@ TEST(ExactCcd, CsvErrorsNameTheLine) {
 std::vector<FloatQuery> hardFamilies() {
     const vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
     const float tiny = 0x1p-30f;
+    // A face tilted on the plane z = 2x, and points on it whose x has a bit below the refutation's
+    // 2^-29 grid (after the normalization by 1/2): quantized, they lie 2^-29 above the plane.
+    const vec3 tilted(0.5f, 0, 1);
+    const float w = 0x1p-7f + 0x1p-29f, w2 = 0x3p-8f + 0x1p-29f;
     std::vector<FloatQuery> qs = {
         vertexThrough({0.25f, 0.25f, -3}, {0.25f, 0.25f, 4}),              // through the interior at 3/7
         vertexThrough({0.5f, 0, -1}, {0.5f, 0, 1}),                        // through an edge's midpoint
@@ -303,7 +310,11 @@ std::vector<FloatQuery> hardFamilies() {
         vf({-1, -1, -1}, a, a, a, {1, 1, 2}, a, a, a),                     // and missing it
         vf({0.2f, 0.2f, 0}, a, b, c, {0.2f, 0.2f, 5}, {0, 0, 5}, {1, 0, 5}, {0, 1, 5}), // moving together
         vf({0.25f, 0.25f, 1}, a, b, c, {0.25f, 0.25f, 1}, {0, 0, 2}, {1, 0, 2},
-           {0, 1, 2}),                                              // face hits a still vertex
+           {0, 1, 2}),                                                        // face hits a still vertex
+        vf({w, 0.25f, 2 * w}, a, tilted, c, {w, 0.25f, 2 * w}, a, tilted, c), // resting off the grid
+        vf({w, 0.1f, 2 * w}, a, tilted, c, {w2, 0.6f, 2 * w2}, a, tilted, c), // sliding off the grid
+        vf({0.125f, 0.1f, 0.25f + 0x1p-20f}, a, tilted, c, {0.125f, 0.6f, 0.25f + 0x1p-20f}, a, tilted,
+           c),                                                      // sliding 2^-20 above the tilted face
         edgeAcross({0, -1, 1}, {0, 1, 1}, {0, -1, -1}, {0, 1, -1}), // crossing at t = 1/2
         edgeAcross({1, -1, 1}, {1, 1, 1}, {1, -1, -1}, {1, 1, -1}), // grazing A's end
         edgeAcross({1 + 0x1p-23f, -1, 1}, {1 + 0x1p-23f, 1, 1}, {1 + 0x1p-23f, -1, -1},
@@ -360,8 +371,16 @@ CCD_TEST(MinimumSeparationCountsEuclideanDistance) {
     const float s = d / std::sqrt(2.0f);
     const FloatQuery beside = vertexThrough({1 + s, -s, -1}, {1 + s, -s, 1});
     const FloatQuery edges = edgeAcross({0, -1, d}, {0, 1, d}, {0, -1, d}, {0, 1, d});
-    for (const FloatQuery& query : {over, beside, edges}) {
-        // The true distance of `beside` is s sqrt2 (rounded s): report from 1.0001 d on.
+    // Over a face whose normal is (1, 1, 1) / sqrt3, at distance d along it, sliding parallel to it:
+    // the projection n . F = d |n|_2 on the normal must be compared with minSeparation |n|_1 (a
+    // shorter norm of n, such as max |n_i|, would drop it).
+    const vec3 centroid(1 / 3.0f, 1 / 3.0f, 1 / 3.0f), lift = vec3(d / std::sqrt(3.0f)),
+                                                       slide(0.1f, -0.1f, 0);
+    const vec3 ta(1, 0, 0), tb(0, 1, 0), tc(0, 0, 1);
+    const FloatQuery tilted = vf(centroid + lift + slide, ta, tb, tc, centroid + lift - slide, ta, tb, tc);
+    for (const FloatQuery& query : {over, beside, edges, tilted}) {
+        // The true distances of `beside` (s sqrt2, rounded s) and `tilted` are d within float
+        // rounding: report from 1.0001 d on.
         EXPECT_TRUE(floatCcd(query, d * 1.0001f).mayCollide);
         EXPECT_FALSE(floatCcd(query, d / 2).mayCollide);
         for (int k = -20; k <= 20; ++k) {
@@ -390,6 +409,37 @@ CCD_TEST(OutOfBudgetAnswersMayCollideWithALowerBound) {
     const FloatAnswer miss = floatCcd(vertexThrough({0.2f, 0.2f, 3}, {5, -4, 1}), 0, 8);
     EXPECT_FALSE(miss.mayCollide);
     EXPECT_FALSE(miss.capped);
+}
+
+// The refutation at work: misses closer than the float search's error bound (about 2^-15 of the
+// coordinates) but far above the quantization grid (2^-29) are answered "no collision", where the
+// float search alone says "may collide". Not what soundness needs: what the refutation is for.
+CCD_TEST(RefutesNearMissesTheFloatBoundCannotSeparate) {
+    const vec3 a(0, 0, 0), tilted(0.5f, 0, 1), c(0, 1, 0);
+    const float h = 0x1p-20f, s = 0x1p-21f;
+    // 2^-20 above a face whose normal is diagonal (no single axis shows the gap), sliding along it.
+    const FloatQuery overFace =
+        vf({0.125f, 0.1f, 0.25f + h}, a, tilted, c, {0.125f, 0.6f, 0.25f + h}, a, tilted, c);
+    // An edge sliding past another one at sqrt2 2^-21, along a diagonal normal.
+    const FloatQuery pastEdge =
+        ee({-1, 0, 0}, {1, 0, 0}, {-0.5f, -0.5f - s, -0.5f + s}, {-0.5f, 0.5f - s, 0.5f + s}, {-1, 0, 0},
+           {1, 0, 0}, {0.5f, -0.5f - s, -0.5f + s}, {0.5f, 0.5f - s, 0.5f + s});
+    for (const FloatQuery& query : {overFace, pastEdge}) {
+        EXPECT_FALSE(oracle(query).touch);
+        // The float search alone, on the normalized query (the largest coordinate, 1, becomes 1/2).
+        std::array<vec3, 8> n;
+        for (int i = 0; i < 8; ++i) n[i] = query.p[i] * 0.5f;
+        shader::glcCcdBoxes = 0;
+        shader::glcCcdCapped = false;
+        EXPECT_TRUE(shader::glcCcdFloatSearch(query.kind == Kind::EdgeEdge, n[0], n[1], n[2], n[3], n[4],
+                                              n[5], n[6], n[7], 0.0f, kBudget));
+        for (int k = -20; k <= 20; ++k) {
+            const FloatAnswer answer = floatCcd(scaled(query, k));
+            EXPECT_FALSE(answer.mayCollide) << k;
+            EXPECT_EQ(answer.toi, 1.0f) << k;
+            EXPECT_FALSE(answer.capped) << k;
+        }
+    }
 }
 
 // Random near-degenerate motions: contacts constructed at a random time through a random corner,
@@ -521,18 +571,164 @@ CCD_TEST(CornerValuesStayWithinTheErrorBound) {
     std::printf("largest corner error: %.4f of the error bound\n", worst);
 }
 
+// Random normalized points for the bound tests: nearly equal (cancellation), signs mixed, the
+// largest magnitude near 1; every 4th query also has coordinates far below the refutation's grid.
+struct BoundSample {
+    bool edgeEdge;
+    std::array<vec3, 8> p;
+    float t, u, v;
+};
+
+BoundSample boundSample(std::mt19937& rng, int i) {
+    std::uniform_real_distribution<float> coord(0.5f, 0.52f), offset(-1e-3f, 1e-3f), small(-1e-6f, 1e-6f);
+    std::uniform_int_distribution<int> level(0, GLC_CCD_MAX_LEVEL), sign(0, 1);
+    auto dyadic = [&] {
+        const int l = level(rng);
+        std::uniform_int_distribution<long> k(0, 1L << l);
+        const float value = std::ldexp(static_cast<float>(k(rng)), -l); // exact: at most 25 bits, in [0, 1]
+        return sign(rng) ? value : std::ldexp(value, -level(rng));      // half of them small
+    };
+    BoundSample b;
+    b.edgeEdge = i % 2 == 1;
+    const vec3 base(sign(rng) ? coord(rng) : -coord(rng), sign(rng) ? coord(rng) : -coord(rng), coord(rng));
+    for (auto& x : b.p) x = base + vec3(offset(rng), offset(rng), offset(rng));
+    if (i % 4 >= 2)
+        for (int k = 0; k < 8; k += 3) b.p[k] = vec3(small(rng), offset(rng), small(rng));
+    b.t = dyadic();
+    b.u = dyadic();
+    b.v = dyadic();
+    return b;
+}
+
+// The exact value of one coordinate of F at (t, u, v) for points given as rationals.
+mpq_class exactF(bool edgeEdge, const std::array<mpq_class, 8>& x, const mpq_class& t, const mpq_class& u,
+                 const mpq_class& v) {
+    auto at = [&](int k) { return mpq_class(x[k] + t * (x[k + 4] - x[k])); };
+    const mpq_class P = at(0), A = at(1), B = at(2), C = at(3);
+    return edgeEdge ? mpq_class((P + u * (A - P)) - (B + v * (C - B)))
+                    : mpq_class(P - A - u * (B - A) - v * (C - A));
+}
+
+// The projection of the corner values on the direction of the box (the float search's second
+// test) stays within its bound gamma_ND sum_i |n_i| (monomial sum)_i, as this build evaluates it.
+CCD_TEST(ProjectionStaysWithinItsErrorBound) {
+    std::mt19937 rng(22);
+    const float gamma = GLC_CCD_DIRECTION_ROUNDINGS * shader::GLC_CCD_UNIT_ROUNDOFF /
+                        (1.0f - GLC_CCD_DIRECTION_ROUNDINGS * shader::GLC_CCD_UNIT_ROUNDOFF);
+    double worst = 0;
+    int projected = 0;
+    for (int i = 0; i < 50000; ++i) {
+        const BoundSample b = boundSample(rng, i);
+        const auto& p = b.p;
+        const vec3 P = shader::glcCcdAt(p[0], p[4], b.t), A = shader::glcCcdAt(p[1], p[5], b.t),
+                   B = shader::glcCcdAt(p[2], p[6], b.t), C = shader::glcCcdAt(p[3], p[7], b.t);
+        const vec3 n = shader::glcCcdDirection(b.edgeEdge, P, A, B, C);
+        if (n == vec3(0.0f)) continue;
+        ++projected;
+        const float computed = dot(n, shader::glcCcdF(b.edgeEdge, P, A, B, C, b.u, b.v));
+        const vec3 m0 = max(abs(p[0]), abs(p[4])), m1 = max(abs(p[1]), abs(p[5])),
+                   m2 = max(abs(p[2]), abs(p[6])), m3 = max(abs(p[3]), abs(p[7]));
+        const float bound =
+            gamma * dot(abs(n), shader::glcCcdMonomialSum(b.edgeEdge, m0, m1, m2, m3, b.t, b.u, b.v));
+        mpq_class exact = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            std::array<mpq_class, 8> x;
+            for (int k = 0; k < 8; ++k) x[k] = p[k][axis];
+            exact += mpq_class(n[axis]) * exactF(b.edgeEdge, x, b.t, b.u, b.v);
+        }
+        const mpq_class error = abs(mpq_class(computed) - exact);
+        EXPECT_LE(error, mpq_class(bound)) << "query " << i;
+        worst = std::max(worst, error.get_d() / bound);
+    }
+    EXPECT_GT(projected, 40000); // the directions exist: the test tests something
+    std::printf("largest projection error: %.4f of its error bound\n", worst);
+}
+
+// The refutation's corner values: the quantized query (every coordinate truncated to the grid
+// 2^-29, computed here in double) has an F within GLC_CCD_QUANTUM_ERROR of the float query's F;
+// its exact value, converted, is within 5.0001 * 2^-24 of itself; and the projection on the
+// box's direction computed from the converted values is within GLC_CCD_EXACT_PROJECTION_ERROR
+// |n| . |f| of the exact projection of the quantized F.
+CCD_TEST(ExactCornerValuesStayWithinTheirErrorBounds) {
+    std::mt19937 rng(23);
+    double worstQuantization = 0, worstConversion = 0, worstProjection = 0;
+    for (int i = 0; i < 20000; ++i) {
+        BoundSample b = boundSample(rng, i);
+        // Box corners are dyadic of level <= 24: snap t, u, v to that grid.
+        for (float* x : {&b.t, &b.u, &b.v}) *x = std::ldexp(std::trunc(std::ldexp(*x, 24)), -24);
+        const auto& p = b.p;
+        const shader::GlcCcdExactQuery q =
+            shader::glcCcdExact(b.edgeEdge, p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7]);
+        const unsigned T = shader::glcCcdGrid(b.t), U = shader::glcCcdGrid(b.u), V = shader::glcCcdGrid(b.v);
+        const vec3 f(
+            shader::glcCcdExactCorners(q.g0.x, q.g1.x, q.h0.x, q.h1.x, q.k0.x, q.k1.x, T, U, U, V, V).x,
+            shader::glcCcdExactCorners(q.g0.y, q.g1.y, q.h0.y, q.h1.y, q.k0.y, q.k1.y, T, U, U, V, V).x,
+            shader::glcCcdExactCorners(q.g0.z, q.g1.z, q.h0.z, q.h1.z, q.k0.z, q.k1.z, T, U, U, V, V).x);
+        const vec3 n = shader::glcCcdDirection(
+            b.edgeEdge, shader::glcCcdAt(p[0], p[4], b.t), shader::glcCcdAt(p[1], p[5], b.t),
+            shader::glcCcdAt(p[2], p[6], b.t), shader::glcCcdAt(p[3], p[7], b.t));
+        mpq_class projection = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            std::array<mpq_class, 8> x, quantized;
+            for (int k = 0; k < 8; ++k) {
+                x[k] = p[k][axis];
+                // Truncation toward zero on the grid 2^-29 (exact in double: 24 bits times 2^29).
+                quantized[k] = mpq_class(static_cast<long>(std::ldexp(static_cast<double>(p[k][axis]), 29))) /
+                               mpq_class(1L << 29);
+            }
+            const mpq_class F = exactF(b.edgeEdge, x, b.t, b.u, b.v),
+                            Q = exactF(b.edgeEdge, quantized, b.t, b.u, b.v);
+            const mpq_class quantization = abs(Q - F), conversion = abs(mpq_class(f[axis]) - Q);
+            EXPECT_LE(quantization, mpq_class(shader::GLC_CCD_QUANTUM_ERROR))
+                << "query " << i << " axis " << axis;
+            const mpq_class relative = mpq_class(5.0001 * 0x1p-24) * abs(Q);
+            EXPECT_LE(conversion, relative) << "query " << i << " axis " << axis;
+            worstQuantization =
+                std::max(worstQuantization, quantization.get_d() / shader::GLC_CCD_QUANTUM_ERROR);
+            if (Q != 0) worstConversion = std::max(worstConversion, conversion.get_d() / relative.get_d());
+            projection += mpq_class(n[axis]) * Q;
+        }
+        const float computed = dot(n, f);
+        const float bound = shader::GLC_CCD_EXACT_PROJECTION_ERROR * dot(abs(n), abs(f));
+        const mpq_class error = abs(mpq_class(computed) - projection);
+        EXPECT_LE(error, mpq_class(bound)) << "query " << i;
+        if (bound > 0) worstProjection = std::max(worstProjection, error.get_d() / bound);
+    }
+    std::printf("largest errors, of their bounds: quantization %.4f, conversion %.4f, projection %.4f\n",
+                worstQuantization, worstConversion, worstProjection);
+}
+
 struct Tally {
     int queries = 0, contacts = 0, falseNegatives = 0, falsePositives = 0, capped = 0;
     int truthFalseNegatives = 0, truthFalsePositives = 0;
+    long boxes = 0;
+    int mostBoxes = 0;
 };
 
+// The budget a GPU pass on llvmpipe may give a query: llvmpipe ends an invocation after 65,535
+// loop iterations, and a query runs at most 2 budget + 4 (docs/ccd.md, "Tolerances").
+constexpr int kLlvmpipeBudget = 21844;
+
 CCD_TEST(NeverMissesASampleQueryRoundedToFloatAtAnyScale) {
-    Tally tally[2]; // [0] vertex-face, [1] edge-edge
+    Tally tally[2], llvmpipe[2]; // [0] vertex-face, [1] edge-edge; at kBudget and at kLlvmpipeBudget
+    std::map<std::string, std::array<int, 2>> perSet; // false positives against the ground truth
     int scaleChanges = 0, lateTimes = 0;
+    auto count = [](Tally& t, const ExactCcdResult& exact, bool truth, const FloatAnswer& answer) {
+        ++t.queries;
+        t.contacts += exact.touch;
+        t.capped += answer.capped;
+        t.boxes += shader::glcCcdBoxes;
+        t.mostBoxes = std::max(t.mostBoxes, shader::glcCcdBoxes);
+        if (exact.touch && !answer.mayCollide) ++t.falseNegatives;
+        if (!exact.touch && answer.mayCollide) ++t.falsePositives;
+        if (truth && !answer.mayCollide) ++t.truthFalseNegatives;
+        if (!truth && answer.mayCollide) ++t.truthFalsePositives;
+    };
     for (const auto& entry : std::filesystem::recursive_directory_iterator(sampleQueriesDir())) {
         if (entry.path().extension() != ".csv") continue;
         const bool vertexFace = entry.path().parent_path().filename() == "vertex-face";
-        Tally& t = tally[vertexFace ? 0 : 1];
+        const int kind = vertexFace ? 0 : 1;
+        const std::string set = entry.path().parent_path().parent_path().filename().string();
         for (const auto& sample : cpu::readSampleCcdQueries(entry.path().string())) {
             FloatQuery query{vertexFace ? Kind::VertexFace : Kind::EdgeEdge, {}};
             for (int i = 0; i < 8; ++i)
@@ -542,35 +738,39 @@ CCD_TEST(NeverMissesASampleQueryRoundedToFloatAtAnyScale) {
             // so get_d is exact and the float conversion rounds to nearest once.
             const ExactCcdResult exact = oracle(query); // the rounded query is the one decided
             const FloatAnswer answer = floatCcd(query);
-            ++t.queries;
-            t.contacts += exact.touch;
-            t.capped += answer.capped;
-            if (exact.touch && !answer.mayCollide) ++t.falseNegatives;
-            if (!exact.touch && answer.mayCollide) ++t.falsePositives;
-            if (sample.truth && !answer.mayCollide) ++t.truthFalseNegatives;
-            if (!sample.truth && answer.mayCollide) ++t.truthFalsePositives;
+            count(tally[kind], exact, sample.truth, answer);
+            perSet[set][kind] += !sample.truth && answer.mayCollide;
             if (exact.touch && answer.mayCollide && mpq_class(answer.toi) > exact.toiLo) ++lateTimes;
             for (int k = -20; k <= 20; k += kScaleStep)
                 if (k != 0 && !(floatCcd(scaled(query, k)) == answer)) ++scaleChanges;
+            count(llvmpipe[kind], exact, sample.truth, floatCcd(query, 0, kLlvmpipeBudget));
         }
     }
-    for (int kind = 0; kind < 2; ++kind) {
-        const Tally& t = tally[kind];
-        std::printf("%s: %d queries, %d contacts of the float query; false negatives %d, false positives %d, "
-                    "capped %d; against the original ground truth: false negatives %d, false positives %d\n",
-                    kind == 0 ? "vertex-face" : "edge-edge", t.queries, t.contacts, t.falseNegatives,
-                    t.falsePositives, t.capped, t.truthFalseNegatives, t.truthFalsePositives);
-        EXPECT_EQ(t.falseNegatives, 0);
-        EXPECT_EQ(t.truthFalseNegatives, 0);
-    }
+    for (int kind = 0; kind < 2; ++kind)
+        for (const Tally* t : {&tally[kind], &llvmpipe[kind]}) {
+            std::printf(
+                "%s, budget %d: %d queries, %d contacts of the float query; false negatives %d, false "
+                "positives %d, capped %d; against the original ground truth: false negatives %d, false "
+                "positives %d; boxes per query %.1f (most %d)\n",
+                kind == 0 ? "vertex-face" : "edge-edge", t == &tally[kind] ? kBudget : kLlvmpipeBudget,
+                t->queries, t->contacts, t->falseNegatives, t->falsePositives, t->capped,
+                t->truthFalseNegatives, t->truthFalsePositives, double(t->boxes) / t->queries, t->mostBoxes);
+            EXPECT_EQ(t->falseNegatives, 0);
+            EXPECT_EQ(t->truthFalseNegatives, 0);
+        }
+    for (const auto& [set, fp] : perSet)
+        std::printf("  %s: false positives against the ground truth %d vertex-face, %d edge-edge\n",
+                    set.c_str(), fp[0], fp[1]);
     EXPECT_EQ(tally[0].queries, 3085);
     EXPECT_EQ(tally[1].queries, 4194);
     EXPECT_EQ(lateTimes, 0);
     EXPECT_EQ(scaleChanges, 0) << "answers that changed under scaling by 2^k, k = -20 ... 20";
-    // Targets (issue 22): at most Tight-Inclusion float's false positives on these queries,
-    // 154 vertex-face and 250 edge-edge. Measured here against the oracle of the float query.
-    EXPECT_LE(tally[0].falsePositives, 154);
-    EXPECT_LE(tally[1].falsePositives, 250);
+    // Targets (issue 22): at most Tight-Inclusion float's false positives against the ground truth
+    // of the original queries, 154 vertex-face and 250 edge-edge, at the tests' budget and at the
+    // llvmpipe budget (a capped query answers "may collide"). Of these, 92 / 160 are queries whose
+    // rounding to float truly touches (no method deciding the float query can avoid them).
+    for (const Tally* t : {&tally[0], &llvmpipe[0]}) EXPECT_LE(t->truthFalsePositives, 154);
+    for (const Tally* t : {&tally[1], &llvmpipe[1]}) EXPECT_LE(t->truthFalsePositives, 250);
 }
 
 } // namespace
