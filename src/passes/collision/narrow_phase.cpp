@@ -23,7 +23,8 @@ NarrowPhase::NarrowPhase(gl::ComputeProgram filtered, gl::ComputeProgram exact)
 
 void NarrowPhase::throwIfExactPassFailed(const AppendLists& lists) {
     if (lists.stat(GLC_STAT_EXACT_ERRORS) == 0) return;
-    throw Error("TriTri: the exact pass could not finish " + std::to_string(lists.stat(GLC_STAT_EXACT_ERRORS)) +
+    throw Error("TriTri: the exact pass could not finish " +
+                std::to_string(lists.stat(GLC_STAT_EXACT_ERRORS)) +
                 " candidate pairs (more signs to record than GLC_MAX_EXACT, or a predicate on a point "
                 "that is not an input corner: a broken assumption of shaders/common/tri_tri_robust.glsl); "
                 "their answers would not be exact");
