@@ -163,7 +163,8 @@ OracleTally checkAgainstOracle(const Motion& m, const cpu::FeaturePairList& pair
         if (!exact.touch) return;
         ++t.touching;
         for (std::uint32_t node : n)
-            if (!(mpq_class(toi[node]) <= exact.toiHi)) { // +inf (missed) or later than the contact
+            // +inf: missed (GMP cannot hold it); otherwise no later than the contact.
+            if (!std::isfinite(toi[node]) || !(mpq_class(toi[node]) <= exact.toiHi)) {
                 ++t.missed;
                 return;
             }
