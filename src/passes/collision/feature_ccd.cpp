@@ -16,8 +16,7 @@ constexpr std::uint32_t kMaxBudget = 21844;      // llvmpipe: 65,535 loop iterat
 } // namespace
 
 FeatureCcd::FeatureCcd(std::uint32_t nodeCount, std::uint32_t budget, float minSeparation)
-    : m_nodeCount(nodeCount),
-      m_nodeToi(gl::makeBuffer("nodeToi", std::vector<std::uint32_t>(nodeCount, kNoImpact))),
+    : m_nodeToi(gl::makeBuffer("nodeToi", std::vector<std::uint32_t>(nodeCount, kNoImpact))),
       m_program("feature_ccd") {
     if (budget < 1 || budget > kMaxBudget)
         throw Error("collision: ccd budget must be in 1 ... 21844 (llvmpipe ends a shader loop after 65,535 "

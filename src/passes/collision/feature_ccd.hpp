@@ -30,7 +30,6 @@ class FeatureCcd {
   private:
     void run(AppendLists& lists);
 
-    std::uint32_t m_nodeCount;
     gl::Buffer m_nodeToi;
     gl::ComputeProgram m_program;
 };
