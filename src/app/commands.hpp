@@ -42,14 +42,18 @@ struct QueryTriTriOptions {
 /// glcollide query tritri: one line `1` (the closed triangles intersect) or `0` per data row.
 int queryTriTriCommand(const QueryTriTriOptions& options);
 
+/// The defaults of `query ccd`, equal to the pass's (checked in query_ccd_command.cpp).
+inline constexpr int kQueryCcdDefaultBudget = 21844;
+inline constexpr int kQueryCcdDefaultRounds = 4;
+
 struct QueryCcdOptions {
-    std::string inPath;              ///< CSV of CCD queries, the CCD benchmark's layout (docs/ccd.md)
-    std::string outPath;             ///< empty: answers on stdout
-    std::string kind;                ///< vf (vertex-face) or ee (edge-edge)
-    bool toi = false;                ///< append ",<time of impact>" to each answer
-    std::string minSeparation = "0"; ///< decimal, read exactly
-    int budget = 21844;              ///< boxes per query and piece (passes::kDefaultCcdBudget)
-    int rounds = 4;                  ///< continuation rounds (passes::kDefaultCcdContinuationRounds)
+    std::string inPath;                  ///< CSV of CCD queries, the CCD benchmark's layout (docs/ccd.md)
+    std::string outPath;                 ///< empty: answers on stdout
+    std::string kind;                    ///< vf (vertex-face) or ee (edge-edge)
+    bool toi = false;                    ///< append ",<time of impact>" to each answer
+    std::string minSeparation = "0";     ///< decimal, read exactly
+    int budget = kQueryCcdDefaultBudget; ///< boxes per query and piece (passes::kDefaultCcdBudget)
+    int rounds = kQueryCcdDefaultRounds; ///< continuation rounds (passes::kDefaultCcdContinuationRounds)
     std::string device;
 };
 

@@ -21,8 +21,8 @@
 namespace glcollide::app {
 namespace {
 
-static_assert(QueryCcdOptions{}.budget == passes::kDefaultCcdBudget);
-static_assert(QueryCcdOptions{}.rounds == passes::kDefaultCcdContinuationRounds);
+static_assert(kQueryCcdDefaultBudget == passes::kDefaultCcdBudget);
+static_assert(kQueryCcdDefaultRounds == passes::kDefaultCcdContinuationRounds);
 
 passes::CcdKind parseKind(const std::string& kind) {
     if (kind == "vf") return passes::CcdKind::VertexFace;

@@ -17,10 +17,9 @@
 namespace glcollide {
 namespace {
 
-constexpr double kSpeed = 12.0;       // m/s, downwards
-constexpr double kDt = 1.0 / 60.0;    // s, one substep per frame
-constexpr double kClothHeight = 0.0;  // m
-constexpr double kStartHeight = 0.12; // m: the ball's centre; radius 0.06, so 6 cm above the cloth
+constexpr double kSpeed = 12.0;      // m/s, downwards
+constexpr double kDt = 1.0 / 60.0;   // s, one substep per frame
+constexpr double kClothHeight = 0.0; // m
 
 Scene fastBall(const std::string& detection) {
     const std::string json =
