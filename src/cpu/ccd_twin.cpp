@@ -29,12 +29,7 @@ std::vector<FacePair> twinSweptCandidates(const std::vector<std::uint32_t>& face
     const auto faces = static_cast<std::uint32_t>(faceIndices.size() / 3);
     std::vector<FloatBox> boxes(faces);
     for (std::uint32_t f = 0; f < faces; ++f) boxes[f] = sweptFaceBox(faceIndices, x0, x1, f, half);
-    std::vector<FacePair> pairs;
-    for (std::uint32_t f = 0; f < faces; ++f)
-        for (std::uint32_t g = f + 1; g < faces; ++g)
-            if (validFacePair(faceIndices, faceObject, f, g, rules) && boxesOverlap(boxes[f], boxes[g]))
-                pairs.push_back({f, g});
-    return pairs;
+    return overlappingValidPairs(faceIndices, faceObject, boxes, rules);
 }
 
 std::array<std::uint32_t, 4> vertexFaceNodes(const std::vector<std::uint32_t>& faceIndices,

@@ -70,6 +70,13 @@ std::vector<FacePair> twinCandidates(const std::vector<std::uint32_t>& faceIndic
     const auto faces = static_cast<std::uint32_t>(faceIndices.size() / 3);
     std::vector<FloatBox> boxes(faces);
     for (std::uint32_t f = 0; f < faces; ++f) boxes[f] = faceBox(faceIndices, positions, f, half);
+    return overlappingValidPairs(faceIndices, faceObject, boxes, rules);
+}
+
+std::vector<FacePair> overlappingValidPairs(const std::vector<std::uint32_t>& faceIndices,
+                                            const std::vector<std::uint32_t>& faceObject,
+                                            const std::vector<FloatBox>& boxes, const PairRules& rules) {
+    const auto faces = static_cast<std::uint32_t>(boxes.size());
     std::vector<FacePair> pairs;
     for (std::uint32_t f = 0; f < faces; ++f)
         for (std::uint32_t g = f + 1; g < faces; ++g)

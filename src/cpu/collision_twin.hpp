@@ -56,6 +56,12 @@ std::vector<FacePair> twinCandidates(const std::vector<std::uint32_t>& faceIndic
                                      const std::vector<glm::vec3>& positions, double thickness,
                                      const PairRules& rules);
 
+/// The valid pairs whose boxes (one per face) overlap, sorted: the brute force every candidate
+/// twin shares (discrete face boxes here, swept ones in cpu/ccd_twin.hpp).
+std::vector<FacePair> overlappingValidPairs(const std::vector<std::uint32_t>& faceIndices,
+                                            const std::vector<std::uint32_t>& faceObject,
+                                            const std::vector<FloatBox>& boxes, const PairRules& rules);
+
 /// The pairs of `pairs` whose closed triangles intersect, by the exact oracle on the float
 /// positions widened to double; keeps the input order.
 std::vector<FacePair> twinIntersections(const std::vector<std::uint32_t>& faceIndices,
