@@ -1,5 +1,5 @@
 #pragma once
-// The engine's side of the GL state contract (README "GL state contract"): the host's bindings
+// The engine's side of the GL state contract (docs/embedding.md, "GL state contract"): the host's bindings
 // that a glcollide entry point may change are saved on entry and put back on exit. One guard per
 // public Engine call, at the engine boundary; passes bind freely inside it.
 

@@ -1,4 +1,4 @@
-// The GL state contract towards a host renderer (README "GL state contract"): every engine call
+// The GL state contract towards a host renderer (docs/embedding.md, "GL state contract"): every engine call
 // leaves the host's bindings as it found them, the debug callback is installed only on request and
 // chains to and restores the host's, and engines sharing a context do not see each other.
 
