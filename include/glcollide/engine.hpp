@@ -111,6 +111,15 @@ struct CollisionStats {
     std::uint32_t ccdCappedInFrame = 0;
     std::uint32_t ccdBoxes = 0;
     float ccdEarliestToi = std::numeric_limits<float>::infinity();
+    /// The intersection-free response's safe step (decision 0024), over the frame: substeps in
+    /// which it cut any node's step, node steps cut (summed over rounds and substeps), the most
+    /// cut-and-check rounds of one substep, and substeps in which the last resort froze every node.
+    std::uint32_t safeStepSubsteps = 0;
+    std::uint32_t safeStepCuts = 0;
+    std::uint32_t safeStepMaxRounds = 0;
+    std::uint32_t safeStepFrozeAll = 0;
+    /// Substeps of the frame whose start had intersecting face pairs (intersectingPairs > 0).
+    std::uint32_t substepsWithIntersections = 0;
 };
 
 /// The first non-finite state NodeUpdate produced (EngineOptions::checkFinite).
@@ -140,6 +149,8 @@ struct StepStats {
     std::vector<PassTiming> passes;
     bool collisions = false; ///< the collision passes ran (then `collision` is filled)
     bool continuous = false; ///< continuous detection (then the collision.ccd* fields are filled)
+    bool safeStep =
+        false; ///< the intersection-free response (then the collision.safeStep* fields are filled)
     CollisionStats collision;
     SolverStats solver;
     /// Compute dispatches per substep in this frame, counted as issued (the implicit solver issues

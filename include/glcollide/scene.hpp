@@ -105,6 +105,11 @@ struct CcdSettings {
 enum class ContactResponse : std::uint8_t {
     Penalty, ///< penalty force k·(h − d) − c·v_n within the thickness (elastic: bodies bounce)
     Bridson, ///< Bridson et al. 2002: inelastic stop of approaching pairs + limited penalty (cloth)
+    /// Bridson's velocity response, then a safe step (decision 0024): continuous detection over the
+    /// substep, and every node of a pair that may touch advances only to a fraction of its earliest
+    /// time of impact (a node frozen where that is not enough). No face pair starts to intersect.
+    /// Needs continuous detection (the default with this response).
+    IntersectionFree,
 };
 
 enum class TriTriPrecision : std::uint8_t {

@@ -20,34 +20,29 @@ vec3 advancedPosition(vec3 x, vec3 v) {
     return x + u_h * v;
 }
 
-void advanceNode(uint i, vec3 f, uint substep) {
-    vec4 p = g_positions[i];
-    float w = p.w;
-    if (w <= 0.0) {
-        g_velocities[i] = vec4(0.0);
-        return;
-    }
-    vec3 v = advancedVelocity(g_velocities[i].xyz, w, f);
-    vec3 x = advancedPosition(p.xyz, v);
 #ifdef GLC_GROUND
-    if (x.y < u_groundHeight) {
-        x.y = u_groundHeight;
-        if (v.y < 0.0) {
-            float normalSpeed = -v.y;
-            v.y = u_restitution * normalSpeed;
-            float tangentialSpeed = length(v.xz);
-            if (tangentialSpeed > 0.0) {
-                // Coulomb: the normal impulse (1+e)|vn| bounds the tangential change.
-                float scale = max(0.0, 1.0 - u_friction * (1.0 + u_restitution) * normalSpeed / tangentialSpeed);
-                v.xz *= scale;
-            }
+// The ground plane: a node below it is put on it; an approaching velocity is reflected with the
+// restitution and its tangential part reduced by Coulomb friction.
+void applyGround(inout vec3 x, inout vec3 v) {
+    if (!(x.y < u_groundHeight)) return; // (a NaN is left alone, as before)
+    x.y = u_groundHeight;
+    if (v.y < 0.0) {
+        float normalSpeed = -v.y;
+        v.y = u_restitution * normalSpeed;
+        float tangentialSpeed = length(v.xz);
+        if (tangentialSpeed > 0.0) {
+            // Coulomb: the normal impulse (1+e)|vn| bounds the tangential change.
+            float scale = max(0.0, 1.0 - u_friction * (1.0 + u_restitution) * normalSpeed / tangentialSpeed);
+            v.xz *= scale;
         }
     }
+}
 #endif
-    g_positions[i] = vec4(x, w);
-    g_velocities[i] = vec4(v, 0.0);
+
 #ifdef GLC_CHECK_FINITE
-    // Infinity and NaN are the floats whose 8 exponent bits are all ones.
+// Records node i if x or v is not finite: infinity and NaN are the floats whose 8 exponent bits
+// are all ones.
+void checkFinite(uint i, vec3 x, vec3 v, uint substep) {
     const uint exponent = 0x7F800000u;
     if (any(equal(floatBitsToUint(x) & exponent, uvec3(exponent))) ||
         any(equal(floatBitsToUint(v) & exponent, uvec3(exponent)))) {
@@ -58,5 +53,24 @@ void advanceNode(uint i, vec3 f, uint substep) {
             atomicMin(g_health.badSubstep, substep);
         }
     }
+}
+#endif
+
+void advanceNode(uint i, vec3 f, uint substep) {
+    vec4 p = g_positions[i];
+    float w = p.w;
+    if (w <= 0.0) {
+        g_velocities[i] = vec4(0.0);
+        return;
+    }
+    vec3 v = advancedVelocity(g_velocities[i].xyz, w, f);
+    vec3 x = advancedPosition(p.xyz, v);
+#ifdef GLC_GROUND
+    applyGround(x, v);
+#endif
+    g_positions[i] = vec4(x, w);
+    g_velocities[i] = vec4(v, 0.0);
+#ifdef GLC_CHECK_FINITE
+    checkFinite(i, x, v, substep);
 #endif
 }

@@ -33,10 +33,16 @@ uniform float u_substep;     // s: the substep length dt (0: penalty only, sides
 uniform uint u_velocityResponse; // 1: Bridson's response (below); 0: the penalty alone
 uniform float u_relaxationTime;  // s: Bridson's target speed restores the thickness over at least this
 uniform uint u_countPass;    // 1: count approaching contacts per node into .w; 0: add the forces
+uniform uint u_previousSides; // 1: sides of open surfaces from x − dt·v; 0: from x (intersection-free response)
 
 // Position at the start of the substep: symplectic Euler's last step was x += dt·v with this v
 // (up to rounding, and except for nodes the ground plane clamped), so x − dt·v is where it was.
-vec3 previousPosition(uint n) { return g_positions[n].xyz - u_substep * g_velocities[n].xyz; }
+// The intersection-free response (u_previousSides = 0) starts every substep intersection-free and
+// runs after this substep's velocity update: x itself is on the side to keep.
+vec3 previousPosition(uint n) {
+    float back = u_previousSides != 0u ? u_substep : 0.0;
+    return g_positions[n].xyz - back * g_velocities[n].xyz;
+}
 
 void addForce(uint node, vec3 f) {
     ivec3 q = ivec3(round(f * u_forceScale));

@@ -70,12 +70,14 @@
 #define GLC_BIND_NODE_TOI 49              // uint[nodes]: bits of the node's earliest time of impact in the
                                           // substep, in [0, 1] (non-negative floats order like their bits:
                                           // atomicMin); +inf bits when none
+#define GLC_BIND_OBJECT_TOI 50            // uint[objects]: the earliest time of impact of the object's nodes
+                                          // (SafeStep, decision 0024), bits as GLC_BIND_NODE_TOI
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 50
+#define GLC_BINDING_COUNT 51
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -181,7 +183,8 @@ struct GpuListCounter {
 #define GLC_STAT_CCD_CAPPED 7u           // CCD: pairs whose refinement ran out of budget ("may touch")
 #define GLC_STAT_CCD_BOXES 8u            // CCD: boxes of (t, u, v) evaluated (modulo 2^32)
 #define GLC_STAT_CCD_EARLIEST_TOI 9u     // CCD: bits of the earliest time of impact of the substep (+inf: none)
-#define GLC_STAT_COUNT 10
+#define GLC_STAT_SAFE_STEP_CUTS 10u      // SafeStep: node steps cut (summed over the substep's rounds)
+#define GLC_STAT_COUNT 11
 
 struct GpuCollisionCounters {
     GpuListCounter lists[GLC_LIST_COUNT]; // indexed by GLC_LIST_*

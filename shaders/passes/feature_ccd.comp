@@ -17,6 +17,7 @@
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
 #include "common/ccd.glsl"
+#include "common/contact_geometry.glsl"
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
 layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) readonly buffer PredictedPositionsBuf { vec4 g_predicted[]; };
@@ -27,6 +28,26 @@ layout(std430, binding = GLC_BIND_NODE_TOI) buffer NodeToiBuf { uint g_nodeToi[]
 uniform uint u_edgeEdge;       // 0: vertex-face pairs, 1: edge-edge pairs
 uniform uint u_budget;         // boxes one pair may evaluate (llvmpipe: <= 21844, docs/ccd.md)
 uniform float u_minSeparation; // m: 0 for true contact
+// 1 (the intersection-free response's safe step): a pair none of whose four nodes moves is not
+// tested. It cannot come to intersect within the substep, and a still pair that touches at x0
+// (a node frozen beside it) must not keep the safe step's rounds going.
+uniform uint u_skipStill;
+// 1 (the safe step): a pair counts as touching when it comes within min(u_minSeparation, d0/2),
+// d0 its distance at x0 (float closest points: any separation >= 0 keeps the CCD never late for
+// true contact, so their rounding is harmless). A pair arriving from afar is stopped short of
+// u_minSeparation, inside the thickness where the response pushes it apart; a pair already closer
+// may lose at most half its gap in a substep instead of being frozen for being close.
+uniform uint u_gapRelative;
+
+// Distance at x0 of the pair (vertex-face: s0 against s1 s2 s3; edge-edge: s0s1 against s2s3).
+float startDistance(vec3 s0, vec3 s1, vec3 s2, vec3 s3) {
+    if (u_edgeEdge == 0u) {
+        vec3 w = closestOnTriangle(s0, s1, s2, s3);
+        return length(s0 - (w.x * s1 + w.y * s2 + w.z * s3));
+    }
+    vec2 st = closestSegmentParams(s0, s1, s2, s3);
+    return length(mix(s0, s1, st.x) - mix(s2, s3, st.y));
+}
 
 // The pair's four nodes in the order of glcVertexFaceCcd / glcEdgeEdgeCcd.
 uvec4 pairNodes(uint i) {
@@ -48,7 +69,14 @@ void main() {
     uvec4 n = pairNodes(i);
     vec3 s0 = g_positions[n.x].xyz, s1 = g_positions[n.y].xyz, s2 = g_positions[n.z].xyz, s3 = g_positions[n.w].xyz;
     vec3 e0 = g_predicted[n.x].xyz, e1 = g_predicted[n.y].xyz, e2 = g_predicted[n.z].xyz, e3 = g_predicted[n.w].xyz;
-    bool hit = glcCcdInclusion(u_edgeEdge != 0u, s0, s1, s2, s3, e0, e1, e2, e3, u_minSeparation, int(u_budget));
+    if (u_skipStill != 0u && all(equal(s0, e0)) && all(equal(s1, e1)) && all(equal(s2, e2)) && all(equal(s3, e3)))
+        return;
+    float separation = u_minSeparation;
+    if (u_gapRelative != 0u) {
+        float halfGap = 0.5 * startDistance(s0, s1, s2, s3);
+        separation = halfGap < u_minSeparation ? halfGap : 0.0;
+    }
+    bool hit = glcCcdInclusion(u_edgeEdge != 0u, s0, s1, s2, s3, e0, e1, e2, e3, separation, int(u_budget));
     atomicAdd(g_counters.stats[GLC_STAT_CCD_BOXES], uint(glcCcdBoxes));
     if (glcCcdCapped) atomicAdd(g_counters.stats[GLC_STAT_CCD_CAPPED], 1u);
     if (!hit) return;

@@ -10,7 +10,10 @@
 // GLC_PREDICT (NodePredict, continuous detection; docs/ccd.md "In the engine"): only the
 // velocity half, v += h w f, and the predicted end position x1 = x + h v into
 // GLC_BIND_PREDICTED_POSITIONS; x stays the start of the substep for the collision stages, and
-// NodeUpdate (without GLC_FORCES) then adds the contact forces and moves x.
+// NodeUpdate (without GLC_FORCES) then adds the contact forces and moves x. With the
+// intersection-free response (decision 0024) NodePredict also adds the contact forces and applies
+// the ground to x1 (GLC_CONTACTS, GLC_GROUND): x1 is then the whole step, which the safe step
+// cuts where the CCD finds a possible contact, and there is no NodeUpdate.
 // Twin: cpu::nodeUpdate.
 #include "common/layout.glsl"
 
@@ -40,7 +43,7 @@ uniform uint u_nodeCount;
 #include "common/advance_node.glsl"
 
 #ifdef GLC_PREDICT
-void predictNode(uint i, vec3 f) {
+void predictNode(uint i, vec3 f, uint substep) {
     vec4 p = g_positions[i];
     if (p.w <= 0.0) { // pinned: held
         g_velocities[i] = vec4(0.0);
@@ -48,8 +51,15 @@ void predictNode(uint i, vec3 f) {
         return;
     }
     vec3 v = advancedVelocity(g_velocities[i].xyz, p.w, f);
+    vec3 x = advancedPosition(p.xyz, v);
+#ifdef GLC_GROUND
+    applyGround(x, v);
+#endif
     g_velocities[i] = vec4(v, 0.0);
-    g_predicted[i] = vec4(advancedPosition(p.xyz, v), p.w);
+    g_predicted[i] = vec4(x, p.w);
+#ifdef GLC_CHECK_FINITE
+    checkFinite(i, x, v, substep);
+#endif
 }
 #endif
 
@@ -64,8 +74,10 @@ void main() {
     f += vec3(g_contactForces[i].xyz) / u_contactForceScale;
     g_contactForces[i] = ivec4(0);
 #endif
-#if defined(GLC_PREDICT)
-    predictNode(i, f);
+#if defined(GLC_PREDICT) && defined(GLC_CHECK_FINITE)
+    predictNode(i, f, u_substep);
+#elif defined(GLC_PREDICT)
+    predictNode(i, f, 0u);
 #elif defined(GLC_CHECK_FINITE)
     advanceNode(i, f, u_substep);
 #else

@@ -69,6 +69,12 @@ nlohmann::json frameRecord(const Engine& engine) {
                              {"boxes", c.ccdBoxes},
                              {"earliest_toi", earliest}};
         }
+        if (s.safeStep)
+            record["safe_step"] = {{"substeps_cut", c.safeStepSubsteps},
+                                   {"node_steps_cut", c.safeStepCuts},
+                                   {"max_rounds", c.safeStepMaxRounds},
+                                   {"froze_all", c.safeStepFrozeAll}};
+        record["collision"]["substeps_with_intersections"] = c.substepsWithIntersections;
     }
     return record;
 }

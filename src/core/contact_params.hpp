@@ -4,6 +4,7 @@
 
 #include <glcollide/scene.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace glcollide {
@@ -22,6 +23,10 @@ struct ContactParams {
     /// Bridson (decision 0019): approaching pairs are stopped by an inelastic impulse and the
     /// penalty is limited to what separates them at depth / max(10·dt, relaxationTime).
     bool velocityResponse = false;
+    /// Sides of open surfaces from x − dt·v (decision 0019). Off for the intersection-free response
+    /// (decision 0024): its x is intersection-free and v is already this substep's, so the current
+    /// side is the one to keep.
+    bool sidesFromPrevious = true;
     double relaxationTime = 0.01; ///< s: the thickness is restored over at least this long (0.05 let cloth
                                   ///< sink into a pinned sphere)
 };
@@ -30,12 +35,23 @@ struct ContactParams {
 /// overflow. Each contributes at most forceCap, so the scale leaves room for this many.
 inline constexpr double kContactsPerNodeHeadroom = 1024.0;
 
+/// m: the separation the intersection-free response's safe step keeps (decision 0024): a pair may
+/// not come closer than this (or than half its distance at the start of the substep) within a
+/// substep. A quarter of the thickness, inside the band where the response pushes pairs apart;
+/// the scene's ccd.min_separation when that is larger, up to the thickness (the swept boxes are
+/// inflated by half of it per side: pairs closer than that are candidates, farther ones may not be).
+inline double safeStepSeparation(const CollisionSettings& s) {
+    return std::clamp(s.ccd.minSeparation, 0.25 * s.thickness, s.thickness);
+}
+
 inline ContactParams contactParams(const CollisionSettings& s) {
     ContactParams p;
     p.thickness = s.thickness;
     p.stiffness = s.stiffness;
     p.damping = s.damping;
-    p.velocityResponse = s.response == ContactResponse::Bridson;
+    p.velocityResponse =
+        s.response == ContactResponse::Bridson || s.response == ContactResponse::IntersectionFree;
+    p.sidesFromPrevious = s.response != ContactResponse::IntersectionFree;
     p.forceCap = 4.0 * s.stiffness * s.thickness;
     // Largest power of two with headroom·cap·scale ≤ 2^31 - 1: resolution cap·headroom/2^31
     // (~5e-7 of the cap), exact in float.

@@ -38,7 +38,9 @@ struct Solver {
     const glm::dvec3& x(std::uint32_t n) const { return (*in.positions)[n]; }
     const glm::dvec3& v(std::uint32_t n) const { return (*in.velocities)[n]; }
     double w(std::uint32_t n) const { return in.inverseMasses ? (*in.inverseMasses)[n] : 1.0; }
-    glm::dvec3 previous(std::uint32_t n) const { return x(n) - p.substep * v(n); }
+    glm::dvec3 previous(std::uint32_t n) const {
+        return x(n) - (p.sidesFromPrevious ? p.substep : 0.0) * v(n);
+    }
     double normalForce(double depth, double normalSpeed) const {
         return std::clamp(p.stiffness * depth - p.damping * normalSpeed, 0.0, p.forceCap);
     }

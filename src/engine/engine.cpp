@@ -16,6 +16,7 @@
 #include "passes/dynamics_passes.hpp"
 #include "passes/implicit_solver.hpp"
 #include "passes/row_layout.hpp"
+#include "passes/safe_step.hpp"
 
 #include <glcollide/error.hpp>
 #include <glcollide/gl_info.hpp>
@@ -65,6 +66,8 @@ struct Engine::Impl {
     std::optional<passes::SpringUpdatePass> springUpdate;
     std::optional<passes::NodeUpdatePass> nodeUpdate;
     std::optional<passes::NodePredictPass> nodePredict;
+    std::optional<passes::SafeStepPass> safeStep;
+    std::optional<passes::ContactApplyPass> contactApply;
     std::optional<passes::ImplicitSolverPass> implicitSolve;
     std::optional<passes::FrameStepPass> frameStep;
     FrameStepParams frameStepParams;
@@ -85,7 +88,8 @@ struct Engine::Impl {
     void substep(int index, bool lastOfFrame);
     void readHealth();
     void readSolverStats();
-    template <typename Pass, typename... Args> void run(const Pass& pass, Args&&... args);
+    void readContacts();
+    template <typename Pass, typename... Args> decltype(auto) run(const Pass& pass, Args&&... args);
 };
 
 void Engine::Impl::chooseSubsteps() {
@@ -136,6 +140,7 @@ void Engine::Impl::chooseSubsteps() {
     substeps.substepLength = dt / substeps.substeps;
     plan.nodeUpdateParams.h = substeps.substepLength;
     plan.nodePredictParams.h = substeps.substepLength;
+    plan.contactApplyParams.h = substeps.substepLength;
     plan.implicitParams.h = substeps.substepLength;
     plan.contact.substep = substeps.substepLength;
 }
@@ -198,10 +203,11 @@ void Engine::Impl::allocate() {
     for (passes::BufferId id : plan.bufferIds()) buffers[id] = makeBuffer(id);
 }
 
-template <typename Pass, typename... Args> void Engine::Impl::run(const Pass& pass, Args&&... args) {
+template <typename Pass, typename... Args>
+decltype(auto) Engine::Impl::run(const Pass& pass, Args&&... args) {
     const gl::TimedSection section(options.gpuTiming ? &timer : nullptr, passes::passIndex(Pass::kId),
                                    Pass::kName);
-    pass.dispatch(buffers, std::forward<Args>(args)...);
+    return pass.dispatch(buffers, std::forward<Args>(args)...);
 }
 
 Engine::Engine(const Scene& scene, const EngineOptions& options) {
@@ -228,6 +234,8 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
     d.plan = engine::planPipeline(scene);
     d.model = model::flatten(scene);
     d.plan.nodeUpdateParams.checkFinite = options.checkFinite;
+    // With the safe step there is no NodeUpdate: NodePredict checks the new state.
+    if (d.plan.safeStep) d.plan.nodePredictParams.checkFinite = options.checkFinite;
     d.chooseSubsteps();
     d.allocate();
     d.plan.frameStep = options.frameStep && d.plan.nodeUpdate && !d.plan.implicitSolve &&
@@ -240,6 +248,7 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
     d.stats.substeps = d.substeps.substeps;
     d.stats.collisions = d.plan.collisions;
     d.stats.continuous = d.plan.continuous;
+    d.stats.safeStep = d.plan.safeStep;
     for (const std::string& name : d.passNames) d.stats.passes.push_back({name, 0.0});
     m_impl = std::move(impl);
 }
@@ -267,6 +276,13 @@ void Engine::Impl::makePass(engine::Stage stage) {
         break;
     case Stage::NodePredict:
         nodePredict.emplace(plan.nodePredictParams);
+        break;
+    case Stage::ContactIterations:
+        contact.emplace();
+        contactApply.emplace(plan.contactApplyParams);
+        break;
+    case Stage::SafeStep:
+        safeStep.emplace(passes::SafeStepSettings{}, static_cast<std::uint32_t>(model.objects.size()));
         break;
     case Stage::FrameStep: {
         FrameStepParams& f = frameStepParams;
@@ -342,6 +358,15 @@ void addSubstepCounts(const passes::CollisionCounts& counts, CollisionStats& c) 
     c.ccdBoxes = counts.ccdBoxes;
     c.ccdEarliestToi = std::min(c.ccdEarliestToi, counts.ccdEarliestToi);
     c.ccdCappedInFrame += counts.ccdCapped;
+    c.substepsWithIntersections += counts.intersections > 0 ? 1u : 0u;
+}
+
+/// Folds one substep's safe step into the frame's statistics.
+void addSafeStepCounts(const passes::SafeStepCounts& counts, CollisionStats& c) {
+    c.safeStepSubsteps += counts.rounds > 0 ? 1u : 0u;
+    c.safeStepCuts += counts.cuts;
+    c.safeStepMaxRounds = std::max(c.safeStepMaxRounds, counts.rounds);
+    c.safeStepFrozeAll += counts.frozeAll ? 1u : 0u;
 }
 } // namespace
 
@@ -367,17 +392,27 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             run(*contact,
                 passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects()},
                 plan.contact);
-            // detect() cleared the response's contact counter; it is read after the last substep.
-            if (lastOfFrame) {
-                glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-                collision->counters().download(offsetof(gpu::GpuCollisionCounters, stats) +
-                                                   GLC_STAT_CONTACTS * sizeof(std::uint32_t),
-                                               sizeof stats.collision.contacts, &stats.collision.contacts);
+            if (lastOfFrame) readContacts();
+            break;
+        case Stage::ContactIterations:
+            for (int k = 0; k < plan.responseIterations; ++k) {
+                run(*contact,
+                    passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects()},
+                    plan.contact);
+                if (lastOfFrame && k == 0) readContacts(); // the contacts, not their iterations
+                run(*contactApply, plan.contactApplyParams, static_cast<std::uint32_t>(index));
             }
             break;
         case Stage::NodePredict:
-            run(*nodePredict, plan.nodePredictParams);
+            run(*nodePredict, plan.nodePredictParams, static_cast<std::uint32_t>(index));
             break;
+        case Stage::SafeStep: {
+            const passes::CollisionCounts& found = collision->lastCounts();
+            addSafeStepCounts(run(*safeStep, *collision, substeps.substepLength,
+                                  found.ccdVertexFaceHits + found.ccdEdgeEdgeHits),
+                              stats.collision);
+            break;
+        }
         case Stage::NodeUpdate:
             run(*nodeUpdate, plan.nodeUpdateParams, static_cast<std::uint32_t>(index));
             break;
@@ -386,6 +421,15 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             break; // every substep of the frame
         }
     }
+}
+
+/// The contacts the response found in the last substep (its count in the counter block, which
+/// detect() clears).
+void Engine::Impl::readContacts() {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    collision->counters().download(offsetof(gpu::GpuCollisionCounters, stats) +
+                                       GLC_STAT_CONTACTS * sizeof(std::uint32_t),
+                                   sizeof stats.collision.contacts, &stats.collision.contacts);
 }
 
 void Engine::Impl::readSolverStats() {

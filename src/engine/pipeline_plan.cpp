@@ -8,6 +8,7 @@ namespace glcollide::engine {
 
 std::vector<Stage> PipelinePlan::stages() const {
     if (frameStep) return {Stage::FrameStep};
+    if (safeStep) return safeStepStages();
     std::vector<Stage> s;
     if (nodeForce) s.push_back(Stage::NodeForce);
     if (springUpdate) s.push_back(Stage::SpringUpdate);
@@ -24,6 +25,21 @@ std::vector<Stage> PipelinePlan::stages() const {
     }
     if (collisions) s.push_back(Stage::ContactResponse);
     if (nodeUpdate) s.push_back(Stage::NodeUpdate);
+    return s;
+}
+
+/// The intersection-free response's substep (decision 0024): the forces and the solve give v and
+/// NodePredict the step x1 they lead to; the contact response, iterated, acts on the pairs the last
+/// substep's swept detection found (they include every pair within the thickness at x0, whose
+/// boxes lie inside the last substep's swept boxes) and ContactApply moves v and x1 after each
+/// iteration; the detection runs over [x0, x1] with CCD; SafeStep cuts and commits.
+std::vector<Stage> PipelinePlan::safeStepStages() const {
+    std::vector<Stage> s;
+    if (nodeForce) s.push_back(Stage::NodeForce);
+    if (springUpdate) s.push_back(Stage::SpringUpdate);
+    if (implicitSolve) s.push_back(Stage::ImplicitSolve);
+    s.insert(s.end(),
+             {Stage::NodePredict, Stage::ContactIterations, Stage::CollisionDetection, Stage::SafeStep});
     return s;
 }
 
@@ -54,6 +70,13 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
             break;
         case Stage::ContactResponse:
             p.push_back(PassId::ContactResponse);
+            break;
+        case Stage::SafeStep:
+            p.push_back(PassId::SafeStep);
+            break;
+        case Stage::ContactIterations:
+            p.push_back(PassId::ContactResponse);
+            p.push_back(PassId::ContactApply);
             break;
         case Stage::NodeUpdate:
             p.push_back(PassId::NodeUpdate);
@@ -150,13 +173,29 @@ PipelinePlan planPipeline(const Scene& scene) {
         // NodePredict applies the forces (v += h·M⁻¹f; nothing under implicit Euler, whose solve
         // set v) and NodeUpdate only adds the contact forces and moves x.
         plan.nodePredictParams = nu;
+        plan.nodePredictParams.contacts = false; // NodeUpdate adds them after the response
         nu.forces = false;
     }
+    plan.safeStep = plan.continuous && scene.collision.response == ContactResponse::IntersectionFree;
     nu.contactForceScale = plan.contact.forceScale;
     nu.ground = fx.has(Effect::Ground);
     nu.groundHeight = scene.ground.height;
     nu.restitution = scene.ground.restitution;
     nu.friction = scene.ground.friction;
+    if (plan.safeStep) {
+        // x1 is the whole step with the ground (SafeStep then commits it; there is no NodeUpdate):
+        // NodePredict applies the forces, ContactApply each response iteration's contact forces.
+        NodeUpdateParams& np = plan.nodePredictParams;
+        np.ground = nu.ground;
+        np.groundHeight = nu.groundHeight;
+        np.restitution = nu.restitution;
+        np.friction = nu.friction;
+        NodeUpdateParams& ca = plan.contactApplyParams;
+        ca = np;
+        ca.forces = false;
+        ca.contacts = true;
+        ca.contactForceScale = nu.contactForceScale;
+    }
     return plan;
 }
 

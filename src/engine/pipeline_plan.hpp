@@ -25,6 +25,8 @@ enum class Stage : std::uint8_t {
     CollisionDetection, ///< broad phase, TriTri and FeaturePairs (their own PassIds)
     ImplicitSolve,      ///< implicit Euler: the springs' linear solve, v += Δv
     ContactResponse,    ///< contact forces or impulses on the feature pairs
+    SafeStep,           ///< intersection-free response: steps cut to before the first contact, committed
+    ContactIterations,  ///< intersection-free response: (ContactResponse, ContactApply) × responseIterations
     NodeUpdate,         ///< velocities and positions, pins, ground
     FrameStep           ///< a whole frame of SpringUpdate + NodeUpdate in one dispatch (once per frame)
 };
@@ -53,11 +55,21 @@ struct PipelinePlan {
     /// which run on [x0, x1] (swept boxes, CCD); NodeUpdate then runs without forces.
     bool continuous = false;
     NodeUpdateParams nodePredictParams; ///< NodePredict's forces and h (continuous only)
+    /// collision.response = intersection_free (decision 0024): ContactResponse acts on the previous
+    /// substep's feature pairs at x0, NodePredict adds its forces and the ground to x1, and SafeStep
+    /// cuts the steps the CCD finds unsafe and commits x1 (no NodeUpdate).
+    bool safeStep = false;
+    /// Safe step: the velocity response runs this many times, each followed by ContactApply (its
+    /// forces into v and x1), so a node in several contacts converges towards stopping all of
+    /// their approaches instead of the single Jacobi average (decision 0024).
+    int responseIterations = 4;
+    NodeUpdateParams contactApplyParams; ///< safe step: ContactApply (contacts and ground only)
     CollisionSettings collision;
     ContactParams contact;
 
     /// What a substep runs, in order: the one place that states the substep's order.
     [[nodiscard]] std::vector<Stage> stages() const;
+    [[nodiscard]] std::vector<Stage> safeStepStages() const; ///< stages() of the intersection-free response
     /// The passes a substep dispatches, in order (stages() with the collision detection expanded
     /// into its passes).
     [[nodiscard]] std::vector<passes::PassId> passIds() const;

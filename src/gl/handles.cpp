@@ -85,6 +85,19 @@ void Buffer::download(std::size_t offset, std::size_t bytes, void* out) const {
     glBindBuffer(GL_COPY_READ_BUFFER, 0);
 }
 
+void copyBufferData(const Buffer& source, const Buffer& target, std::size_t bytes) {
+    if (bytes == 0) return;
+    if (bytes > source.bytes() || bytes > target.bytes())
+        throw Error("copyBufferData: " + std::to_string(bytes) + " bytes from '" + source.label() + "' (" +
+                    std::to_string(source.bytes()) + ") to '" + target.label() + "' (" +
+                    std::to_string(target.bytes()) + ")");
+    glBindBuffer(GL_COPY_READ_BUFFER, source.name());
+    glBindBuffer(GL_COPY_WRITE_BUFFER, target.name());
+    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, static_cast<GLsizeiptr>(bytes));
+    glBindBuffer(GL_COPY_READ_BUFFER, 0);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+}
+
 void Buffer::bindStorage(std::uint32_t binding) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, name());
 }

@@ -72,6 +72,9 @@ class Buffer {
     std::string m_label;
 };
 
+/// Copies the first `bytes` of `source` into `target` on the GPU (glCopyBufferSubData).
+void copyBufferData(const Buffer& source, const Buffer& target, std::size_t bytes);
+
 /// A buffer holding a copy of `data` (a placeholder when empty).
 template <typename T> Buffer makeBuffer(std::string_view label, const std::vector<T>& data) {
     return Buffer(label, data.size() * sizeof(T), data.empty() ? nullptr : data.data());

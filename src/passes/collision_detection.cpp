@@ -1,5 +1,7 @@
 #include "passes/collision_detection.hpp"
 
+#include "core/contact_params.hpp"
+
 #include "model/face_box.hpp"
 #include "core/gpu_layout.hpp"
 #include "passes/broad_phase/create_broad_phase.hpp"
@@ -74,7 +76,29 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const mode
         m_ccd.emplace(static_cast<std::uint32_t>(model.nodeCount()), s.ccd.budget,
                       static_cast<float>(s.ccd.minSeparation));
         m_ccd->addStages(m_chain, *m_lists);
+        // The safe step cuts moving nodes only: a still pair must not keep its rounds going.
+        if (s.response == ContactResponse::IntersectionFree) {
+            m_ccd->skipStillPairs(true);
+            m_ccd->relativeSeparation(true, static_cast<float>(safeStepSeparation(s)));
+        }
     }
+}
+
+std::uint32_t CollisionDetection::recheckCcd(const DeviceBuffers& buffers) {
+    if (!m_ccd) throw Error("CollisionDetection::recheckCcd: needs continuous detection");
+    bindRequired(buffers.positions, GLC_BIND_NODE_POSITIONS, "Ccd", "positions");
+    bindRequired(buffers.faces, GLC_BIND_FACES, "Ccd", "faces");
+    bindRequired(buffers.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, "Ccd", "predictedPositions");
+    m_ccd->bind();
+    m_lists->bind();
+    m_ccd->run(*m_lists);
+    m_lists->readCounters();
+    return m_lists->stat(GLC_STAT_CCD_VERTEX_FACE_HITS) + m_lists->stat(GLC_STAT_CCD_EDGE_EDGE_HITS);
+}
+
+std::uint32_t CollisionDetection::readStat(std::uint32_t id) {
+    m_lists->readCounters();
+    return m_lists->stat(id);
 }
 
 const gl::Buffer& CollisionDetection::nodeToi() const {

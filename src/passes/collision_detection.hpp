@@ -106,6 +106,13 @@ class CollisionDetection {
     /// per rerun.
     CollisionCounts detect(const DeviceBuffers& buffers, gl::GpuTimer* timer);
 
+    /// Continuous detection: the Ccd stage again, on the lists of the last detect(), over
+    /// buffers.positions and the (since changed) buffers.predictedPositions. Returns the pairs that
+    /// may touch (vertex-face and edge-edge); one read-back. The safe step's check (decision 0024).
+    std::uint32_t recheckCcd(const DeviceBuffers& buffers);
+    /// The counter block's statistic `id` (GLC_STAT_*), read back now.
+    std::uint32_t readStat(std::uint32_t id);
+
     /// uvec2 face pairs (lower, higher); the first lastCounts().candidates are valid.
     [[nodiscard]] const gl::Buffer& candidates() const { return m_lists->storage(GLC_LIST_CANDIDATES); }
     /// uvec2 face pairs (lower, higher); the first lastCounts().intersections are valid.

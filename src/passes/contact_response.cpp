@@ -31,6 +31,7 @@ void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& 
         p->set("u_substep", static_cast<float>(params.substep));
         p->set("u_velocityResponse", params.velocityResponse ? 1u : 0u);
         p->set("u_relaxationTime", static_cast<float>(params.relaxationTime));
+        p->set("u_previousSides", params.sidesFromPrevious ? 1u : 0u);
     }
     // Sized on the GPU from each list's count; each dispatch ends with a storage barrier. First
     // both kernels count the approaching contacts per node (every count complete before any

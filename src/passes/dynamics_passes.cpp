@@ -75,42 +75,52 @@ void SpringUpdatePass::dispatch(const DeviceBuffers& b, const SpringUpdateParams
     layout.dispatch(m_program);
 }
 
+namespace {
+// NodeUpdate's and NodePredict's buffers and uniforms (one shader, node_update.comp).
+void bindNodeUpdate(const gl::ComputeProgram& program, const DeviceBuffers& b, const NodeUpdateParams& config,
+                    const NodeUpdateParams& params, std::uint32_t substep, const char* name) {
+    bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, name, "positions");
+    bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, name, "velocities");
+    if (config.forces) bindRequired(b.forces, GLC_BIND_NODE_FORCES, name, "forces");
+    if (config.contacts) {
+        bindRequired(b.contactForces, GLC_BIND_CONTACT_FORCES, name, "contactForces");
+        program.set("u_contactForceScale", static_cast<float>(params.contactForceScale));
+    }
+    if (config.checkFinite) {
+        bindRequired(b.health, GLC_BIND_HEALTH, name, "health");
+        program.set("u_substep", substep);
+    }
+    program.set("u_h", static_cast<float>(params.h));
+    if (config.ground) {
+        program.set("u_groundHeight", static_cast<float>(params.groundHeight));
+        program.set("u_restitution", static_cast<float>(params.restitution));
+        program.set("u_friction", static_cast<float>(params.friction));
+    }
+}
+
+std::vector<std::string> nodePredictDefines(const NodeUpdateParams& config) {
+    std::vector<std::string> d = nodeUpdateDefines(config);
+    d.emplace_back("GLC_PREDICT");
+    return d;
+}
+} // namespace
+
 NodeUpdatePass::NodeUpdatePass(const NodeUpdateParams& config)
     : m_config(config), m_program("node_update", nodeUpdateDefines(config)) {}
 
 void NodeUpdatePass::dispatch(const DeviceBuffers& b, const NodeUpdateParams& params,
                               std::uint32_t substep) const {
-    bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
-    bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
-    if (m_config.forces) bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
-    if (m_config.contacts) {
-        bindRequired(b.contactForces, GLC_BIND_CONTACT_FORCES, kName, "contactForces");
-        m_program.set("u_contactForceScale", static_cast<float>(params.contactForceScale));
-    }
-    if (m_config.checkFinite) {
-        bindRequired(b.health, GLC_BIND_HEALTH, kName, "health");
-        m_program.set("u_substep", substep);
-    }
-    m_program.set("u_h", static_cast<float>(params.h));
-    if (m_config.ground) {
-        m_program.set("u_groundHeight", static_cast<float>(params.groundHeight));
-        m_program.set("u_restitution", static_cast<float>(params.restitution));
-        m_program.set("u_friction", static_cast<float>(params.friction));
-    }
+    bindNodeUpdate(m_program, b, m_config, params, substep, kName);
     finish(m_program, b.nodeCount);
 }
 
 NodePredictPass::NodePredictPass(const NodeUpdateParams& config)
-    : m_config(config),
-      m_program("node_update", config.forces ? std::vector<std::string>{"GLC_PREDICT", "GLC_FORCES"}
-                                             : std::vector<std::string>{"GLC_PREDICT"}) {}
+    : m_config(config), m_program("node_update", nodePredictDefines(config)) {}
 
-void NodePredictPass::dispatch(const DeviceBuffers& b, const NodeUpdateParams& params) const {
-    bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
-    bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
+void NodePredictPass::dispatch(const DeviceBuffers& b, const NodeUpdateParams& params,
+                               std::uint32_t substep) const {
+    bindNodeUpdate(m_program, b, m_config, params, substep, kName);
     bindRequired(b.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, kName, "predictedPositions");
-    if (m_config.forces) bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
-    m_program.set("u_h", static_cast<float>(params.h));
     finish(m_program, b.nodeCount);
 }
 

@@ -59,16 +59,36 @@ class NodeUpdatePass {
 /// Continuous detection's first half of NodeUpdate (node_update.comp with GLC_PREDICT): the
 /// velocity step with the forces (none under implicit Euler, whose solve already set v) and the
 /// predicted end positions into buffers.predictedPositions. NodeUpdate then runs without forces.
+/// The intersection-free response's NodePredict also adds the contact forces and applies the
+/// ground (config.contacts, config.ground): x1 is the whole step, which SafeStep commits.
 class NodePredictPass {
   public:
     static constexpr PassId kId = PassId::NodePredict;
     static constexpr const char* kName = passName(kId);
     explicit NodePredictPass(const NodeUpdateParams& config);
-    void dispatch(const DeviceBuffers& buffers, const NodeUpdateParams& params) const;
+    void dispatch(const DeviceBuffers& buffers, const NodeUpdateParams& params,
+                  std::uint32_t substep = 0) const;
 
   private:
     NodeUpdateParams m_config;
     gl::ComputeProgram m_program;
+};
+
+/// The intersection-free response's ContactApply (node_update.comp with GLC_PREDICT and
+/// GLC_CONTACTS, no forces): one response iteration's contact forces into v, x1 = x0 + h·v again,
+/// the ground. NodePredict's program with another identity (its own timer section).
+class ContactApplyPass {
+  public:
+    static constexpr PassId kId = PassId::ContactApply;
+    static constexpr const char* kName = passName(kId);
+    explicit ContactApplyPass(const NodeUpdateParams& config) : m_predict(config) {}
+    void dispatch(const DeviceBuffers& buffers, const NodeUpdateParams& params,
+                  std::uint32_t substep = 0) const {
+        m_predict.dispatch(buffers, params, substep);
+    }
+
+  private:
+    NodePredictPass m_predict;
 };
 
 /// Every substep of a frame in one dispatch (shaders/passes/frame_step.comp): for small scenes

@@ -544,8 +544,19 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
             s.response = ContactResponse::Penalty;
         else if (name == "bridson")
             s.response = ContactResponse::Bridson;
+        else if (name == "intersection_free")
+            s.response = ContactResponse::IntersectionFree;
         else
-            c.fail(p / "response", "unknown response " + shown(*v) + "; expected \"penalty\" or \"bridson\"");
+            c.fail(p / "response", "unknown response " + shown(*v) +
+                                       "; expected \"penalty\", \"bridson\" or \"intersection_free\"");
+        // The safe step reads the continuous detection's times of impact: it is this response's
+        // default detection, and discrete detection cannot serve it.
+        if (s.response == ContactResponse::IntersectionFree) {
+            if (!find(j, "detection"))
+                s.detection = Detection::Continuous;
+            else if (s.detection != Detection::Continuous)
+                c.fail(p / "detection", "the intersection_free response needs \"detection\": \"continuous\"");
+        }
     }
     if (const json* v = find(j, "thickness")) {
         s.thickness = number(c, *v, p / "thickness", "a positive number of metres");

@@ -47,6 +47,8 @@ void validateScene(const Scene& scene) {
     if (!(col.damping >= 0.0) || !std::isfinite(col.damping))
         fail("collision.damping must be finite and >= 0");
     if (col.initialCapacity < 1) fail("collision.initial_capacity must be >= 1");
+    if (col.response == ContactResponse::IntersectionFree && col.detection != Detection::Continuous)
+        fail("collision.response intersection_free needs collision.detection continuous");
 
     for (std::size_t bi = 0; bi < scene.bodies.size(); ++bi) {
         const Body& b = scene.bodies[bi];

@@ -104,6 +104,42 @@ TEST(PipelinePlan, ContinuousDetectionPredictsBeforeItDetects) {
     EXPECT_EQ(plan.stages(), (std::vector<Stage>{Stage::ImplicitSolve, Stage::NodeUpdate}));
 }
 
+// The intersection-free response (decision 0024): the forces and the solve give v, NodePredict the
+// whole step, the response iterations move v and x1, the detection checks [x0, x1] and SafeStep
+// commits; there is no NodeUpdate.
+TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
+    using engine::Stage;
+    Scene scene = twoNodeScene(10, 0, 1);
+    scene.bodies[0].faces = {{0, 1, 0}};
+    scene.effects = {Effect::Gravity, Effect::Springs, Effect::Collisions, Effect::Ground};
+    scene.collision.detection = Detection::Continuous;
+    scene.collision.response = ContactResponse::IntersectionFree;
+    engine::PipelinePlan plan = engine::planPipeline(scene);
+    EXPECT_TRUE(plan.safeStep);
+    EXPECT_EQ(plan.stages(),
+              (std::vector<Stage>{Stage::SpringUpdate, Stage::NodePredict, Stage::ContactIterations,
+                                  Stage::CollisionDetection, Stage::SafeStep}));
+    EXPECT_EQ(plan.passes(), (std::vector<std::string>{"SpringUpdate", "NodePredict", "ContactResponse",
+                                                       "ContactApply", "BBUpdate", "BBCollision", "TriTri",
+                                                       "FeaturePairs", "Ccd", "SafeStep"}));
+    // x1 is the whole step: forces and ground in NodePredict, contacts and ground in ContactApply.
+    EXPECT_TRUE(plan.nodePredictParams.forces);
+    EXPECT_FALSE(plan.nodePredictParams.contacts);
+    EXPECT_TRUE(plan.nodePredictParams.ground);
+    EXPECT_FALSE(plan.contactApplyParams.forces);
+    EXPECT_TRUE(plan.contactApplyParams.contacts);
+    EXPECT_TRUE(plan.contactApplyParams.ground);
+    // Sides of open surfaces from x itself: it is intersection-free at the start of every substep.
+    EXPECT_FALSE(plan.contact.sidesFromPrevious);
+    EXPECT_TRUE(plan.contact.velocityResponse);
+    scene.time.integrator = Integrator::ImplicitEuler;
+    plan = engine::planPipeline(scene);
+    EXPECT_EQ(plan.stages(),
+              (std::vector<Stage>{Stage::ImplicitSolve, Stage::NodePredict, Stage::ContactIterations,
+                                  Stage::CollisionDetection, Stage::SafeStep}));
+    EXPECT_FALSE(plan.nodePredictParams.forces); // the solve set v
+}
+
 TEST(PipelinePlan, EmptySceneRunsNothing) {
     Scene scene;
     scene.effects = {Effect::Gravity};

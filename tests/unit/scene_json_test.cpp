@@ -268,7 +268,19 @@ TEST(SceneJson, SettingsAndEffects) {
     EXPECT_THAT(
         errorOf(
             scene(kCloth, R"("collision": {"response": "impulse"})", R"(["springs", "self_collisions"])")),
-        HasSubstr("/collision/response: unknown response \"impulse\"; expected \"penalty\" or \"bridson\""));
+        HasSubstr("/collision/response: unknown response \"impulse\"; expected \"penalty\", \"bridson\" or "
+                  "\"intersection_free\""));
+    // The intersection-free response reads the CCD: continuous detection is its default, and
+    // discrete detection is an error.
+    const Scene safe = parse(scene(kCloth, R"("collision": {"response": "intersection_free"})",
+                                   R"(["springs", "self_collisions"])"));
+    EXPECT_EQ(safe.collision.response, ContactResponse::IntersectionFree);
+    EXPECT_EQ(safe.collision.detection, Detection::Continuous);
+    EXPECT_THAT(
+        errorOf(scene(kCloth, R"("collision": {"response": "intersection_free", "detection": "discrete"})",
+                      R"(["springs", "self_collisions"])")),
+        HasSubstr(
+            "/collision/detection: the intersection_free response needs \"detection\": \"continuous\""));
     EXPECT_EQ(c.collision.thickness, 0.002);
     EXPECT_EQ(c.collision.stiffness, 500.0);
     EXPECT_EQ(c.collision.damping, 0.1);

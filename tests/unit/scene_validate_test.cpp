@@ -50,6 +50,8 @@ TEST(SceneValidate, AcceptsAValidScene) {
 }
 
 TEST(SceneValidate, RejectsBrokenInvariants) {
+    EXPECT_THAT(errorAfter([](Scene& s) { s.collision.response = ContactResponse::IntersectionFree; }),
+                HasSubstr("intersection_free needs collision.detection continuous"));
     EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].masses.pop_back(); }),
                 HasSubstr("body 0 'pair': per-node vectors differ in length"));
     EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].masses[1] = 0; }),

@@ -26,6 +26,7 @@ constexpr std::array<CollisionStatSpec, GLC_STAT_COUNT> kCollisionStats = {{
     {"ccd_capped", 0u, true},
     {"ccd_boxes", 0u, true},
     {"ccd_earliest_toi", kPlusInfinityBits, true},
+    {"safe_step_cuts", 0u, false},
 }};
 constexpr std::size_t kArgsPerList = 3 * sizeof(std::uint32_t); // glDispatchComputeIndirect's x, y, z
 } // namespace

@@ -25,6 +25,8 @@ FeatureCcd::FeatureCcd(std::uint32_t nodeCount, std::uint32_t budget, float minS
     if (!(minSeparation >= 0.0f)) throw Error("collision: ccd min_separation must be >= 0");
     m_program.set("u_budget", budget);
     m_program.set("u_minSeparation", minSeparation);
+    skipStillPairs(false);
+    relativeSeparation(false, minSeparation);
 }
 
 void FeatureCcd::bind() const {

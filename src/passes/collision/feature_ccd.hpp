@@ -26,10 +26,19 @@ class FeatureCcd {
     void bind() const;
     /// uint per node: the bits of its earliest time of impact in [0, 1], +inf bits when none.
     [[nodiscard]] const gl::Buffer& nodeToi() const { return m_nodeToi; }
-
-  private:
+    /// Pairs whose four nodes do not move are not tested (the safe step, decision 0024).
+    void skipStillPairs(bool skip) { m_program.set("u_skipStill", skip ? 1u : 0u); }
+    /// A pair touches when it comes within min(minSeparation, half its distance at x0) (the safe
+    /// step, decision 0024) instead of within minSeparation.
+    void relativeSeparation(bool relative, float minSeparation) {
+        m_program.set("u_gapRelative", relative ? 1u : 0u);
+        m_program.set("u_minSeparation", minSeparation);
+    }
+    /// The stage itself: resets the times of impact and the CCD statistics, tests every pair.
+    /// Expects the positions, the predicted positions, the lists and bind() bound.
     void run(AppendLists& lists);
 
+  private:
     gl::Buffer m_nodeToi;
     gl::ComputeProgram m_program;
 };

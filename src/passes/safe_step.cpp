@@ -1,0 +1,75 @@
+#include "passes/safe_step.hpp"
+
+#include "core/gpu_layout.hpp"
+
+#include <glcollide/error.hpp>
+
+#include <epoxy/gl.h>
+
+#include <string>
+#include <vector>
+
+namespace glcollide::passes {
+
+namespace {
+constexpr std::uint32_t kNoImpact = 0x7F800000u; // bits of +inf: above every time in [0, 1]
+} // namespace
+
+SafeStepPass::SafeStepPass(const SafeStepSettings& settings, std::uint32_t objectCount)
+    : m_settings(settings), m_objectCount(objectCount),
+      m_objectToi(gl::makeBuffer("objectToi", std::vector<std::uint32_t>(objectCount, kNoImpact))),
+      m_program("safe_step") {
+    if (!(settings.fraction > 0.0f && settings.fraction < 1.0f))
+        throw Error("SafeStep: fraction must be in (0, 1), got " + std::to_string(settings.fraction));
+    if (settings.maxRounds < settings.cutRounds)
+        throw Error("SafeStep: maxRounds must be at least cutRounds");
+}
+
+void SafeStepPass::cut(const DeviceBuffers& b, const CollisionDetection& collision, float fraction,
+                       bool everyNode) const {
+    bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
+    bindRequired(b.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, kName, "predictedPositions");
+    bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
+    bindRequired(collision.nodeToi(), GLC_BIND_NODE_TOI, kName, "nodeToi");
+    bindRequired(collision.counters(), GLC_BIND_COLLISION_COUNTERS, kName, "collisionCounters");
+    bindRequired(collision.objects(), GLC_BIND_OBJECTS, kName, "objects");
+    m_objectToi.bindStorage(GLC_BIND_OBJECT_TOI);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after the last round's reads of the times
+    m_objectToi.fill32(kNoImpact);
+    m_program.use();
+    m_program.set("u_nodeCount", b.nodeCount);
+    m_program.set("u_objectCount", m_objectCount);
+    m_program.set("u_fraction", fraction);
+    m_program.set("u_everyNode", everyNode ? 1u : 0u);
+    for (const std::uint32_t reduce : {1u, 0u}) { // the objects' earliest times, then the cut
+        m_program.set("u_reduce", reduce);
+        m_program.dispatch1D(b.nodeCount, GLC_WORKGROUP_SIZE);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    }
+}
+
+SafeStepCounts SafeStepPass::dispatch(const DeviceBuffers& b, CollisionDetection& collision, double h,
+                                      std::uint32_t mayTouch) const {
+    m_program.set("u_h", static_cast<float>(h));
+    SafeStepCounts counts;
+    // Round r cuts the steps of the nodes of every pair that may touch, then checks again. The
+    // cut rounds move a node to a fraction of its time of impact; the later rounds freeze it.
+    while (mayTouch > 0) {
+        if (counts.rounds == m_settings.maxRounds) {
+            cut(b, collision, 0.0f, true); // the last resort: nothing moves, so nothing can cross
+            counts.frozeAll = true;
+            break;
+        }
+        const float fraction = counts.rounds < m_settings.cutRounds ? m_settings.fraction : 0.0f;
+        cut(b, collision, fraction, false);
+        ++counts.rounds;
+        mayTouch = collision.recheckCcd(b);
+    }
+    if (counts.rounds > 0) counts.cuts = collision.readStat(GLC_STAT_SAFE_STEP_CUTS);
+    // x1 is safe: it becomes the positions (vec4 with the inverse mass, as NodePredict wrote it).
+    gl::copyBufferData(b.predictedPositions, b.positions, std::size_t{b.nodeCount} * 4 * sizeof(float));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    return counts;
+}
+
+} // namespace glcollide::passes

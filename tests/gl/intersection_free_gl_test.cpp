@@ -1,0 +1,170 @@
+// The intersection-free response (decision 0024, docs/collisions.md "Intersection-free
+// response"): from an intersection-free start no face pair that the scene's effects make collide
+// intersects at the end of any substep, whatever the step. Checked two ways on every case: the
+// engine's own robust TriTri (exact answers, decision 0007) at the start of every substep
+// (CollisionStats::maxIntersectingPairs), and at the end by the exact oracle on the CPU over every
+// valid face pair whose boxes overlap (cpu::twinCandidates + cpu::twinIntersections), which shares
+// no code with the engine's passes. Under implicit Euler, whose step dissipates, the total energy
+// must not grow from frame to frame either.
+
+#include "cpu/collision_twin.hpp"
+
+#include <glcollide/engine.hpp>
+#include <glcollide/scene.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <string>
+
+namespace glcollide {
+namespace {
+
+/// Intersecting valid face pairs of the engine's current positions, by the exact CPU oracle.
+std::size_t exactIntersectingPairs(const Engine& engine) {
+    const Scene& scene = engine.scene();
+    std::vector<std::uint32_t> faces, faceObject;
+    const std::vector<std::uint32_t> first = engine.bodyFirstNodes();
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+        for (const auto& f : scene.bodies[b].faces) {
+            for (int k = 0; k < 3; ++k) faces.push_back(first[b] + f[k]);
+            faceObject.push_back(static_cast<std::uint32_t>(b));
+        }
+    std::vector<glm::vec3> x;
+    for (const glm::dvec3& p : engine.readPositions()) x.emplace_back(p);
+    cpu::PairRules rules;
+    rules.betweenObjects = scene.effects.has(Effect::Collisions);
+    rules.selfCollisions = scene.effects.has(Effect::SelfCollisions);
+    const std::vector<cpu::FacePair> candidates =
+        cpu::twinCandidates(faces, faceObject, x, scene.collision.thickness, rules);
+    return cpu::twinIntersections(faces, x, candidates).size();
+}
+
+/// Energy may not grow from one frame to the next under implicit Euler. Tolerance: the energy is
+/// summed in double from float positions and velocities (relative resolution 2^-24 per term);
+/// 1e-6 of the largest energy seen covers a few thousand such terms.
+struct EnergyWatch {
+    double previous, largest;
+    explicit EnergyWatch(const Engine& e) : previous(e.energy().total()), largest(std::abs(previous)) {}
+    ::testing::AssertionResult next(const Engine& e, int frame) {
+        const double now = e.energy().total();
+        largest = std::max(largest, std::abs(now));
+        const double allowed = previous + 1e-6 * largest;
+        const double before = previous;
+        previous = now;
+        if (now <= allowed) return ::testing::AssertionSuccess();
+        return ::testing::AssertionFailure() << "frame " << frame << ": energy " << before << " -> " << now;
+    }
+};
+
+std::string pinnedBorder(int n) {
+    std::ostringstream s;
+    s << "[";
+    bool firstIndex = true;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            if (i == 0 || j == 0 || i == n - 1 || j == n - 1) {
+                s << (firstIndex ? "" : ", ") << i * n + j;
+                firstIndex = false;
+            }
+    s << "]";
+    return s.str();
+}
+
+// The issue's fast ball: 6 cm at 12 m/s onto a cloth pinned along its border, implicit Euler at
+// one substep per frame. Discrete detection lets it through (ContinuousEngineGl); here it stays
+// above the cloth and no face pair ever intersects.
+TEST(IntersectionFreeGl, AFastBallStaysAboveAPinnedCloth) {
+    const std::string json =
+        R"({"format_version": 1, "name": "fast ball on pinned cloth", "effects": ["gravity", "springs", "collisions"],
+      "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 1},
+      "collision": {"broad_phase": "bvh", "thickness": 0.01, "stiffness": 1000, "response": "intersection_free"},
+      "objects": [
+        {"name": "cloth", "generator": {"type": "cloth", "size": [0.6, 0.6], "resolution": [12, 12]},
+         "transform": {"rotate_deg": [90, 0, 0]}, "mass": 0.1, "springs": {"stiffness": 300},
+         "pinned": )" +
+        pinnedBorder(12) + R"(},
+        {"name": "ball", "generator": {"type": "sphere", "radius": 0.06, "subdivisions": 2}, "mass": 0.2,
+         "springs": {"stiffness": 500}, "transform": {"translate": [0.013, 0.2, 0.007]}, "velocity": [0, -12, 0]}]})";
+    Engine engine(parseScene(json, ".", "fast ball"));
+    ASSERT_EQ(exactIntersectingPairs(engine), 0u);
+    EnergyWatch energy(engine);
+    const std::uint32_t ballFirst = engine.bodyFirstNodes()[1];
+    std::uint32_t cutSubsteps = 0;
+    for (int frame = 1; frame <= 20; ++frame) {
+        engine.step();
+        const CollisionStats& c = engine.lastStep().collision;
+        ASSERT_EQ(c.maxIntersectingPairs, 0u) << "frame " << frame;
+        EXPECT_EQ(c.safeStepFrozeAll, 0u) << "frame " << frame;
+        cutSubsteps += c.safeStepSubsteps;
+        EXPECT_TRUE(energy.next(engine, frame));
+        // The ball's centre stays above the cloth's lowest node: it did not pass through.
+        const std::vector<glm::dvec3> x = engine.readPositions();
+        double clothLowest = 1e9, ballCentre = 0.0;
+        for (std::uint32_t i = 0; i < ballFirst; ++i) clothLowest = std::min(clothLowest, x[i].y);
+        for (std::size_t i = ballFirst; i < x.size(); ++i) ballCentre += x[i].y;
+        ballCentre /= static_cast<double>(x.size() - ballFirst);
+        EXPECT_GT(ballCentre, clothLowest) << "frame " << frame;
+    }
+    EXPECT_GT(cutSubsteps, 0u) << "the impact needs the safe step: the test must exercise it";
+    EXPECT_EQ(exactIntersectingPairs(engine), 0u);
+}
+
+// Randomised drops: small tet boxes and a cloth thrown at each other fast, symplectic Euler at its
+// automatic substeps, collisions between objects. Every substep starts intersection-free (the
+// engine's exact TriTri) and so does the end (the CPU oracle).
+// NOT YET COVERED, because it fails today (docs/collisions.md, "Intersection-free response",
+// known failures): the same drops under implicit Euler at one substep per frame (intersecting
+// pairs from frame 5 on, and energy gains), and with self_collisions (the Representative-Triangle
+// feature pairs miss a vertex whose owner face shares a node with the other face). Set
+// `implicit` true or add "self_collisions" below to reproduce.
+Scene randomDrop(unsigned seed, bool implicit) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> offset(-0.05, 0.05), speed(-6.0, 6.0);
+    std::ostringstream s;
+    s << R"({"format_version": 1, "name": "random drop", "effects": ["gravity", "springs", "ground", "collisions"],
+      "time": {"dt": 0.016666666666666666, )"
+      << (implicit ? R"("integrator": "implicit_euler", "substeps": 1)" : R"("substeps": "auto")") << R"(},
+      "ground": {"height": 0.0},
+      "collision": {"broad_phase": "bvh", "thickness": 0.01, "stiffness": 500, "response": "intersection_free"},
+      "objects": [
+        {"name": "cloth", "generator": {"type": "cloth", "size": [0.3, 0.3], "resolution": [7, 7]},
+         "transform": {"translate": [0, 0.1, 0], "rotate_deg": [90, 0, 0]}, "mass": 0.05, "springs": {"stiffness": 100}})";
+    for (int b = 0; b < 3; ++b) {
+        s << R"(,
+        {"name": "box)"
+          << b << R"(", "generator": {"type": "tet_box", "size": [0.06, 0.06, 0.06], "resolution": [1, 1, 1]},
+         "transform": {"translate": [)"
+          << offset(rng) << ", " << 0.2 + 0.1 * b << ", " << offset(rng) << R"(]}, "velocity": [)"
+          << speed(rng) << ", " << -std::abs(speed(rng)) << ", " << speed(rng)
+          << R"(], "mass": 0.1, "springs": {"stiffness": 400}})";
+    }
+    s << "]}";
+    return parseScene(s.str(), ".", "random drop " + std::to_string(seed));
+}
+
+class IntersectionFreeDrops : public ::testing::TestWithParam<unsigned> {};
+
+TEST_P(IntersectionFreeDrops, NoFacePairEverIntersects) {
+    const unsigned seed = GetParam();
+    const bool implicit = false;
+    Engine engine(randomDrop(seed, implicit));
+    ASSERT_EQ(exactIntersectingPairs(engine), 0u);
+    EnergyWatch energy(engine);
+    for (int frame = 1; frame <= 12; ++frame) {
+        engine.step();
+        ASSERT_EQ(engine.lastStep().collision.maxIntersectingPairs, 0u) << "frame " << frame;
+        // Symplectic Euler's energy oscillates by itself: only the implicit step must not gain.
+        if (implicit) {
+            EXPECT_TRUE(energy.next(engine, frame));
+        }
+    }
+    EXPECT_EQ(exactIntersectingPairs(engine), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, IntersectionFreeDrops, ::testing::Values(1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u));
+
+} // namespace
+} // namespace glcollide
