@@ -83,6 +83,7 @@ const std::map<std::string, GLint> kExpectedBindings = {
     // continuous detection (docs/ccd.md, "In the engine")
     {"PredictedPositionsBuf", GLC_BIND_PREDICTED_POSITIONS},
     {"NodeToiBuf", GLC_BIND_NODE_TOI},
+    {"ObjectToiBuf", GLC_BIND_OBJECT_TOI},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {
