@@ -1,0 +1,141 @@
+// Friction between bodies (collision.friction, docs/collisions.md "Friction between bodies")
+// through the Engine against the analytic block on an incline. The incline is one large pinned
+// triangle in the plane y = 0 and gravity is tilted by θ instead (the same physics in the
+// incline's frame, and the face's distances are exact in float); the block is three free nodes of
+// mass m (a triangle without springs: three particles on the incline, each with one vertex-face
+// contact against a pinned face, so W = Σ a_i² w_i = 1/m and the per-node count is 1).
+//
+// The law per substep h (symplectic Euler, the contact force from the velocities at the start of
+// the substep): the penalty contact starts at its equilibrium depth m g cos θ / k, so f_n = m g cos θ
+// (damped; it stays there). Friction is min(μ f_n, m |v_t| / h) against v_t. Then:
+// - tan θ > μ: after the first substep (v = 0: no friction) the cap binds, so v_k = h g sin θ +
+//   (k − 1) h a with a = g (sin θ − μ cos θ), and x after N substeps (T = N h) is
+//   h² (N g sin θ + a N (N − 1) / 2) = a T²/2 + T h (g sin θ − a/2): within T h g of a T²/2.
+// - tan θ < μ: the stop term binds (m g sin θ < μ m g cos θ), so each substep cancels the velocity
+//   it starts with and gravity adds h g sin θ: the block creeps at h g sin θ, x = T h g sin θ
+//   (the cost of explicit friction: one substep of the other forces is not stopped).
+// - μ = 0: a = g sin θ.
+
+#include <glcollide/engine.hpp>
+#include <glcollide/scene.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+
+namespace glcollide {
+namespace {
+
+constexpr double kG = 9.81;
+constexpr double kNodeMass = 0.01;          // kg per block node
+constexpr double kContactStiffness = 100.0; // N/m: ω = √(k/m) = 100/s, ω h = 0.08 at h = 1/1200 s
+constexpr double kThickness = 0.01;         // m
+constexpr int kSubsteps = 20;               // per frame of 1/60 s: h = 1/1200 s
+constexpr int kFrames = 60;                 // T = 1 s
+
+Scene blockOnIncline(double thetaDeg, double mu) {
+    const double theta = thetaDeg * std::numbers::pi / 180.0;
+    Scene s;
+    s.name = "block on incline";
+    s.effects = {Effect::Gravity, Effect::Collisions};
+    s.gravity = kG * glm::dvec3(std::sin(theta), -std::cos(theta), 0.0); // downhill: +x
+    s.time.dt = 1.0 / 60.0;
+    s.time.substeps = kSubsteps;
+    s.collision.thickness = kThickness;
+    s.collision.stiffness = kContactStiffness;
+    s.collision.damping = 0.5; // N·s/m, a quarter of critical 2√(k m): rounding does not ring
+    s.collision.friction = mu;
+    Body incline;
+    incline.name = "incline";
+    // Counter-clockwise seen from +y (normal +y); the block stays far inside it.
+    incline.positions = {{-5, 0, -5}, {-5, 0, 10}, {10, 0, -5}};
+    incline.velocities.assign(3, glm::dvec3(0.0));
+    incline.masses.assign(3, 1.0);
+    incline.pinned.assign(3, 1);
+    incline.faces = {{0, 1, 2}};
+    // The block at the contact's equilibrium depth: k (h − y) = m g cos θ.
+    const double y = kThickness - kNodeMass * kG * std::cos(theta) / kContactStiffness;
+    Body block;
+    block.name = "block";
+    block.positions = {{0, y, 0}, {0, y, 0.05}, {0.05, y, 0}};
+    block.velocities.assign(3, glm::dvec3(0.0));
+    block.masses.assign(3, kNodeMass);
+    block.pinned.assign(3, 0);
+    block.faces = {{0, 1, 2}};
+    s.bodies = {incline, block};
+    return s;
+}
+
+struct Slide {
+    double distance = 0.0; // m, mean x displacement of the block's nodes
+    double speed = 0.0;    // m/s, mean x velocity
+    double lift = 0.0;     // m, largest |y − y0| of a block node
+};
+
+Slide simulate(double thetaDeg, double mu) {
+    const Scene scene = blockOnIncline(thetaDeg, mu);
+    Engine engine(scene);
+    EXPECT_TRUE(engine.warnings().empty()) << engine.warnings().front();
+    for (int f = 0; f < kFrames; ++f) engine.step();
+    EXPECT_GT(engine.lastStep().collision.contacts, 0u);
+    const std::vector<glm::dvec3> x = engine.readPositions(), v = engine.readVelocities();
+    const std::uint32_t first = engine.bodyFirstNodes()[1];
+    Slide s;
+    for (std::uint32_t i = 0; i < 3; ++i) {
+        s.distance += (x[first + i].x - scene.bodies[1].positions[i].x) / 3.0;
+        s.speed += v[first + i].x / 3.0;
+        s.lift = std::max(s.lift, std::abs(x[first + i].y - scene.bodies[1].positions[i].y));
+    }
+    std::printf("theta %.0f deg, mu %.2f: %.6f m in %.2f s, %.6f m/s, normal excursion %.2e m\n", thetaDeg,
+                mu, s.distance, kFrames / 60.0, s.speed, s.lift);
+    return s;
+}
+
+constexpr double kT = kFrames / 60.0;
+constexpr double kH = 1.0 / (60.0 * kSubsteps);
+// Float: each substep rounds x (≤ 1.3 m here, half an ulp 2^-24 · 2) and v: ~2^-23 m per substep
+// over kFrames · kSubsteps substeps, 1.5e-4 m at most; allowed 1e-3 m.
+constexpr double kFloatSlack = 1e-3;
+
+double sinDeg(double deg) {
+    return std::sin(deg * std::numbers::pi / 180.0);
+}
+double cosDeg(double deg) {
+    return std::cos(deg * std::numbers::pi / 180.0);
+}
+
+// tan θ > μ: slides with a = g (sin θ − μ cos θ); distance within T h g (+ float) of a T²/2, speed
+// within h g of a T (v_N = a T + h μ g cos θ). μ = 0 is the frictionless a = g sin θ.
+TEST(FrictionGl, ABlockSlidesDownASteepInclineAtTheCoulombAcceleration) {
+    for (const auto& [thetaDeg, mu] : {std::pair{25.0, 0.4}, {35.0, 0.4}, {20.0, 0.0}, {35.0, 0.0}}) {
+        const double a = kG * (sinDeg(thetaDeg) - mu * cosDeg(thetaDeg));
+        ASSERT_GT(a, 0.0);
+        const Slide s = simulate(thetaDeg, mu);
+        EXPECT_NEAR(s.distance, 0.5 * a * kT * kT, kT * kH * kG + kFloatSlack)
+            << "theta " << thetaDeg << ", mu " << mu;
+        EXPECT_NEAR(s.speed, a * kT, kH * kG + kFloatSlack) << "theta " << thetaDeg << ", mu " << mu;
+        // The normal contact held at its depth (the friction cap used f_n = m g cos θ).
+        EXPECT_LT(s.lift, 0.1 * kThickness);
+    }
+}
+
+// tan θ < μ: stays, creeping at one substep's worth of gravity, h g sin θ: T h g sin θ in all
+// (within 1 % + float); the frictionless block would slide g sin θ T²/2, ~500 times further.
+TEST(FrictionGl, ABlockStaysOnAShallowIncline) {
+    for (const double thetaDeg : {15.0, 20.0}) {
+        const double mu = 0.4;
+        ASSERT_LT(std::tan(thetaDeg * std::numbers::pi / 180.0), mu);
+        const Slide s = simulate(thetaDeg, mu);
+        const double creep = kT * kH * kG * sinDeg(thetaDeg);
+        EXPECT_GE(s.distance, 0.0) << "theta " << thetaDeg;
+        EXPECT_LE(s.distance, 1.01 * creep + 1e-5) << "theta " << thetaDeg;
+        EXPECT_LE(std::abs(s.speed), 1.01 * kH * kG * sinDeg(thetaDeg) + 1e-5) << "theta " << thetaDeg;
+        EXPECT_LT(s.lift, 0.1 * kThickness);
+    }
+}
+
+} // namespace
+} // namespace glcollide
