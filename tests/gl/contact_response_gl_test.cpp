@@ -664,6 +664,54 @@ TEST(ContactResponseGl, NoFrictionWithoutASubstepLength) {
     EXPECT_GT(r.gpu.forces[3].y, 0.0);
 }
 
+// Friction alone never adds kinetic energy. The friction forces are the difference of the runs
+// with μ = 0.5 and μ = 0 (the normal forces are the same: the penalty does not use the count, and
+// Bridson's count does not depend on μ). Applied over dt to nodes of inverse mass 1, they change
+// the kinetic energy by ΔE = dt Σ F_i·v_i + dt²/2 Σ |F_i|², which the cap makes ≤ 0: per contact
+// dt λ (−|v_t| + dt W λ count / 2) with λ ≤ |v_t| / (W dt count), and Cauchy-Schwarz bounds the
+// sum over a node's contacts by its count (docs/collisions.md, "Friction between bodies").
+double frictionEnergyChange(const Soup& s, const std::vector<glm::dvec3>& withFriction,
+                            const std::vector<glm::dvec3>& without, double dt) {
+    double change = 0.0;
+    for (std::size_t n = 0; n < s.positions.size(); ++n) {
+        const glm::dvec3 f = withFriction[n] - without[n];
+        change += dt * glm::dot(f, s.velocities[n]) + 0.5 * dt * dt * glm::dot(f, f);
+    }
+    return change;
+}
+
+TEST(ContactResponseGl, FrictionAloneNeverAddsKineticEnergy) {
+    for (const bool bridson : {false, true})
+        for (const std::uint32_t faces : {40u, 129u}) {
+            const Soup soup = randomSoup(faces, 7u + faces);
+            ContactParams with = testParams(0.03, 0.5), without = testParams(0.03);
+            with.substep = without.substep = 0.01;
+            with.velocityResponse = without.velocityResponse = bridson;
+            const cpu::ContactResult cpuWith = runCpu(soup, with), cpuWithout = runCpu(soup, without);
+            const GpuResult gpuWith = runGpu(soup, with), gpuWithout = runGpu(soup, without);
+            const double twin = frictionEnergyChange(soup, cpuWith.forces, cpuWithout.forces, with.substep);
+            const double gpu = frictionEnergyChange(soup, gpuWith.forces, gpuWithout.forces, with.substep);
+            // The GPU's forces are within expectForcesMatchTheTwin's tolerance t_n of the twin's in
+            // each run: |ΔE error| ≤ Σ dt (|v_n| + dt (|F_n| + 2 t_n)) · 2√3 t_n.
+            double bound = 0.0;
+            for (std::size_t n = 0; n < soup.positions.size(); ++n) {
+                const double t =
+                    std::max(1u, cpuWith.contributions[n]) *
+                    (with.forceCap / 65536.0 + 0.5 / std::min(with.forceScale, without.forceScale));
+                const double f = glm::length(cpuWith.forces[n] - cpuWithout.forces[n]);
+                bound += with.substep * (glm::length(soup.velocities[n]) + with.substep * (f + 2.0 * t)) *
+                         2.0 * std::sqrt(3.0) * t;
+            }
+            std::printf(
+                "%s, faces %u: friction's kinetic energy change twin %.4g J, gpu %.4g J (bound on the "
+                "gpu's error %.2g J)\n",
+                bridson ? "bridson" : "penalty", faces, twin, gpu, bound);
+            EXPECT_LE(twin, 0.0);
+            EXPECT_LT(twin, -10.0 * bound) << "friction must remove energy here, well above the GPU's error";
+            EXPECT_LE(gpu, bound);
+        }
+}
+
 // No candidates: empty lists, zero-group dispatches, no force.
 TEST(ContactResponseGl, NoCandidatesNoPairsNoForce) {
     Soup s = probeAboveFace(0.04, false);
