@@ -38,7 +38,7 @@ uniform float u_forceScale;  // fixed-point units per N
 uniform float u_substep;     // s: the substep length dt (0: penalty only, sides from the current positions)
 uniform uint u_velocityResponse; // 1: Bridson's response (below); 0: the penalty alone
 uniform float u_relaxationTime;  // s: Bridson's target speed restores the thickness over at least this
-uniform uint u_countPass;    // 1: count approaching contacts per node into .w; 0: add the forces
+uniform uint u_countPass;    // 1: count acting contacts per node into .w; 0: add the forces
 uniform float u_friction;    // Coulomb μ between bodies (0: none)
 
 // Position at the start of the substep: symplectic Euler's last step was x += dt·v with this v
