@@ -15,9 +15,9 @@
 //   it starts with and gravity adds h g sin θ: the block creeps at h g sin θ, x = T h g sin θ
 //   (the cost of explicit friction: one substep of the other forces is not stopped).
 // - μ = 0: a = g sin θ.
-// Implicit Euler gives the response the velocities after the solve (gravity included): no creep,
-// x = h² a N (N + 1)/2 (its own test below). Last, the cloth on a sphere, small: it stays
-// at μ = 0.5 and slides off at μ = 0.
+// Implicit Euler and continuous detection give the response the velocities after this substep's
+// gravity: no creep, x = h² a N (N + 1)/2 (their own test below). Last, the cloth on a sphere, small:
+// it stays at μ = 0.5 and slides off at μ = 0.
 
 #include <glcollide/engine.hpp>
 #include <glcollide/scene.hpp>
@@ -40,7 +40,8 @@ constexpr double kThickness = 0.01;         // m
 constexpr int kSubsteps = 20;               // per frame of 1/60 s: h = 1/1200 s
 constexpr int kFrames = 60;                 // T = 1 s
 
-Scene blockOnIncline(double thetaDeg, double mu, ContactResponse response, Integrator integrator) {
+Scene blockOnIncline(double thetaDeg, double mu, ContactResponse response, Integrator integrator,
+                     Detection detection) {
     const double theta = thetaDeg * std::numbers::pi / 180.0;
     Scene s;
     s.name = "block on incline";
@@ -48,6 +49,7 @@ Scene blockOnIncline(double thetaDeg, double mu, ContactResponse response, Integ
     s.gravity = kG * glm::dvec3(std::sin(theta), -std::cos(theta), 0.0); // downhill: +x
     s.time.dt = 1.0 / 60.0;
     s.time.integrator = integrator;
+    s.collision.detection = detection;
     s.time.substeps = kSubsteps;
     s.collision.thickness = kThickness;
     s.collision.stiffness = kContactStiffness;
@@ -62,10 +64,12 @@ Scene blockOnIncline(double thetaDeg, double mu, ContactResponse response, Integ
     incline.masses.assign(3, 1.0);
     incline.pinned.assign(3, 1);
     incline.faces = {{0, 1, 2}};
-    // The block at the contact's equilibrium depth: k (h − y) = m g cos θ. Under implicit Euler the
-    // response sees the solved normal speed −h g cos θ, whose damping c h g cos θ takes its share.
+    // The block at the contact's equilibrium depth: k (h − y) = m g cos θ. Under implicit Euler or
+    // with continuous detection the response sees the normal speed −h g cos θ after this substep's
+    // gravity, whose damping c h g cos θ takes its share.
     const double h = s.time.dt / kSubsteps, damping = s.collision.damping;
-    const double solvedNormalSpeed = integrator == Integrator::ImplicitEuler ? h * kG * std::cos(theta) : 0.0;
+    const bool seesGravity = integrator == Integrator::ImplicitEuler || detection == Detection::Continuous;
+    const double solvedNormalSpeed = seesGravity ? h * kG * std::cos(theta) : 0.0;
     const double y =
         kThickness - (kNodeMass * kG * std::cos(theta) - damping * solvedNormalSpeed) / kContactStiffness;
     Body block;
@@ -86,8 +90,9 @@ struct Slide {
 };
 
 Slide simulate(double thetaDeg, double mu, ContactResponse response = ContactResponse::Penalty,
-               Integrator integrator = Integrator::SymplecticEuler) {
-    const Scene scene = blockOnIncline(thetaDeg, mu, response, integrator);
+               Integrator integrator = Integrator::SymplecticEuler,
+               Detection detection = Detection::Discrete) {
+    const Scene scene = blockOnIncline(thetaDeg, mu, response, integrator, detection);
     Engine engine(scene);
     EXPECT_TRUE(engine.warnings().empty()) << engine.warnings().front();
     for (int f = 0; f < kFrames; ++f) engine.step();
@@ -101,8 +106,9 @@ Slide simulate(double thetaDeg, double mu, ContactResponse response = ContactRes
         s.lift = std::max(s.lift, std::abs(x[first + i].y - scene.bodies[1].positions[i].y));
     }
     std::printf("%s, %s, theta %.0f deg, mu %.2f: %.6f m in %.2f s, %.6f m/s, normal excursion %.2e m\n",
-                integratorName(integrator), response == ContactResponse::Bridson ? "bridson" : "penalty",
-                thetaDeg, mu, s.distance, kFrames / 60.0, s.speed, s.lift);
+                detection == Detection::Continuous ? "continuous" : integratorName(integrator),
+                response == ContactResponse::Bridson ? "bridson" : "penalty", thetaDeg, mu, s.distance,
+                kFrames / 60.0, s.speed, s.lift);
     return s;
 }
 
@@ -167,26 +173,30 @@ TEST(FrictionGl, ABlockStaysOnAShallowIncline) {
     }
 }
 
-// Implicit Euler (the same h) runs ContactResponse on the velocities after the solve, which
-// already hold this substep's gravity (docs/integration.md): the friction sees v_k + h g sin θ and
-// stops all of it. So a block with tan θ < μ does not creep at all, and a sliding one follows
-// v_k = k h a, x = h² a N (N + 1)/2 (within the float slack). The normal force is the penalty plus
-// the damping of the solved normal speed −h g cos θ; the block starts where their sum is m g cos θ.
-TEST(FrictionGl, UnderImplicitEulerABlockSticksWithoutCreepAndSlidesAtTheCoulombAcceleration) {
+// Implicit Euler (the same h) runs ContactResponse on the velocities after the solve, and
+// continuous detection on NodePredict's: both already hold this substep's gravity
+// (docs/integration.md, docs/ccd.md): the friction sees v_k + h g sin θ and stops all of it. So a
+// block with tan θ < μ does not creep at all, and a sliding one follows v_k = k h a,
+// x = h² a N (N + 1)/2 (within the float slack). The normal force is the penalty plus the damping
+// of the normal speed −h g cos θ; the block starts where their sum is m g cos θ.
+TEST(FrictionGl, WhenTheResponseSeesTheSubstepsGravityABlockSticksWithoutCreep) {
     const double n = kFrames * kSubsteps;
-    // Slides at 25° (μ = 0.4; the symplectic prediction would be 3 mm further).
-    const double a = kG * (sinDeg(25.0) - 0.4 * cosDeg(25.0));
-    const Slide slides = simulate(25.0, 0.4, ContactResponse::Penalty, Integrator::ImplicitEuler);
-    const double distance = kH * kH * a * n * (n + 1.0) / 2.0, speed = n * kH * a;
-    std::printf("  predicted %.6f m, %.6f m/s\n", distance, speed);
-    EXPECT_NEAR(slides.distance, distance, kFloatSlack);
-    EXPECT_NEAR(slides.speed, speed, kFloatSlack);
-    EXPECT_LT(slides.lift, 1e-5); // as in the symplectic test: f_n within 1 % of m g cos θ
-    // Sticks at 20°: only rounding moves it (measured 0 m; the symplectic creep is 2.8 mm).
-    const Slide sticks = simulate(20.0, 0.4, ContactResponse::Penalty, Integrator::ImplicitEuler);
-    EXPECT_LT(std::abs(sticks.distance), 1e-6);
-    EXPECT_LT(std::abs(sticks.speed), 1e-6);
-    EXPECT_LT(sticks.lift, 1e-5);
+    for (const auto& [integrator, detection] : {std::pair{Integrator::ImplicitEuler, Detection::Discrete},
+                                                {Integrator::SymplecticEuler, Detection::Continuous}}) {
+        // Slides at 25° (μ = 0.4; the prediction of the first test would be 3 mm further).
+        const double a = kG * (sinDeg(25.0) - 0.4 * cosDeg(25.0));
+        const Slide slides = simulate(25.0, 0.4, ContactResponse::Penalty, integrator, detection);
+        const double distance = kH * kH * a * n * (n + 1.0) / 2.0, speed = n * kH * a;
+        std::printf("  predicted %.6f m, %.6f m/s\n", distance, speed);
+        EXPECT_NEAR(slides.distance, distance, kFloatSlack);
+        EXPECT_NEAR(slides.speed, speed, kFloatSlack);
+        EXPECT_LT(slides.lift, 1e-5); // as in the first test: f_n within 1 % of m g cos θ
+        // Sticks at 20°: only rounding moves it (measured 0 m; the first test's creep is 2.8 mm).
+        const Slide sticks = simulate(20.0, 0.4, ContactResponse::Penalty, integrator, detection);
+        EXPECT_LT(std::abs(sticks.distance), 1e-6);
+        EXPECT_LT(std::abs(sticks.speed), 1e-6);
+        EXPECT_LT(sticks.lift, 1e-5);
+    }
 }
 
 // The cloth on a sphere, small: a 0.5 m cloth (12 × 12 nodes, 50 g) dropped 2 cm above a
