@@ -125,6 +125,9 @@ struct CollisionSettings {
     double thickness = 0.01;  ///< m, > 0: contact distance; boxes are inflated by half of it per side
     double stiffness = 1.0e4; ///< N/m, > 0: penalty stiffness per vertex-face or edge-edge contact
     double damping = 0.0;     ///< N·s/m, >= 0: damping of the normal relative velocity in a contact
+    /// >= 0: Coulomb coefficient μ of the vertex-face and edge-edge contacts (the tangential force
+    /// is at most μ times the normal one, and at most what stops the sliding); 0: frictionless
+    double friction = 0.0;
     ContactResponse response = ContactResponse::Penalty;
     std::uint32_t initialCapacity = 4096; ///< >= 1: first size of every pair list (grown on overflow)
     BvhSettings bvh;                      ///< used by BroadPhase::Bvh

@@ -16,6 +16,12 @@
 // Forces are summed per node with integer atomics in fixed point (u_forceScale units per N):
 // integer addition is associative, so the sum does not depend on thread order or on how the
 // contacts are split over dispatches. NodeUpdate adds and clears them (.w too).
+// Friction (u_friction = μ > 0, dt > 0; docs/collisions.md "Friction between bodies"): every
+// contact that pushes also pulls against its relative tangential velocity v_t = v_rel − v_n·u,
+// with min(μ·f, |v_t| / (Σ a_i² w_i · dt · count)): Coulomb's cone, but never more than stops
+// the sliding in this substep (Jacobi-averaged like the normal part), so it cannot reverse it or
+// add energy. With the penalty the count pass then counts the pushing contacts (it counts
+// nothing otherwise); at μ = 0 nothing changes.
 // Include after layout.glsl. Twin: src/cpu/contact_twin.cpp.
 #ifndef GLC_CONTACT_FORCE_GLSL
 #define GLC_CONTACT_FORCE_GLSL
@@ -32,8 +38,9 @@ uniform float u_forceScale;  // fixed-point units per N
 uniform float u_substep;     // s: the substep length dt (0: penalty only, sides from the current positions)
 uniform uint u_velocityResponse; // 1: Bridson's response (below); 0: the penalty alone
 uniform float u_relaxationTime;  // s: Bridson's target speed restores the thickness over at least this
-uniform uint u_countPass;    // 1: count approaching contacts per node into .w; 0: add the forces
+uniform uint u_countPass;    // 1: count acting contacts per node into .w; 0: add the forces
 uniform uint u_previousSides; // 1: sides of open surfaces from x − dt·v; 0: from x (intersection-free response)
+uniform float u_friction;    // Coulomb μ between bodies (0: none)
 
 // Position at the start of the substep: symplectic Euler's last step was x += dt·v with this v
 // (up to rounding, and except for nodes the ground plane clamped), so x − dt·v is where it was.
@@ -57,6 +64,23 @@ float normalForce(float depth, float normalSpeed) {
     return clamp(u_stiffness * depth - u_damping * normalSpeed, 0.0, u_forceCap);
 }
 
+// The largest count of acting contacts (the count pass's .w) on the nodes the contact moves.
+int actingCount(uvec4 n, vec4 share) {
+    int count = max(max(share.x > 0.0 ? g_contactForces[n.x].w : 0, share.y > 0.0 ? g_contactForces[n.y].w : 0),
+                    max(share.z > 0.0 ? g_contactForces[n.z].w : 0, share.w > 0.0 ? g_contactForces[n.w].w : 0));
+    return max(count, 1);
+}
+
+// Coulomb friction of a contact pushing with normal force f (> 0): against the relative
+// tangential velocity vt, at most μ·f and at most the force that stops vt in this substep
+// (perSpeed: N per m/s of relative velocity changed, already divided by the count).
+vec3 frictionForce(vec3 vt, float f, float perSpeed) {
+    float speed = length(vt);
+    if (!(speed > 0.0)) return vec3(0.0);
+    float magnitude = min(u_friction * f, speed * perSpeed);
+    return vt * (-magnitude / speed);
+}
+
 // The contact of nodes n with signed weights a along u at the given depth (see the top). In the
 // count pass it only counts; returns 1 when it added a force.
 uint respond(uvec4 n, vec4 a, vec3 u, float depth) {
@@ -71,10 +95,15 @@ uint respond(uvec4 n, vec4 a, vec3 u, float depth) {
     // or over the relaxation time when that is longer (our substeps are short: 0.1·h/dt would let
     // pairs leave the thickness at metres per second).
     bool bridson = u_velocityResponse != 0u && u_substep > 0.0 && wSum > 0.0;
+    bool friction = u_friction > 0.0 && u_substep > 0.0 && wSum > 0.0;
     float target = bridson ? depth / max(10.0 * u_substep, u_relaxationTime) : 0.0;
     bool acting = bridson && vn < target;
+    float f = normalForce(depth, vn);
+    // What the count pass counts: Bridson's acting contacts; with the penalty and friction, the
+    // pushing ones (the same f > 0 as below, f ≤ the cap).
+    bool counted = bridson ? acting : friction && f > 0.0;
     if (u_countPass != 0u) {
-        if (acting) {
+        if (counted) {
             if (share.x > 0.0) atomicAdd(g_contactForces[n.x].w, 1);
             if (share.y > 0.0) atomicAdd(g_contactForces[n.y].w, 1);
             if (share.z > 0.0) atomicAdd(g_contactForces[n.z].w, 1);
@@ -82,18 +111,17 @@ uint respond(uvec4 n, vec4 a, vec3 u, float depth) {
         }
         return 0u;
     }
-    float f = normalForce(depth, vn);
+    // N per m/s of relative velocity changed, averaged over the node's contacts (Jacobi).
+    float perSpeed = counted ? 1.0 / (wSum * u_substep * float(actingCount(n, share))) : 0.0;
     if (bridson) {
-        if (!acting) return 0u; // separating at the target speed or faster: no push
-        int count = max(max(share.x > 0.0 ? g_contactForces[n.x].w : 0, share.y > 0.0 ? g_contactForces[n.y].w : 0),
-                        max(share.z > 0.0 ? g_contactForces[n.z].w : 0, share.w > 0.0 ? g_contactForces[n.w].w : 0));
-        float perSpeed = 1.0 / (wSum * u_substep * float(max(count, 1))); // N per m/s of v_n changed
-        float vAfter = max(vn, 0.0);                                      // after the inelastic part
+        if (!acting) return 0u;                 // separating at the target speed or faster: no push
+        float vAfter = max(vn, 0.0);            // after the inelastic part
         f = (vAfter - vn) * perSpeed + min(f, (target - vAfter) * perSpeed);
     }
     f = min(f, u_forceCap);
     if (!(f > 0.0)) return 0u;
     vec3 F = f * u;
+    if (friction) F += frictionForce(vRel - vn * u, f, perSpeed);
     addForce(n.x, a.x * F);
     addForce(n.y, a.y * F);
     addForce(n.z, a.z * F);

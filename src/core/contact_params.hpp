@@ -29,10 +29,15 @@ struct ContactParams {
     bool sidesFromPrevious = true;
     double relaxationTime = 0.01; ///< s: the thickness is restored over at least this long (0.05 let cloth
                                   ///< sink into a pinned sphere)
+    /// Coulomb μ between bodies: each pushing contact also opposes the relative tangential velocity
+    /// with at most μ times its normal force and at most what stops it in the substep (needs
+    /// substep > 0). 0: frictionless.
+    double friction = 0.0;
 };
 
 /// Contacts that may add to one node in one substep before its int32 fixed-point sum could
-/// overflow. Each contributes at most forceCap, so the scale leaves room for this many.
+/// overflow. Each contributes at most forceCap·√(1 + μ²) (the normal force and the friction at
+/// most μ times it), so the scale leaves room for this many.
 inline constexpr double kContactsPerNodeHeadroom = 1024.0;
 
 /// m: the separation the intersection-free response's safe step keeps (decision 0024): a pair may
@@ -52,10 +57,13 @@ inline ContactParams contactParams(const CollisionSettings& s) {
     p.velocityResponse =
         s.response == ContactResponse::Bridson || s.response == ContactResponse::IntersectionFree;
     p.sidesFromPrevious = s.response != ContactResponse::IntersectionFree;
+    p.friction = s.friction;
     p.forceCap = 4.0 * s.stiffness * s.thickness;
-    // Largest power of two with headroom·cap·scale ≤ 2^31 - 1: resolution cap·headroom/2^31
-    // (~5e-7 of the cap), exact in float.
-    p.forceScale = std::exp2(std::floor(std::log2(2147483647.0 / (kContactsPerNodeHeadroom * p.forceCap))));
+    // Largest power of two with headroom·cap·√(1 + μ²)·scale ≤ 2^31 - 1: resolution
+    // cap·√(1 + μ²)·headroom/2^31 (~5e-7 of the cap without friction), exact in float.
+    const double largestContribution = p.forceCap * std::sqrt(1.0 + p.friction * p.friction);
+    p.forceScale =
+        std::exp2(std::floor(std::log2(2147483647.0 / (kContactsPerNodeHeadroom * largestContribution))));
     return p;
 }
 

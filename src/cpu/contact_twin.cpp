@@ -45,6 +45,23 @@ struct Solver {
         return std::clamp(p.stiffness * depth - p.damping * normalSpeed, 0.0, p.forceCap);
     }
 
+    // contact_force.glsl's actingCount: the largest count of acting contacts on the moved nodes.
+    std::uint32_t actingCount(const std::array<std::uint32_t, 4>& n,
+                              const std::array<double, 4>& share) const {
+        std::uint32_t count = 1;
+        for (std::size_t i = 0; i < 4; ++i)
+            if (share[i] > 0.0) count = std::max(count, approaching[n[i]]);
+        return count;
+    }
+
+    // contact_force.glsl's frictionForce: against vt, at most μ·f and at most what stops vt.
+    glm::dvec3 frictionForce(const glm::dvec3& vt, double f, double perSpeed) const {
+        const double speed = glm::length(vt);
+        if (!(speed > 0.0)) return glm::dvec3(0.0);
+        const double magnitude = std::min(p.friction * f, speed * perSpeed);
+        return vt * (-magnitude / speed);
+    }
+
     // contact_force.glsl's respond.
     bool respond(const std::array<std::uint32_t, 4>& n, const std::array<double, 4>& a, const glm::dvec3& u,
                  double depth) {
@@ -58,27 +75,29 @@ struct Solver {
         }
         const double vn = glm::dot(vRel, u);
         const bool bridson = p.velocityResponse && p.substep > 0.0 && wSum > 0.0;
+        const bool friction = p.friction > 0.0 && p.substep > 0.0 && wSum > 0.0;
         const double target = bridson ? depth / std::max(10.0 * p.substep, p.relaxationTime) : 0.0;
         const bool active = bridson && vn < target;
+        double f = normalForce(depth, vn);
+        // Bridson's acting contacts; with the penalty and friction, the pushing ones.
+        const bool counted = bridson ? active : friction && f > 0.0;
         if (pass == Pass::Count) {
-            if (active)
+            if (counted)
                 for (std::size_t i = 0; i < 4; ++i)
                     if (share[i] > 0.0) ++approaching[n[i]];
             return false;
         }
-        double f = normalForce(depth, vn);
+        const double perSpeed =
+            counted ? 1.0 / (wSum * p.substep * static_cast<double>(actingCount(n, share))) : 0.0;
         if (bridson) {
             if (!active) return false;
-            std::uint32_t count = 1;
-            for (std::size_t i = 0; i < 4; ++i)
-                if (share[i] > 0.0) count = std::max(count, approaching[n[i]]);
-            const double perSpeed = 1.0 / (wSum * p.substep * static_cast<double>(count));
             const double vAfter = std::max(vn, 0.0);
             f = (vAfter - vn) * perSpeed + std::min(f, (target - vAfter) * perSpeed);
         }
         f = std::min(f, p.forceCap);
         if (!(f > 0.0)) return false;
-        const glm::dvec3 F = f * u;
+        glm::dvec3 F = f * u;
+        if (friction) F += frictionForce(vRel - vn * u, f, perSpeed);
         for (std::size_t i = 0; i < 4; ++i) {
             out.forces[n[i]] += a[i] * F;
             ++out.contributions[n[i]];

@@ -29,7 +29,8 @@ struct ContactResult {
     std::vector<glm::dvec3> forces;           ///< N, per node
     std::uint32_t contacts = 0;               ///< vertex-face and edge-edge contacts that produced a force
     std::vector<std::uint32_t> contributions; ///< per node: contacts that added to its force
-    std::vector<std::uint32_t> approaching;   ///< per node: active contacts, v_n < v_t (the GPU's .w counts)
+    std::vector<std::uint32_t> approaching;   ///< per node: active contacts, v_n < v_t, or with the
+                                              ///< penalty and friction the pushing ones (the GPU's .w counts)
 };
 
 using IndexPair = std::array<std::uint32_t, 2>;

@@ -32,10 +32,12 @@ void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& 
         p->set("u_velocityResponse", params.velocityResponse ? 1u : 0u);
         p->set("u_relaxationTime", static_cast<float>(params.relaxationTime));
         p->set("u_previousSides", params.sidesFromPrevious ? 1u : 0u);
+        p->set("u_friction", static_cast<float>(params.friction));
     }
     // Sized on the GPU from each list's count; each dispatch ends with a storage barrier. First
-    // both kernels count the approaching contacts per node (every count complete before any
-    // force reads it), then both add their forces (decision 0019).
+    // both kernels count the acting contacts per node (Bridson's; with the penalty and friction,
+    // the pushing ones), every count complete before any force reads it, then both add their
+    // forces (decision 0019).
     for (const std::uint32_t countPass : {1u, 0u}) {
         m_vertexFace.set("u_countPass", countPass);
         m_edgeEdge.set("u_countPass", countPass);

@@ -503,7 +503,7 @@ CcdSettings parseCcd(const Ctx& c, const json& j, const Ptr& p) {
 CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p,
                 {"broad_phase", "octree_depth", "precision", "response", "thickness", "stiffness", "damping",
-                 "initial_capacity", "bvh", "detection", "ccd"});
+                 "friction", "initial_capacity", "bvh", "detection", "ccd"});
     CollisionSettings s;
     if (const json* v = find(j, "broad_phase")) {
         const std::optional<BroadPhase> kind = broadPhaseFromName(string(c, *v, p / "broad_phase"));
@@ -569,6 +569,7 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
             c.fail(p / "stiffness", "expected a positive number of N/m, got " + shown(*v));
     }
     if (const json* v = find(j, "damping")) s.damping = nonNegative(c, *v, p / "damping");
+    if (const json* v = find(j, "friction")) s.friction = nonNegative(c, *v, p / "friction");
     if (const json* v = find(j, "initial_capacity")) {
         if (!v->is_number_integer() || v->get<long long>() < 1 || v->get<long long>() > (1LL << 30))
             c.fail(p / "initial_capacity", "expected an integer in 1 ... 2^30, got " + shown(*v));

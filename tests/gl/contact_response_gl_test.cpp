@@ -135,11 +135,12 @@ cpu::ContactResult runCpu(const Soup& s, const ContactParams& params) {
                               s.candidates);
 }
 
-ContactParams testParams(double thickness) {
+ContactParams testParams(double thickness, double friction = 0.0) {
     CollisionSettings settings;
     settings.thickness = thickness;
     settings.stiffness = 1000.0;
     settings.damping = 0.5;
+    settings.friction = friction;
     return contactParams(settings);
 }
 
@@ -229,23 +230,34 @@ void expectForcesMatchTheTwin(const Soup& soup, const ContactParams& params, con
     }
 }
 
-// The two ways the response runs. Penalty: dt = 0, sides from the current positions, each contact
+// The ways the response runs. Penalty: dt = 0, sides from the current positions, each contact
 // independent. Bridson (decision 0019, dt = 0.01 s): a contact acts while v_n < the target speed,
 // and its force is divided by the largest count of active contacts on its moved nodes (the count
 // pass into .w): in these dense soups most nodes have several, so the twin comparison sees the
-// averaging, which a single contact cannot (tests/mutants/dyn-contact-no-averaging.patch).
+// averaging, which a single contact cannot (tests/mutants/dyn-contact-no-averaging.patch). With
+// friction (μ = 0.5, dt = 0.01 s; with the penalty the count pass counts the pushing contacts):
+// the soups' relative speeds (up to ~0.7 m/s) make the stop term |v_t| / (W dt count) and μ f of
+// the same order, so both branches of the friction's min act.
 struct ResponseMode {
     const char* name;
     bool bridson;
+    double friction;
 };
-constexpr ResponseMode kResponseModes[] = {{"penalty", false}, {"bridson", true}};
+constexpr ResponseMode kResponseModes[] = {{"penalty", false, 0.0},
+                                           {"bridson", true, 0.0},
+                                           {"penalty+friction", false, 0.5},
+                                           {"bridson+friction", true, 0.5}};
 
-ContactParams inMode(ContactParams p, const ResponseMode& mode) {
-    if (mode.bridson) {
-        p.substep = 0.01;
-        p.velocityResponse = true;
-    }
+ContactParams inMode(double thickness, const ResponseMode& mode) {
+    ContactParams p = testParams(thickness, mode.friction);
+    if (mode.bridson || mode.friction > 0.0) p.substep = 0.01;
+    p.velocityResponse = mode.bridson;
     return p;
+}
+
+// Whether the mode's forces use the count pass (Bridson's averaging, or friction's).
+bool counts(const ResponseMode& mode) {
+    return mode.bridson || mode.friction > 0.0;
 }
 
 // Bridson's count pass against the twin's, and how many nodes have several active contacts.
@@ -267,7 +279,7 @@ TEST(ContactResponseGl, MatchesTheTwinOnRandomTriangleSoups) {
         for (std::uint32_t faces : {2u, 40u, 129u}) {
             const std::string what = std::string(mode.name) + ", faces " + std::to_string(faces);
             const Soup soup = randomSoup(faces, 7u + faces);
-            const ContactParams params = inMode(testParams(0.03), mode);
+            const ContactParams params = inMode(0.03, mode);
             const GpuResult gpu = runGpu(soup, params);
             const cpu::ContactResult cpu = runCpu(soup, params);
             // Isolated triangles own every feature: 6 vertex-face and 9 edge-edge pairs per candidate.
@@ -283,7 +295,7 @@ TEST(ContactResponseGl, MatchesTheTwinOnRandomTriangleSoups) {
                 EXPECT_GT(cpu.contacts, mode.bridson ? faces / 2 : faces) << what << ": too few contacts";
             }
             std::uint32_t several = 0;
-            if (mode.bridson) {
+            if (counts(mode)) {
                 several = expectActiveCountsMatchTheTwin(gpu, cpu, what);
                 // The averaging must matter: many nodes with several active contacts (measured 28
                 // and 276).
@@ -316,12 +328,13 @@ TEST(ContactResponseGl, MatchesTheTwinOnRandomTriangleSoups) {
 
 // Strips share vertices and edges: the expansion emits only owned features, each feature pair
 // once (no duplicate in the sorted lists), equal to the twin's, and far fewer than 6 + 9 per
-// candidate; the forces match the twin's, with the penalty and with Bridson's response.
+// candidate; the forces match the twin's, with the penalty and with Bridson's response, each
+// with and without friction.
 TEST(ContactResponseGl, StripsExpandOnlyOwnedFeaturesOnceAndMatchTheTwin) {
     const Soup soup = stripSoup(301, 11);
     for (const ResponseMode& mode : kResponseModes) {
         const std::string what = std::string("strips, ") + mode.name;
-        const ContactParams params = inMode(testParams(0.02), mode);
+        const ContactParams params = inMode(0.02, mode);
         const GpuResult gpu = runGpu(soup, params, 1u << 20);
         const cpu::ContactResult cpu = runCpu(soup, params);
         const cpu::FeaturePairList want = cpuPairs(soup);
@@ -339,7 +352,7 @@ TEST(ContactResponseGl, StripsExpandOnlyOwnedFeaturesOnceAndMatchTheTwin) {
                     2.0 + 0.002 * cpu.contacts)
             << what;
         std::uint32_t several = 0;
-        if (mode.bridson) {
+        if (counts(mode)) {
             several = expectActiveCountsMatchTheTwin(gpu, cpu, what);
             EXPECT_GT(several, 100u) << what << ": the averaging must matter (measured 273 nodes)";
         }
@@ -578,6 +591,125 @@ TEST(ContactResponseGl, EdgesThatCrossedArePushedBackToTheirSides) {
     const double want = 3.0 * perSpeed + std::min(params.stiffness * depth + params.damping * 3.0,
                                                   0.1 * depth / params.substep * perSpeed);
     EXPECT_NEAR(cpu.forces[3].y + cpu.forces[4].y, std::min(want, params.forceCap), 1e-5 * want);
+}
+
+// Friction (contact_force.glsl's frictionForce) on one vertex-face contact: the probe of
+// probeAboveFace 0.04 above the face (h = 0.1: the normal force k (h − 0.04) = 60 N, no normal
+// speed), all its face's nodes sliding along x at `speed`, the face at rest, dt = 0.01 s, inverse
+// masses 1, μ = 0.5. The friction is −x on the probe and +x on the face (by its weights), of
+// magnitude min(μ·60 N = 30 N, speed / (W dt)) with W = 1 + |w|²; the normal force is unchanged.
+struct SlidingProbe {
+    GpuResult gpu;
+    cpu::ContactResult cpu;
+    double normal = 0.0, coulomb = 0.0, stop = 0.0; // N: k (h − d), μ k (h − d), speed / (W dt)
+};
+
+SlidingProbe slidingProbe(double speed, double substep) {
+    Soup s = probeAboveFace(static_cast<float>(0.04), false);
+    for (std::size_t k = 3; k < 6; ++k) s.velocities[k] = {static_cast<float>(speed), 0.0, 0.0};
+    ContactParams params = testParams(0.1, 0.5);
+    params.substep = substep;
+    SlidingProbe r;
+    r.gpu = runGpu(s, params);
+    r.cpu = runCpu(s, params);
+    const glm::dvec3 w =
+        cpu::closestOnTriangle(s.positions[3], s.positions[0], s.positions[1], s.positions[2]);
+    r.normal = params.stiffness * (params.thickness - s.positions[3].y);
+    r.coulomb = params.friction * r.normal;
+    r.stop = substep > 0.0 ? s.velocities[3].x / ((1.0 + glm::dot(w, w)) * substep) : 0.0;
+    EXPECT_EQ(r.gpu.contacts, 1u);
+    EXPECT_EQ(r.cpu.contacts, 1u);
+    expectForcesMatchTheTwin(s, params, r.gpu, r.cpu, "sliding probe");
+    return r;
+}
+
+// Tolerance of the GPU's friction on the probe: the float evaluation of |v_t|, W and the
+// quotient, a few u (2^-24) each; 64u of the force allows for the closest-point weights, plus
+// the fixed-point rounding 0.5/scale. The twin (double) is held to 1e-12 relative.
+double frictionTolerance(const ContactParams& p, double force) {
+    return 64.0 * kFloatU * std::abs(force) + 0.5 / p.forceScale;
+}
+
+// Slow sliding (0.01 m/s: the stop term, 0.75 N, is below μ f = 30 N): the friction is exactly
+// what stops the relative tangential velocity in the substep, W dt F = speed, never more (which
+// would reverse the sliding and, over substeps, add energy).
+TEST(ContactResponseGl, FrictionStopsSlowSlidingWithoutReversingIt) {
+    const SlidingProbe r = slidingProbe(0.01, 0.01);
+    ASSERT_LT(r.stop, r.coulomb);
+    EXPECT_NEAR(r.cpu.forces[3].x, -r.stop, 1e-12 * r.stop);
+    const ContactParams p = testParams(0.1, 0.5);
+    EXPECT_NEAR(r.gpu.forces[3].x, -r.stop, frictionTolerance(p, r.stop));
+    EXPECT_NEAR(r.gpu.forces[0].x + r.gpu.forces[1].x + r.gpu.forces[2].x, r.stop,
+                frictionTolerance(p, r.stop) * 3);
+    EXPECT_NEAR(r.gpu.forces[3].y, r.normal, penaltyTolerance(p, r.normal, 1));
+    EXPECT_EQ(r.gpu.forces[3].z, 0.0);
+}
+
+// Fast sliding (5 m/s: the stop term, 375 N, is above μ f = 30 N): the friction is Coulomb's μ f.
+TEST(ContactResponseGl, FrictionOnFastSlidingIsMuTimesTheNormalForce) {
+    const SlidingProbe r = slidingProbe(5.0, 0.01);
+    ASSERT_GT(r.stop, r.coulomb);
+    EXPECT_NEAR(r.cpu.forces[3].x, -r.coulomb, 1e-12 * r.coulomb);
+    const ContactParams p = testParams(0.1, 0.5);
+    EXPECT_NEAR(r.gpu.forces[3].x, -r.coulomb,
+                penaltyTolerance(p, r.normal, 1)); // μ ≤ 1 times the normal force's
+    EXPECT_NEAR(r.gpu.forces[3].y, r.normal, penaltyTolerance(p, r.normal, 1));
+}
+
+// Without a substep length (dt = 0) there is no "stops in this substep" bound: no friction.
+TEST(ContactResponseGl, NoFrictionWithoutASubstepLength) {
+    const SlidingProbe r = slidingProbe(5.0, 0.0);
+    EXPECT_EQ(r.cpu.forces[3].x, 0.0);
+    EXPECT_EQ(r.gpu.forces[3].x, 0.0);
+    EXPECT_GT(r.gpu.forces[3].y, 0.0);
+}
+
+// Friction alone never adds kinetic energy. The friction forces are the difference of the runs
+// with μ = 0.5 and μ = 0 (the normal forces are the same: the penalty does not use the count, and
+// Bridson's count does not depend on μ). Applied over dt to nodes of inverse mass 1, they change
+// the kinetic energy by ΔE = dt Σ F_i·v_i + dt²/2 Σ |F_i|², which the cap makes ≤ 0: per contact
+// dt λ (−|v_t| + dt W λ count / 2) with λ ≤ |v_t| / (W dt count), and Cauchy-Schwarz bounds the
+// sum over a node's contacts by its count (docs/collisions.md, "Friction between bodies").
+double frictionEnergyChange(const Soup& s, const std::vector<glm::dvec3>& withFriction,
+                            const std::vector<glm::dvec3>& without, double dt) {
+    double change = 0.0;
+    for (std::size_t n = 0; n < s.positions.size(); ++n) {
+        const glm::dvec3 f = withFriction[n] - without[n];
+        change += dt * glm::dot(f, s.velocities[n]) + 0.5 * dt * dt * glm::dot(f, f);
+    }
+    return change;
+}
+
+TEST(ContactResponseGl, FrictionAloneNeverAddsKineticEnergy) {
+    for (const bool bridson : {false, true})
+        for (const std::uint32_t faces : {40u, 129u}) {
+            const Soup soup = randomSoup(faces, 7u + faces);
+            ContactParams with = testParams(0.03, 0.5), without = testParams(0.03);
+            with.substep = without.substep = 0.01;
+            with.velocityResponse = without.velocityResponse = bridson;
+            const cpu::ContactResult cpuWith = runCpu(soup, with), cpuWithout = runCpu(soup, without);
+            const GpuResult gpuWith = runGpu(soup, with), gpuWithout = runGpu(soup, without);
+            const double twin = frictionEnergyChange(soup, cpuWith.forces, cpuWithout.forces, with.substep);
+            const double gpu = frictionEnergyChange(soup, gpuWith.forces, gpuWithout.forces, with.substep);
+            // The GPU's forces are within expectForcesMatchTheTwin's tolerance t_n of the twin's in
+            // each run: |ΔE error| ≤ Σ dt (|v_n| + dt (|F_n| + 2 t_n)) · 2√3 t_n.
+            double bound = 0.0;
+            for (std::size_t n = 0; n < soup.positions.size(); ++n) {
+                const double t =
+                    std::max(1u, cpuWith.contributions[n]) *
+                    (with.forceCap / 65536.0 + 0.5 / std::min(with.forceScale, without.forceScale));
+                const double f = glm::length(cpuWith.forces[n] - cpuWithout.forces[n]);
+                bound += with.substep * (glm::length(soup.velocities[n]) + with.substep * (f + 2.0 * t)) *
+                         2.0 * std::sqrt(3.0) * t;
+            }
+            std::printf(
+                "%s, faces %u: friction's kinetic energy change twin %.4g J, gpu %.4g J (bound on the "
+                "gpu's error %.2g J)\n",
+                bridson ? "bridson" : "penalty", faces, twin, gpu, bound);
+            EXPECT_LE(twin, 0.0);
+            EXPECT_LT(twin, -10.0 * bound) << "friction must remove energy here, well above the GPU's error";
+            EXPECT_LE(gpu, bound);
+        }
 }
 
 // No candidates: empty lists, zero-group dispatches, no force.

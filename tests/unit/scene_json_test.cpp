@@ -259,7 +259,7 @@ TEST(SceneJson, SettingsAndEffects) {
     EXPECT_EQ(s.collision.precision, TriTriPrecision::Robust);
     EXPECT_EQ(s.collision.response, ContactResponse::Penalty) << "documented default";
     const Scene c = parse(scene(kCloth, R"("collision": {"broad_phase": "masked", "octree_depth": 3,
-        "precision": "fast", "response": "bridson", "thickness": 0.002, "stiffness": 500, "damping": 0.1, "initial_capacity": 1})",
+        "precision": "fast", "response": "bridson", "thickness": 0.002, "stiffness": 500, "damping": 0.1, "friction": 0.4, "initial_capacity": 1})",
                                 R"(["springs", "self_collisions"])"));
     EXPECT_EQ(c.collision.broadPhase, BroadPhase::Masked);
     EXPECT_EQ(c.collision.octreeDepth, 3);
@@ -284,6 +284,8 @@ TEST(SceneJson, SettingsAndEffects) {
     EXPECT_EQ(c.collision.thickness, 0.002);
     EXPECT_EQ(c.collision.stiffness, 500.0);
     EXPECT_EQ(c.collision.damping, 0.1);
+    EXPECT_EQ(c.collision.friction, 0.4);
+    EXPECT_EQ(s.collision.friction, 0.0) << "documented default: frictionless";
     EXPECT_EQ(c.collision.initialCapacity, 1u);
     EXPECT_EQ(c.collision.detection, Detection::Discrete) << "documented default";
     EXPECT_EQ(c.collision.ccd.budget, 4096u) << "documented default";
@@ -358,6 +360,10 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
                 HasSubstr("/collision/bvh/visits_per_round: expected an integer in 1 ... 65534, got 65535"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"bvh": {"depth": 3}})", collide)),
                 HasSubstr("/collision/bvh"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"friction": -0.1})", collide)),
+                HasSubstr("/collision/friction: expected a number >= 0, got -0.1"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"friction": "high"})", collide)),
+                HasSubstr("/collision/friction: expected a number >= 0"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"detection": "swept"})", collide)),
                 HasSubstr("/collision/detection: unknown detection \"swept\"; expected \"discrete\" or "
                           "\"continuous\""));

@@ -83,6 +83,9 @@ TEST(SceneValidate, RejectsBrokenInvariants) {
     EXPECT_THAT(errorAfter([](Scene& s) { s.ground.restitution = 2; }), HasSubstr("ground.restitution"));
     EXPECT_THAT(errorAfter([](Scene& s) { s.ground.friction = -1; }), HasSubstr("ground.friction"));
     EXPECT_THAT(errorAfter([](Scene& s) { s.wind.drag = -1; }), HasSubstr("wind.drag"));
+    EXPECT_THAT(errorAfter([](Scene& s) { s.collision.friction = -1; }), HasSubstr("collision.friction"));
+    EXPECT_THAT(errorAfter([](Scene& s) { s.collision.friction = std::numeric_limits<double>::quiet_NaN(); }),
+                HasSubstr("collision.friction"));
     EXPECT_THAT(errorAfter([](Scene& s) { s.damping = -1; }), HasSubstr("damping"));
     EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].positions.clear(); }), HasSubstr("has no nodes"));
 }
