@@ -53,9 +53,9 @@ ImplicitSolverPass::ImplicitSolverPass(const ImplicitParams& config, std::uint32
       m_contactScan(contactProgram(contacts, "implicit_contact_scan")),
       m_contactScatter(contactProgram(contacts, "implicit_contact_scatter")),
       m_contactSort(contactProgram(contacts, "implicit_contact_sort")),
-      m_nodeContactCounts("solverNodeContactCounts", contacts ? nodeCount * sizeof(std::uint32_t) : 0),
       m_nodeContactOffsets("solverNodeContactOffsets",
-                           contacts ? (std::size_t{nodeCount} + 1) * sizeof(std::uint32_t) : 0) {
+                           contacts ? (std::size_t{nodeCount} + 1) * sizeof(std::uint32_t) : 0),
+      m_nodeContactCounts("solverNodeContactCounts", contacts ? nodeCount * sizeof(std::uint32_t) : 0) {
     resetStatistics();
 }
 
@@ -201,8 +201,8 @@ std::vector<std::string> ImplicitSolverPass::allocatedLabels() const {
                                      &m_blockInverse, &m_partialsR, &m_partialsPq, &m_state})
         labels.push_back(buffer->label());
     if (m_contacts)
-        for (const gl::Buffer* buffer :
-             {&m_nodeContactCounts, &m_nodeContactOffsets, &m_contactRecords, &m_nodeContactList})
+        for (const gl::Buffer* buffer : std::initializer_list<const gl::Buffer*>{
+                 &m_nodeContactCounts, &m_nodeContactOffsets, &m_contactRecords, &m_nodeContactList})
             if (*buffer) labels.push_back(buffer->label());
     return labels;
 }
@@ -213,8 +213,8 @@ std::size_t ImplicitSolverPass::allocatedBytes() const {
                                      &m_blockInverse, &m_partialsR, &m_partialsPq, &m_state})
         bytes += buffer->bytes();
     if (m_contacts)
-        for (const gl::Buffer* buffer :
-             {&m_nodeContactCounts, &m_nodeContactOffsets, &m_contactRecords, &m_nodeContactList})
+        for (const gl::Buffer* buffer : std::initializer_list<const gl::Buffer*>{
+                 &m_nodeContactCounts, &m_nodeContactOffsets, &m_contactRecords, &m_nodeContactList})
             bytes += buffer->bytes();
     return bytes;
 }

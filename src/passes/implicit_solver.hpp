@@ -129,7 +129,8 @@ class ImplicitSolverPass {
     bool m_contacts = false;
     gl::ComputeProgram m_setupContacts, m_directionContacts;
     gl::ComputeProgram m_contactFind, m_contactScan, m_contactScatter, m_contactSort;
-    gl::Buffer m_nodeContactCounts, m_nodeContactOffsets;
+    gl::Buffer m_nodeContactOffsets;
+    mutable gl::Buffer m_nodeContactCounts; // cleared by every dispatch with contacts
     // Sized from the feature-pair lists' capacities at dispatch, which AppendLists::grow raises
     // between substeps: reallocated there, hence mutable.
     mutable gl::Buffer m_contactRecords, m_nodeContactList;
