@@ -28,9 +28,6 @@ layout(std430, binding = GLC_BIND_SOLVER_PRODUCT) writeonly buffer ProductBuf { 
 
 #ifdef GLC_IMPLICIT_CONTACTS
 #include "common/implicit_contact.glsl"
-layout(std430, binding = GLC_BIND_IMPLICIT_CONTACTS) readonly buffer ImplicitContactsBuf { GpuImplicitContact g_contacts[]; };
-layout(std430, binding = GLC_BIND_NODE_CONTACT_OFFSETS) readonly buffer NodeContactOffsetsBuf { uint g_nodeContactOffsets[]; };
-layout(std430, binding = GLC_BIND_NODE_CONTACT_LIST) readonly buffer NodeContactListBuf { uint g_nodeContactList[]; };
 
 // Node j's new direction p_j = z_j + beta·p_j (0 for a pinned node: its z and p are 0).
 vec3 newDirection(uint j, float beta) {
@@ -40,10 +37,10 @@ vec3 newDirection(uint j, float beta) {
 // Σ over node i's contacts, in the sorted order of its incidence list, of h²k·a_i·u (u·Σ_j a_j p_j).
 vec3 contactProduct(uint i, float beta) {
     vec3 product = vec3(0.0);
-    uint end = g_nodeContactOffsets[i + 1u];
-    for (uint e = g_nodeContactOffsets[i]; e < end; ++e) {
-        uint entry = g_nodeContactList[e];
-        GpuImplicitContact c = g_contacts[incidenceSlot(entry)];
+    uint end = contactRowEnd(i);
+    for (uint e = contactRowBegin(i); e < end; ++e) {
+        uint entry = contactEntry(e);
+        GpuImplicitContact c = contactRecord(incidenceSlot(entry));
         float ai = c.weights[incidenceCorner(entry)];
         vec3 u = c.normalForce.xyz;
         vec3 pRel = c.weights.x * newDirection(c.nodes.x, beta) + c.weights.y * newDirection(c.nodes.y, beta) +

@@ -21,7 +21,6 @@ layout(std430, binding = GLC_BIND_FACE_INFO) readonly buffer FaceInfoBuf { GpuFa
 layout(std430, binding = GLC_BIND_OBJECTS) readonly buffer ObjectsBuf { GpuObject g_objects[]; };
 layout(std430, binding = GLC_BIND_VERTEX_FACE_PAIRS) readonly buffer VertexFacePairsBuf { uvec2 g_vertexFace[]; };
 layout(std430, binding = GLC_BIND_EDGE_EDGE_PAIRS) readonly buffer EdgeEdgePairsBuf { uvec2 g_edgeEdge[]; };
-layout(std430, binding = GLC_BIND_IMPLICIT_CONTACTS) writeonly buffer ImplicitContactsBuf { GpuImplicitContact g_contacts[]; };
 layout(std430, binding = GLC_BIND_NODE_CONTACT_COUNTS) buffer NodeContactCountsBuf { uint g_nodeContactCounts[]; };
 
 uniform float u_thickness;    // m
@@ -53,7 +52,7 @@ void main() {
     c.nodes = pair.nodes;
     c.weights = pair.weights;
     c.normalForce = pair.found ? vec4(pair.normal, u_contactStiffness * pair.depth) : vec4(0.0);
-    g_contacts[(u_edgeEdge != 0u ? u_edgeEdgeBase : 0u) + i] = c;
+    storeContactRecord((u_edgeEdge != 0u ? u_edgeEdgeBase : 0u) + i, c);
     for (uint k = 0u; k < 4u; ++k)
         if (hasRow(c, k, g_positions[c.nodes[k]].w)) atomicAdd(g_nodeContactCounts[c.nodes[k]], 1u);
 }

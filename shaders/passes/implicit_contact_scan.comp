@@ -7,9 +7,9 @@
 #include "common/layout.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
+#include "common/implicit_contact.glsl"
 
 layout(std430, binding = GLC_BIND_NODE_CONTACT_COUNTS) readonly buffer NodeContactCountsBuf { uint g_nodeContactCounts[]; };
-layout(std430, binding = GLC_BIND_NODE_CONTACT_OFFSETS) writeonly buffer NodeContactOffsetsBuf { uint g_nodeContactOffsets[]; };
 
 uniform uint u_nodeCount;
 
@@ -34,8 +34,8 @@ void main() {
     }
     uint running = s_chunkSums[lane] - sum; // exclusive: the counts of the chunks before this one
     for (uint i = begin; i < end; ++i) {
-        g_nodeContactOffsets[i] = running;
+        setContactRowOffset(i, running);
         running += g_nodeContactCounts[i];
     }
-    if (lane == GLC_WORKGROUP_SIZE - 1u) g_nodeContactOffsets[u_nodeCount] = s_chunkSums[lane];
+    if (lane == GLC_WORKGROUP_SIZE - 1u) setContactRowOffset(u_nodeCount, s_chunkSums[lane]);
 }

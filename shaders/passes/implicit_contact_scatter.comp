@@ -13,10 +13,7 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/implicit_contact.glsl"
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
-layout(std430, binding = GLC_BIND_IMPLICIT_CONTACTS) readonly buffer ImplicitContactsBuf { GpuImplicitContact g_contacts[]; };
 layout(std430, binding = GLC_BIND_NODE_CONTACT_COUNTS) buffer NodeContactCountsBuf { uint g_nodeContactCounts[]; };
-layout(std430, binding = GLC_BIND_NODE_CONTACT_OFFSETS) readonly buffer NodeContactOffsetsBuf { uint g_nodeContactOffsets[]; };
-layout(std430, binding = GLC_BIND_NODE_CONTACT_LIST) writeonly buffer NodeContactListBuf { uint g_nodeContactList[]; };
 
 uniform uint u_edgeEdge;     // 0: the vertex-face list, 1: the edge-edge list
 uniform uint u_edgeEdgeBase; // the first record of the edge-edge list
@@ -25,11 +22,11 @@ void main() {
     uint i = globalIndex();
     if (i >= storedCount(u_edgeEdge != 0u ? GLC_LIST_EDGE_EDGE : GLC_LIST_VERTEX_FACE)) return;
     uint slot = (u_edgeEdge != 0u ? u_edgeEdgeBase : 0u) + i;
-    GpuImplicitContact c = g_contacts[slot];
+    GpuImplicitContact c = contactRecord(slot);
     for (uint k = 0u; k < 4u; ++k) {
         uint node = c.nodes[k];
         if (!hasRow(c, k, g_positions[node].w)) continue;
         uint position = atomicAdd(g_nodeContactCounts[node], 0xFFFFFFFFu) - 1u; // count − 1, …, 0
-        g_nodeContactList[g_nodeContactOffsets[node] + position] = 4u * slot + k;
+        setContactEntry(contactRowBegin(node) + position, 4u * slot + k);
     }
 }

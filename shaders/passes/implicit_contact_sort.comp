@@ -14,8 +14,6 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 
 layout(std430, binding = GLC_BIND_VERTEX_FACE_PAIRS) readonly buffer VertexFacePairsBuf { uvec2 g_vertexFace[]; };
 layout(std430, binding = GLC_BIND_EDGE_EDGE_PAIRS) readonly buffer EdgeEdgePairsBuf { uvec2 g_edgeEdge[]; };
-layout(std430, binding = GLC_BIND_NODE_CONTACT_OFFSETS) readonly buffer NodeContactOffsetsBuf { uint g_nodeContactOffsets[]; };
-layout(std430, binding = GLC_BIND_NODE_CONTACT_LIST) buffer NodeContactListBuf { uint g_nodeContactList[]; };
 
 uniform uint u_nodeCount;
 uniform uint u_edgeEdgeBase; // the first record of the edge-edge list
@@ -37,15 +35,15 @@ bool keyLess(uvec4 a, uvec4 b) {
 void main() {
     uint i = globalIndex();
     if (i >= u_nodeCount) return;
-    uint begin = g_nodeContactOffsets[i], end = g_nodeContactOffsets[i + 1u];
+    uint begin = contactRowBegin(i), end = contactRowEnd(i);
     for (uint a = begin + 1u; a < end; ++a) {
-        uint entry = g_nodeContactList[a];
+        uint entry = contactEntry(a);
         uvec4 key = incidenceKey(entry);
         uint b = a;
-        while (b > begin && keyLess(key, incidenceKey(g_nodeContactList[b - 1u]))) {
-            g_nodeContactList[b] = g_nodeContactList[b - 1u];
+        while (b > begin && keyLess(key, incidenceKey(contactEntry(b - 1u)))) {
+            setContactEntry(b, contactEntry(b - 1u));
             --b;
         }
-        g_nodeContactList[b] = entry;
+        setContactEntry(b, entry);
     }
 }

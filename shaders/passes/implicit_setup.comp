@@ -25,9 +25,6 @@ layout(std430, binding = GLC_BIND_NODE_SPRING_LIST) readonly buffer NodeSpringLi
 #include "common/external_force.glsl"
 #ifdef GLC_IMPLICIT_CONTACTS
 #include "common/implicit_contact.glsl"
-layout(std430, binding = GLC_BIND_IMPLICIT_CONTACTS) readonly buffer ImplicitContactsBuf { GpuImplicitContact g_contacts[]; };
-layout(std430, binding = GLC_BIND_NODE_CONTACT_OFFSETS) readonly buffer NodeContactOffsetsBuf { uint g_nodeContactOffsets[]; };
-layout(std430, binding = GLC_BIND_NODE_CONTACT_LIST) readonly buffer NodeContactListBuf { uint g_nodeContactList[]; };
 
 // Node i's contact row, in the sorted order of its incidence list (the same sum on every run).
 struct ContactRow {
@@ -39,10 +36,10 @@ struct ContactRow {
 
 ContactRow contactRow(uint i) {
     ContactRow row = ContactRow(vec3(0.0), vec3(0.0), vec4(0.0), vec2(0.0));
-    uint end = g_nodeContactOffsets[i + 1u];
-    for (uint e = g_nodeContactOffsets[i]; e < end; ++e) {
-        uint entry = g_nodeContactList[e];
-        GpuImplicitContact c = g_contacts[incidenceSlot(entry)];
+    uint end = contactRowEnd(i);
+    for (uint e = contactRowBegin(i); e < end; ++e) {
+        uint entry = contactEntry(e);
+        GpuImplicitContact c = contactRecord(incidenceSlot(entry));
         float ai = c.weights[incidenceCorner(entry)];
         vec3 u = c.normalForce.xyz;
         vec3 vRel = c.weights.x * g_velocities[c.nodes.x].xyz + c.weights.y * g_velocities[c.nodes.y].xyz +

@@ -28,6 +28,7 @@ gl::ComputeProgram contactProgram(bool contacts, const char* shader,
 
 /// Incidence entries are 4·slot + corner in a uint.
 constexpr std::uint64_t kMaxContactSlots = std::uint64_t{1} << 30;
+constexpr std::size_t kRecordWords = sizeof(gpu::GpuImplicitContact) / sizeof(std::uint32_t);
 
 constexpr std::size_t kVec4 = 4 * sizeof(float);
 
@@ -53,8 +54,6 @@ ImplicitSolverPass::ImplicitSolverPass(const ImplicitParams& config, std::uint32
       m_contactScan(contactProgram(contacts, "implicit_contact_scan")),
       m_contactScatter(contactProgram(contacts, "implicit_contact_scatter")),
       m_contactSort(contactProgram(contacts, "implicit_contact_sort")),
-      m_nodeContactOffsets("solverNodeContactOffsets",
-                           contacts ? (std::size_t{nodeCount} + 1) * sizeof(std::uint32_t) : 0),
       m_nodeContactCounts("solverNodeContactCounts", contacts ? nodeCount * sizeof(std::uint32_t) : 0) {
     resetStatistics();
 }
@@ -68,10 +67,37 @@ void ImplicitSolverPass::reserveContacts(const AppendLists& lists) const {
                     " the contact term can index");
     if (vertexFace == m_contactEdgeEdgeBase && slots == m_contactSlots) return;
     // Records are found by list slot, so every stored entry of either list has one: none dropped.
-    m_contactRecords = gl::Buffer("solverContactRecords", slots * sizeof(gpu::GpuImplicitContact));
-    m_nodeContactList = gl::Buffer("solverNodeContactList", 4 * slots * sizeof(std::uint32_t));
     m_contactEdgeEdgeBase = vertexFace;
     m_contactSlots = static_cast<std::uint32_t>(slots);
+    m_contactData = gl::Buffer("solverContactData",
+                               (contactRecordsWord() + slots * kRecordWords) * sizeof(std::uint32_t));
+}
+
+void ImplicitSolverPass::setContactWords(const gl::ComputeProgram& program) const {
+    program.set("u_contactEntries", contactEntriesWord());
+    program.set("u_contactRecords", static_cast<std::uint32_t>(contactRecordsWord()));
+}
+
+std::vector<gpu::GpuImplicitContact> ImplicitSolverPass::downloadContactRecords() const {
+    std::vector<gpu::GpuImplicitContact> records(m_contactSlots);
+    if (!records.empty())
+        m_contactData.download(contactRecordsWord() * sizeof(std::uint32_t),
+                               records.size() * sizeof(gpu::GpuImplicitContact), records.data());
+    return records;
+}
+
+std::vector<std::uint32_t> ImplicitSolverPass::downloadNodeContactOffsets() const {
+    std::vector<std::uint32_t> offsets(std::size_t{m_nodeCount} + 1);
+    m_contactData.download(0, offsets.size() * sizeof(std::uint32_t), offsets.data());
+    return offsets;
+}
+
+std::vector<std::uint32_t> ImplicitSolverPass::downloadNodeContactList() const {
+    std::vector<std::uint32_t> entries(downloadNodeContactOffsets().back());
+    if (!entries.empty())
+        m_contactData.download(std::size_t{contactEntriesWord()} * sizeof(std::uint32_t),
+                               entries.size() * sizeof(std::uint32_t), entries.data());
+    return entries;
 }
 
 void ImplicitSolverPass::buildContactRows(const DeviceBuffers& b, const ImplicitContacts& contacts) const {
@@ -85,11 +111,13 @@ void ImplicitSolverPass::buildContactRows(const DeviceBuffers& b, const Implicit
     bindRequired(*in.faceInfo, GLC_BIND_FACE_INFO, kName, "faceInfo");
     bindRequired(*in.objects, GLC_BIND_OBJECTS, kName, "objects");
     in.lists->bind(); // the counters, the dispatch arguments and both lists
-    m_contactRecords.bindStorage(GLC_BIND_IMPLICIT_CONTACTS);
+    m_contactData.bindStorage(GLC_BIND_IMPLICIT_CONTACTS);
     m_nodeContactCounts.bindStorage(GLC_BIND_NODE_CONTACT_COUNTS);
-    m_nodeContactOffsets.bindStorage(GLC_BIND_NODE_CONTACT_OFFSETS);
-    m_nodeContactList.bindStorage(GLC_BIND_NODE_CONTACT_LIST);
     m_nodeContactCounts.fill32(0u);
+    setContactWords(m_contactFind);
+    setContactWords(m_contactScan);
+    setContactWords(m_contactScatter);
+    setContactWords(m_contactSort);
 
     m_contactFind.set("u_thickness", static_cast<float>(contacts.params.thickness));
     m_contactFind.set("u_substep", static_cast<float>(contacts.params.substep));
@@ -130,16 +158,19 @@ void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& 
     if (m_nodeCount == 0) return;
     const gl::ComputeProgram& setup = contacts ? m_setupContacts : m_setup;
     const gl::ComputeProgram& direction = contacts ? m_directionContacts : m_direction;
-    if (contacts)
-        for (const gl::ComputeProgram* p : {&setup, &direction})
-            p->set("u_contactStiffness", static_cast<float>(contacts->params.stiffness));
     const float h = static_cast<float>(params.h);
     const float massFactor = static_cast<float>(1.0 + params.h * params.airDamping);
     const gl::Buffer* directions[2] = {&m_direction0, &m_direction1};
 
     bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
-    if (contacts) buildContactRows(b, *contacts); // reads the positions and velocities bound above
+    if (contacts) {
+        buildContactRows(b, *contacts); // reads the positions and velocities bound above
+        for (const gl::ComputeProgram* p : {&setup, &direction}) {
+            p->set("u_contactStiffness", static_cast<float>(contacts->params.stiffness));
+            setContactWords(*p); // after buildContactRows: it sizes the data
+        }
+    }
     if (m_config.springs) {
         bindRequired(b.springs, GLC_BIND_SPRINGS, kName, "springs");
         bindRequired(b.nodeSpringList, GLC_BIND_NODE_SPRING_LIST, kName, "nodeSpringList");
@@ -201,8 +232,8 @@ std::vector<std::string> ImplicitSolverPass::allocatedLabels() const {
                                      &m_blockInverse, &m_partialsR, &m_partialsPq, &m_state})
         labels.push_back(buffer->label());
     if (m_contacts)
-        for (const gl::Buffer* buffer : std::initializer_list<const gl::Buffer*>{
-                 &m_nodeContactCounts, &m_nodeContactOffsets, &m_contactRecords, &m_nodeContactList})
+        for (const gl::Buffer* buffer :
+             std::initializer_list<const gl::Buffer*>{&m_nodeContactCounts, &m_contactData})
             if (*buffer) labels.push_back(buffer->label());
     return labels;
 }
@@ -213,8 +244,8 @@ std::size_t ImplicitSolverPass::allocatedBytes() const {
                                      &m_blockInverse, &m_partialsR, &m_partialsPq, &m_state})
         bytes += buffer->bytes();
     if (m_contacts)
-        for (const gl::Buffer* buffer : std::initializer_list<const gl::Buffer*>{
-                 &m_nodeContactCounts, &m_nodeContactOffsets, &m_contactRecords, &m_nodeContactList})
+        for (const gl::Buffer* buffer :
+             std::initializer_list<const gl::Buffer*>{&m_nodeContactCounts, &m_contactData})
             bytes += buffer->bytes();
     return bytes;
 }

@@ -30,6 +30,7 @@
 
 #include "core/contact_params.hpp"
 #include "core/dynamics_params.hpp"
+#include "core/gpu_layout.hpp"
 #include "gl/handles.hpp"
 #include "gl/program.hpp"
 #include "passes/contact_response.hpp"
@@ -93,13 +94,13 @@ class ImplicitSolverPass {
         return parity ? m_direction1 : m_direction0;
     }
 
-    /// The contact term after the last dispatch with contacts (tests compare them with the twin):
-    /// GpuImplicitContact per list slot (vertex-face slots first, then contactEdgeEdgeBase() + the
-    /// edge-edge slot), and the node → contact incidence list (offsets: nodes + 1; entries 4·slot +
-    /// corner).
-    [[nodiscard]] const gl::Buffer& contactRecords() const { return m_contactRecords; }
-    [[nodiscard]] const gl::Buffer& nodeContactOffsets() const { return m_nodeContactOffsets; }
-    [[nodiscard]] const gl::Buffer& nodeContactList() const { return m_nodeContactList; }
+    /// The contact term after the last dispatch with contacts (tests compare them with the twin;
+    /// each a download): GpuImplicitContact per list slot (vertex-face slots first, then
+    /// contactEdgeEdgeBase() + the edge-edge slot), and the node → contact incidence list (row
+    /// offsets: nodes + 1; entries 4·slot + corner).
+    [[nodiscard]] std::vector<gpu::GpuImplicitContact> downloadContactRecords() const;
+    [[nodiscard]] std::vector<std::uint32_t> downloadNodeContactOffsets() const;
+    [[nodiscard]] std::vector<std::uint32_t> downloadNodeContactList() const;
     [[nodiscard]] std::uint32_t contactEdgeEdgeBase() const { return m_contactEdgeEdgeBase; }
 
     /// Dispatches of one velocity update: 1 + 2·maxIterations + 1.
@@ -115,6 +116,8 @@ class ImplicitSolverPass {
     void buildContactRows(const DeviceBuffers& b, const ImplicitContacts& contacts) const;
     /// Sizes the records and the incidence list for the lists' capacities (they only grow).
     void reserveContacts(const AppendLists& lists) const;
+    /// Sets the word offsets of m_contactData's parts (u_contactEntries, u_contactRecords).
+    void setContactWords(const gl::ComputeProgram& program) const;
 
     ImplicitParams m_config;
     std::uint32_t m_nodeCount = 0;
@@ -129,12 +132,17 @@ class ImplicitSolverPass {
     bool m_contacts = false;
     gl::ComputeProgram m_setupContacts, m_directionContacts;
     gl::ComputeProgram m_contactFind, m_contactScan, m_contactScatter, m_contactSort;
-    gl::Buffer m_nodeContactOffsets;
     mutable gl::Buffer m_nodeContactCounts; // cleared by every dispatch with contacts
-    // Sized from the feature-pair lists' capacities at dispatch, which AppendLists::grow raises
-    // between substeps: reallocated there, hence mutable.
-    mutable gl::Buffer m_contactRecords, m_nodeContactList;
+    // Row offsets, incidence entries and records (layout.glsl, GLC_BIND_IMPLICIT_CONTACTS), sized
+    // from the feature-pair lists' capacities at dispatch, which AppendLists::grow raises between
+    // substeps: reallocated there, hence mutable.
+    mutable gl::Buffer m_contactData;
     mutable std::uint32_t m_contactEdgeEdgeBase = 0, m_contactSlots = 0;
+    /// Word offsets of the entries and of the records in m_contactData.
+    [[nodiscard]] std::uint32_t contactEntriesWord() const { return m_nodeCount + 1; }
+    [[nodiscard]] std::size_t contactRecordsWord() const {
+        return contactEntriesWord() + std::size_t{4} * m_contactSlots;
+    }
 };
 
 } // namespace glcollide::passes

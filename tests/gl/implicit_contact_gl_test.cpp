@@ -191,13 +191,9 @@ GpuRun runGpu(const ContactScene& s, const ImplicitParams& p, const ContactParam
     b.velocities.download(0, r.velocities.size() * sizeof(glm::vec4), r.velocities.data());
     if (!contacts) return r;
     r.edgeEdgeBase = pass.contactEdgeEdgeBase();
-    r.records.resize(pass.contactRecords().bytes() / sizeof(gpu::GpuImplicitContact));
-    pass.contactRecords().download(0, pass.contactRecords().bytes(), r.records.data());
-    r.offsets.resize(b.nodeCount + 1);
-    pass.nodeContactOffsets().download(0, r.offsets.size() * sizeof(std::uint32_t), r.offsets.data());
-    r.list.resize(r.offsets.back());
-    if (!r.list.empty())
-        pass.nodeContactList().download(0, r.list.size() * sizeof(std::uint32_t), r.list.data());
+    r.records = pass.downloadContactRecords();
+    r.offsets = pass.downloadNodeContactOffsets();
+    r.list = pass.downloadNodeContactList();
     return r;
 }
 
