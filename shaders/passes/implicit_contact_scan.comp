@@ -3,7 +3,7 @@
 // the per-node incidence counts into CSR row offsets (exclusive prefix sum, offsets[nodes] = the
 // total). Each invocation sums a contiguous chunk of ⌈nodes / GLC_WORKGROUP_SIZE⌉ counts, a
 // Hillis-Steele scan in shared memory offsets the chunks, then each invocation writes its chunk.
-// Integer sums: exact and order-independent. Twin: the row offsets of cpu::implicitContactRows.
+// Integer sums: exact and order-independent.
 #include "common/layout.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
