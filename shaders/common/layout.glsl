@@ -70,14 +70,21 @@
 #define GLC_BIND_NODE_TOI 49              // uint[nodes]: bits of the node's earliest time of impact in the
                                           // substep, in [0, 1] (non-negative floats order like their bits:
                                           // atomicMin); +inf bits when none
-#define GLC_BIND_OBJECT_TOI 50            // uint[objects]: the earliest time of impact of the object's nodes
+// Contacts inside the implicit solve (docs/integration.md, "Contacts in the implicit solve"). One
+// buffer (the solver's kernels are at GL's minimum of 16 storage blocks with every feature on):
+// words [0, nodes]: CSR row offsets into the entries; then 4 words per record slot: the node →
+// contact incidence entries (4·slot + corner, each row sorted by the pair's key); then the records,
+// GpuImplicitContact (12 words) per slot of the vertex-face list, then per slot of the edge-edge list.
+#define GLC_BIND_IMPLICIT_CONTACTS 50       // uint[nodes + 1 + 16 · (vertex-face + edge-edge capacity)]
+#define GLC_BIND_NODE_CONTACT_COUNTS 51     // uint[nodes]: incidences per node (integer atomics), then scatter cursors
+#define GLC_BIND_OBJECT_TOI 52            // uint[objects]: the earliest time of impact of the object's nodes
                                           // (SafeStep, decision 0024), bits as GLC_BIND_NODE_TOI
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 51
+#define GLC_BINDING_COUNT 53
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -153,6 +160,15 @@ struct GpuBox {
 };
 
 // Per-face data the collision passes need beside the three node indices.
+// One active contact of the implicit solve (implicit_contact_find.comp): nodes n with signed
+// weights a (vertex-face (1, −w0, −w1, −w2), edge-edge (1−s, s, −(1−t), −t)), unit normal u from
+// side B to side A, penalty force magnitude k·depth. normalForce.w = 0: the slot holds no contact.
+struct GpuImplicitContact {
+    uvec4 nodes;
+    vec4 weights;
+    vec4 normalForce; // xyz: u; w: k·depth (N)
+};
+
 struct GpuFaceInfo {
     uint object; // index into ObjectsBuf
     uint box;    // global leaf box index

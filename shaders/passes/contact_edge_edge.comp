@@ -14,36 +14,14 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
 #include "common/contact_geometry.glsl"
 #include "common/contact_force.glsl"
+#include "common/contact_pair.glsl"
 
 layout(std430, binding = GLC_BIND_EDGE_EDGE_PAIRS) readonly buffer EdgeEdgePairsBuf { uvec2 g_edgeEdge[]; };
 
-// Edges that crossed within the substep (their closest-point offset points the other way than at
-// its start, from the previous positions x − dt·v) are pushed back, depth h + d (decision 0019).
+// Returns 1 when a force was applied (geometry: common/contact_pair.glsl).
 uint edgeEdge(uint p0, uint p1, uint q0, uint q1) {
-    vec3 x0 = g_positions[p0].xyz, x1 = g_positions[p1].xyz;
-    vec3 y0 = g_positions[q0].xyz, y1 = g_positions[q1].xyz;
-    vec2 st = closestSegmentParams(x0, x1, y0, y1);
-    if (!(st.x > 0.0 && st.x < 1.0 && st.y > 0.0 && st.y < 1.0)) return 0u;
-    vec3 diff = mix(x0, x1, st.x) - mix(y0, y1, st.y);
-    float d = length(diff);
-    if (!(d < u_thickness)) return 0u;
-    vec3 diffPrev = mix(previousPosition(p0), previousPosition(p1), st.x) -
-                    mix(previousPosition(q0), previousPosition(q1), st.y);
-    vec3 u;
-    float depth;
-    if (d > 0.0 && dot(diffPrev, diff) >= 0.0) {
-        u = diff / d;
-        depth = u_thickness - d;
-    } else if (d > 0.0) { // crossed: back to the side of the start of the substep
-        u = -diff / d;
-        depth = u_thickness + d;
-    } else { // touching now (no direction): the direction they had
-        float dPrev = length(diffPrev);
-        if (!(dPrev > 0.0)) return 0u;
-        u = diffPrev / dPrev;
-        depth = u_thickness;
-    }
-    return respond(uvec4(p0, p1, q0, q1), vec4(1.0 - st.x, st.x, st.y - 1.0, -st.y), u, depth);
+    ContactPair c = edgeEdgeContact(p0, p1, q0, q1);
+    return c.found ? respond(c.nodes, c.weights, c.normal, c.depth) : 0u;
 }
 
 void main() {

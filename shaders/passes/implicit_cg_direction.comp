@@ -1,11 +1,13 @@
 #version 430 core
-// glcollide-features: GLC_SPRINGS
+// glcollide-features: GLC_SPRINGS GLC_IMPLICIT_CONTACTS
 // ImplicitCgDirection — iteration u_iteration of the implicit solver's conjugate gradients, first
 // width: from the previous pass's partial sums of r·z and r·r every group computes the same
 // rz and ‖r‖²; if ‖r‖ ≤ tolerance·‖b‖ (or the cap is reached) the solve is over and invocation 0
 // records the statistics. Otherwise the new direction p = z + beta·p (beta = rz / previous rz) and
 // its product q = A·p, with A·p at node i = m(1 + h·c_air)·p_i + Σ (h·C_s + h²·K_s)(p_i − p_j);
 // a neighbour's new p_j is formed from its z_j and old p_j on the fly (p is double-buffered).
+// With GLC_IMPLICIT_CONTACTS every contact of the node's sorted incidence list adds
+// h²k·a_i·u (u·Σ_j a_j p_j) (pinned nodes' p_j are 0: they are not part of the system).
 // Per-group partial sums of p·q for ImplicitCgUpdate. Twin: cpu::implicitVelocityUpdate.
 #include "common/layout.glsl"
 
@@ -23,6 +25,31 @@ layout(std430, binding = GLC_BIND_SOLVER_PRECONDITIONED) readonly buffer Precond
 layout(std430, binding = GLC_BIND_SOLVER_DIRECTION_IN) readonly buffer DirectionInBuf { vec4 g_directionIn[]; };
 layout(std430, binding = GLC_BIND_SOLVER_DIRECTION_OUT) writeonly buffer DirectionOutBuf { vec4 g_directionOut[]; };
 layout(std430, binding = GLC_BIND_SOLVER_PRODUCT) writeonly buffer ProductBuf { vec4 g_product[]; };
+
+#ifdef GLC_IMPLICIT_CONTACTS
+#include "common/implicit_contact.glsl"
+
+// Node j's new direction p_j = z_j + beta·p_j (0 for a pinned node: its z and p are 0).
+vec3 newDirection(uint j, float beta) {
+    return g_preconditioned[j].xyz + beta * g_directionIn[j].xyz;
+}
+
+// Σ over node i's contacts, in the sorted order of its incidence list, of h²k·a_i·u (u·Σ_j a_j p_j).
+vec3 contactProduct(uint i, float beta) {
+    vec3 product = vec3(0.0);
+    uint end = contactRowEnd(i);
+    for (uint e = contactRowBegin(i); e < end; ++e) {
+        uint entry = contactEntry(e);
+        GpuImplicitContact c = contactRecord(incidenceSlot(entry));
+        float ai = c.weights[incidenceCorner(entry)];
+        vec3 u = c.normalForce.xyz;
+        vec3 pRel = c.weights.x * newDirection(c.nodes.x, beta) + c.weights.y * newDirection(c.nodes.y, beta) +
+                    c.weights.z * newDirection(c.nodes.z, beta) + c.weights.w * newDirection(c.nodes.w, beta);
+        product += (u_h * u_h * u_contactStiffness * ai * dot(u, pRel)) * u;
+    }
+    return product;
+}
+#endif
 
 uniform uint u_iteration;     // k = 0, 1, …, u_maxIterations (the last one only checks)
 uniform uint u_maxIterations; // the cap
@@ -77,6 +104,9 @@ void main() {
     if (task.owner) {
         if (w > 0.0) {
             q += (u_massFactor / w) * pi;
+#ifdef GLC_IMPLICIT_CONTACTS
+            q += contactProduct(i, beta);
+#endif
         } else {
             q = vec3(0.0);
             pi = vec3(0.0);

@@ -1,12 +1,15 @@
 #version 430 core
-// glcollide-features: GLC_SPRINGS GLC_GRAVITY GLC_DAMPING GLC_WIND
+// glcollide-features: GLC_SPRINGS GLC_GRAVITY GLC_DAMPING GLC_WIND GLC_IMPLICIT_CONTACTS
 // ImplicitSetup — assembles one implicit Euler substep's system A·Δv = b per node (Baraff &
 // Witkin 1998, one Newton step of backward Euler) and starts the conjugate gradients at Δv = 0:
 //   b = h·f + h²·Σ K_s (v_j − v_i),   P = m(1 + h·c_air)·I + Σ (h·C_s + h²·K_s)  (A's diagonal block)
 //   r = b,  z = P⁻¹·r,  p = z,  per-group partial sums of r·z and r·r.
 // f is the external force (gravity, air damping, wind: common/external_force.glsl) and the springs'
-// force (GLC_SPRINGS); contacts come after the solve (ContactResponse, then NodeUpdate). Pinned
-// nodes (w = 0) get zeros everywhere: their Δv stays 0. Twin: cpu::implicitVelocityUpdate.
+// force (GLC_SPRINGS). With GLC_IMPLICIT_CONTACTS the active contacts of the incidence list
+// (common/implicit_contact.glsl) add their penalty force a_i·k·depth·u to f, −k·a_i·u(u·Σ a_j v_j) to
+// the stiffness term and h²k·a_i²·u uᵀ to P; without it contacts come after the solve
+// (ContactResponse, then NodeUpdate). Pinned nodes (w = 0) get zeros everywhere: their Δv stays 0.
+// Twin: cpu::implicitVelocityUpdate.
 #include "common/layout.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
@@ -20,6 +23,36 @@ layout(std430, binding = GLC_BIND_SPRINGS) readonly buffer SpringsBuf { GpuSprin
 layout(std430, binding = GLC_BIND_NODE_SPRING_LIST) readonly buffer NodeSpringListBuf { uint g_nodeSpringList[]; };
 #endif
 #include "common/external_force.glsl"
+#ifdef GLC_IMPLICIT_CONTACTS
+#include "common/implicit_contact.glsl"
+
+// Node i's contact row, in the sorted order of its incidence list (the same sum on every run).
+struct ContactRow {
+    vec3 force;                  // Σ a_i·k·depth·u
+    vec3 stiffnessTimesVelocity; // Σ −k·a_i·u (u·Σ_j a_j v_j): ∂f/∂x·v, pinned nodes' v included
+    vec4 blockA;                 // Σ h²k·a_i²·u uᵀ: xx xy xz yy
+    vec2 blockB;                 // yz zz
+};
+
+ContactRow contactRow(uint i) {
+    ContactRow row = ContactRow(vec3(0.0), vec3(0.0), vec4(0.0), vec2(0.0));
+    uint end = contactRowEnd(i);
+    for (uint e = contactRowBegin(i); e < end; ++e) {
+        uint entry = contactEntry(e);
+        GpuImplicitContact c = contactRecord(incidenceSlot(entry));
+        float ai = c.weights[incidenceCorner(entry)];
+        vec3 u = c.normalForce.xyz;
+        vec3 vRel = c.weights.x * g_velocities[c.nodes.x].xyz + c.weights.y * g_velocities[c.nodes.y].xyz +
+                    c.weights.z * g_velocities[c.nodes.z].xyz + c.weights.w * g_velocities[c.nodes.w].xyz;
+        row.force += (ai * c.normalForce.w) * u;
+        row.stiffnessTimesVelocity -= (u_contactStiffness * ai * dot(u, vRel)) * u;
+        float block = u_h * u_h * u_contactStiffness * ai * ai;
+        row.blockA += block * vec4(u.x * u.x, u.x * u.y, u.x * u.z, u.y * u.y);
+        row.blockB += block * vec2(u.y * u.z, u.z * u.z);
+    }
+    return row;
+}
+#endif
 layout(std430, binding = GLC_BIND_SOLVER_RESIDUAL) writeonly buffer ResidualBuf { vec4 g_residual[]; };
 layout(std430, binding = GLC_BIND_SOLVER_PRECONDITIONED) writeonly buffer PreconditionedBuf { vec4 g_preconditioned[]; };
 layout(std430, binding = GLC_BIND_SOLVER_DIRECTION_OUT) writeonly buffer DirectionOutBuf { vec4 g_direction[]; };
@@ -67,8 +100,16 @@ void main() {
             float m = u_massFactor / w;
             vec4 a = sum2 + vec4(m, 0.0, 0.0, m);
             vec2 b = vec2(sum0.w, sum1.w + m);
+            vec3 stiffnessTerm = sum1.xyz;
+#ifdef GLC_IMPLICIT_CONTACTS
+            ContactRow contacts = contactRow(i);
+            f += contacts.force;
+            stiffnessTerm += contacts.stiffnessTimesVelocity;
+            a += contacts.blockA;
+            b += contacts.blockB;
+#endif
             symInverse(a, b, inverseA, inverseB);
-            r = u_h * f + (u_h * u_h) * sum1.xyz;
+            r = u_h * f + (u_h * u_h) * stiffnessTerm;
             z = symMul(inverseA, inverseB, r);
             partial = vec2(dot(r, z), dot(r, r));
         }

@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <optional>
 
 namespace glcollide::cpu {
 namespace {
@@ -24,6 +25,100 @@ bool ownsClosestFeature(std::uint32_t p, const std::array<std::uint32_t, 3>& fac
     return true;
 }
 
+// contact_pair.glsl: which feature pairs are contacts, and their nodes, weights, normal and depth.
+struct Geometry {
+    const ContactParams& p;
+    const ContactInput& in;
+
+    const glm::dvec3& x(std::uint32_t n) const { return (*in.positions)[n]; }
+    const glm::dvec3& v(std::uint32_t n) const { return (*in.velocities)[n]; }
+    glm::dvec3 previous(std::uint32_t n) const { return x(n) - (p.sidesFromPrevious ? p.substep : 0.0) * v(n); }
+
+    std::optional<ContactGeometry> vertexFace(std::uint32_t node, const std::array<std::uint32_t, 3>& f,
+                                              std::uint32_t faceOwned, bool closed) const {
+        const glm::dvec3 &xp = x(node), &xa = x(f[0]), &xb = x(f[1]), &xc = x(f[2]);
+        glm::dvec3 n = glm::cross(xb - xa, xc - xa);
+        const double area2 = glm::length(n);
+        if (!(area2 > 0.0)) return std::nullopt;
+        n /= area2;
+        const glm::dvec3 wts = closestOnTriangle(xp, xa, xb, xc);
+        if (!ownsClosestFeature(node, f, wts, faceOwned)) return std::nullopt;
+        const glm::dvec3 diff = xp - (wts.x * xa + wts.y * xb + wts.z * xc);
+        const double d = glm::length(diff), s = glm::dot(n, xp - xa), h = p.thickness;
+        double side = 1.0;
+        if (!closed) {
+            const glm::dvec3 pa = previous(f[0]);
+            const double sPrev =
+                glm::dot(glm::cross(previous(f[1]) - pa, previous(f[2]) - pa), previous(node) - pa);
+            side = sPrev > 0.0 ? 1.0 : (sPrev < 0.0 ? -1.0 : (s > 0.0 ? 1.0 : (s < 0.0 ? -1.0 : 0.0)));
+        }
+        const double sideDistance = side * s;
+        const bool inside = wts.x > 0.0 && wts.y > 0.0 && wts.z > 0.0;
+        glm::dvec3 u;
+        double depth = 0.0;
+        if (side != 0.0 && inside && sideDistance < h && sideDistance > -h) {
+            u = side * n;
+            depth = h - sideDistance;
+        } else if (d < h && d > 0.0) {
+            if (closed || sideDistance >= 0.0) {
+                u = diff / d;
+                depth = h - d;
+            } else {
+                u = side * n;
+                depth = h - sideDistance;
+            }
+        } else {
+            return std::nullopt;
+        }
+        return ContactGeometry{{node, f[0], f[1], f[2]}, {1.0, -wts.x, -wts.y, -wts.z}, u, depth};
+    }
+
+    std::optional<ContactGeometry> edgeEdge(std::uint32_t p0, std::uint32_t p1, std::uint32_t q0,
+                                            std::uint32_t q1) const {
+        const auto [s, t] = closestSegmentParams(x(p0), x(p1), x(q0), x(q1));
+        if (!(s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0)) return std::nullopt; // an endpoint: vertex-face
+        const glm::dvec3 diff = (x(p0) + s * (x(p1) - x(p0))) - (x(q0) + t * (x(q1) - x(q0)));
+        const double d = glm::length(diff);
+        if (!(d < p.thickness)) return std::nullopt;
+        const glm::dvec3 diffPrev = (previous(p0) + s * (previous(p1) - previous(p0))) -
+                                    (previous(q0) + t * (previous(q1) - previous(q0)));
+        glm::dvec3 u;
+        double depth = 0.0;
+        if (d > 0.0 && glm::dot(diffPrev, diff) >= 0.0) {
+            u = diff / d;
+            depth = p.thickness - d;
+        } else if (d > 0.0) {
+            u = -diff / d;
+            depth = p.thickness + d;
+        } else {
+            const double dPrev = glm::length(diffPrev);
+            if (!(dPrev > 0.0)) return std::nullopt;
+            u = diffPrev / dPrev;
+            depth = p.thickness;
+        }
+        return ContactGeometry{{p0, p1, q0, q1}, {1.0 - s, s, t - 1.0, -t}, u, depth};
+    }
+};
+
+/// Calls f(contact) for every contact among `pairs`, in list order (vertex-face, then edge-edge).
+template <typename F>
+void forEachContact(const ContactParams& params, const ContactInput& in, const FeaturePairList& pairs,
+                    F&& f) {
+    const Geometry geometry{params, in};
+    const std::vector<std::uint32_t>& idx = *in.faceIndices;
+    for (const auto& [node, face] : pairs.vertexFace) {
+        const std::array<std::uint32_t, 3> nodes{idx[3 * face], idx[3 * face + 1], idx[3 * face + 2]};
+        if (const auto c =
+                geometry.vertexFace(node, nodes, (*in.faceOwned)[face], (*in.faceClosed)[face] != 0))
+            f(*c);
+    }
+    for (const auto& [edgeA, edgeB] : pairs.edgeEdge) {
+        const auto a = model::faceEdge(idx, edgeA / 3, static_cast<int>(edgeA % 3));
+        const auto b = model::faceEdge(idx, edgeB / 3, static_cast<int>(edgeB % 3));
+        if (const auto c = geometry.edgeEdge(a[0], a[1], b[0], b[1])) f(*c);
+    }
+}
+
 // The two passes of the response: Count counts the active contacts per node, Apply adds the
 // forces (contact_force.glsl's u_countPass).
 enum class Pass { Count, Apply };
@@ -35,12 +130,8 @@ struct Solver {
     std::vector<std::uint32_t>& approaching; // per node: active contacts, from the count pass
     Pass pass = Pass::Count;
 
-    const glm::dvec3& x(std::uint32_t n) const { return (*in.positions)[n]; }
     const glm::dvec3& v(std::uint32_t n) const { return (*in.velocities)[n]; }
     double w(std::uint32_t n) const { return in.inverseMasses ? (*in.inverseMasses)[n] : 1.0; }
-    glm::dvec3 previous(std::uint32_t n) const {
-        return x(n) - (p.sidesFromPrevious ? p.substep : 0.0) * v(n);
-    }
     double normalForce(double depth, double normalSpeed) const {
         return std::clamp(p.stiffness * depth - p.damping * normalSpeed, 0.0, p.forceCap);
     }
@@ -104,70 +195,6 @@ struct Solver {
         }
         ++out.contacts;
         return true;
-    }
-
-    void vertexFace(std::uint32_t node, const std::array<std::uint32_t, 3>& f, std::uint32_t faceOwned,
-                    bool closed) {
-        const glm::dvec3 &xp = x(node), &xa = x(f[0]), &xb = x(f[1]), &xc = x(f[2]);
-        glm::dvec3 n = glm::cross(xb - xa, xc - xa);
-        const double area2 = glm::length(n);
-        if (!(area2 > 0.0)) return;
-        n /= area2;
-        const glm::dvec3 wts = closestOnTriangle(xp, xa, xb, xc);
-        if (!ownsClosestFeature(node, f, wts, faceOwned)) return;
-        const glm::dvec3 diff = xp - (wts.x * xa + wts.y * xb + wts.z * xc);
-        const double d = glm::length(diff), s = glm::dot(n, xp - xa), h = p.thickness;
-        double side = 1.0;
-        if (!closed) {
-            const glm::dvec3 pa = previous(f[0]);
-            const double sPrev =
-                glm::dot(glm::cross(previous(f[1]) - pa, previous(f[2]) - pa), previous(node) - pa);
-            side = sPrev > 0.0 ? 1.0 : (sPrev < 0.0 ? -1.0 : (s > 0.0 ? 1.0 : (s < 0.0 ? -1.0 : 0.0)));
-        }
-        const double sideDistance = side * s;
-        const bool inside = wts.x > 0.0 && wts.y > 0.0 && wts.z > 0.0;
-        glm::dvec3 u;
-        double depth = 0.0;
-        if (side != 0.0 && inside && sideDistance < h && sideDistance > -h) {
-            u = side * n;
-            depth = h - sideDistance;
-        } else if (d < h && d > 0.0) {
-            if (closed || sideDistance >= 0.0) {
-                u = diff / d;
-                depth = h - d;
-            } else {
-                u = side * n;
-                depth = h - sideDistance;
-            }
-        } else {
-            return;
-        }
-        respond({node, f[0], f[1], f[2]}, {1.0, -wts.x, -wts.y, -wts.z}, u, depth);
-    }
-
-    void edgeEdge(std::uint32_t p0, std::uint32_t p1, std::uint32_t q0, std::uint32_t q1) {
-        const auto [s, t] = closestSegmentParams(x(p0), x(p1), x(q0), x(q1));
-        if (!(s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0)) return; // an endpoint: a vertex-face contact
-        const glm::dvec3 diff = (x(p0) + s * (x(p1) - x(p0))) - (x(q0) + t * (x(q1) - x(q0)));
-        const double d = glm::length(diff);
-        if (!(d < p.thickness)) return;
-        const glm::dvec3 diffPrev = (previous(p0) + s * (previous(p1) - previous(p0))) -
-                                    (previous(q0) + t * (previous(q1) - previous(q0)));
-        glm::dvec3 u;
-        double depth = 0.0;
-        if (d > 0.0 && glm::dot(diffPrev, diff) >= 0.0) {
-            u = diff / d;
-            depth = p.thickness - d;
-        } else if (d > 0.0) {
-            u = -diff / d;
-            depth = p.thickness + d;
-        } else {
-            const double dPrev = glm::length(diffPrev);
-            if (!(dPrev > 0.0)) return;
-            u = diffPrev / dPrev;
-            depth = p.thickness;
-        }
-        respond({p0, p1, q0, q1}, {1.0 - s, s, t - 1.0, -t}, u, depth);
     }
 };
 
@@ -261,21 +288,20 @@ ContactResult contactForces(const ContactParams& params, const ContactInput& in,
     out.contributions.assign(in.positions->size(), 0u);
     out.approaching.assign(in.positions->size(), 0u);
     Solver solver{params, in, out, out.approaching};
-    const std::vector<std::uint32_t>& idx = *in.faceIndices;
-    const auto face = [&](std::uint32_t f) {
-        return std::array<std::uint32_t, 3>{idx[3 * f], idx[3 * f + 1], idx[3 * f + 2]};
-    };
     for (const Pass pass : {Pass::Count, Pass::Apply}) { // every count before any force
         solver.pass = pass;
-        for (const auto& [node, f] : pairs.vertexFace)
-            solver.vertexFace(node, face(f), (*in.faceOwned)[f], (*in.faceClosed)[f] != 0);
-        for (const auto& [edgeA, edgeB] : pairs.edgeEdge) {
-            const auto a = model::faceEdge(idx, edgeA / 3, static_cast<int>(edgeA % 3));
-            const auto b = model::faceEdge(idx, edgeB / 3, static_cast<int>(edgeB % 3));
-            solver.edgeEdge(a[0], a[1], b[0], b[1]);
-        }
+        forEachContact(params, in, pairs, [&](const ContactGeometry& c) {
+            solver.respond(c.nodes, c.weights, c.normal, c.depth);
+        });
     }
     return out;
+}
+
+std::vector<ContactGeometry> contactGeometries(const ContactParams& params, const ContactInput& in,
+                                               const FeaturePairList& pairs) {
+    std::vector<ContactGeometry> contacts;
+    forEachContact(params, in, pairs, [&](const ContactGeometry& c) { contacts.push_back(c); });
+    return contacts;
 }
 
 ContactResult contactForces(const ContactParams& params, const ContactInput& in,

@@ -48,6 +48,21 @@ FeaturePairList featurePairs(const std::vector<std::uint32_t>& faceIndices,
                              const std::vector<std::uint32_t>& faceOwned,
                              const std::vector<IndexPair>& candidates);
 
+/// One contact (shaders/common/contact_pair.glsl): four nodes with signed weights (side A: +,
+/// summing to 1; side B: −, summing to −1), the unit normal from B to A and the depth inside the
+/// thickness.
+struct ContactGeometry {
+    std::array<std::uint32_t, 4> nodes{};
+    std::array<double, 4> weights{};
+    glm::dvec3 normal{0.0};
+    double depth = 0.0;
+};
+
+/// The contacts among the feature pairs, in list order (vertex-face, then edge-edge): the rules of
+/// the response and of the implicit solve's contact term (implicit_contact_find.comp).
+std::vector<ContactGeometry> contactGeometries(const ContactParams& params, const ContactInput& in,
+                                               const FeaturePairList& pairs);
+
 /// Contact forces of the feature pairs (the response's two kernels, count pass then force pass).
 ContactResult contactForces(const ContactParams& params, const ContactInput& in,
                             const FeaturePairList& pairs);

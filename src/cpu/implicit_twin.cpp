@@ -37,6 +37,24 @@ void forEachSpringBlock(const ImplicitParams& p, const std::vector<model::FlatSp
     }
 }
 
+/// Calls f(i, a_i, contact) for every row a contact adds to: a free node (inverse mass > 0) with a
+/// weight that is not 0 (implicit_contact.glsl's hasRow).
+template <typename F> void forEachContactRow(const ImplicitContactSet* set, const NodeState& state, F&& f) {
+    if (!set) return;
+    for (const ContactGeometry& c : set->contacts)
+        for (std::size_t k = 0; k < 4; ++k)
+            if (state.inverseMasses[c.nodes[k]] > 0.0 && c.weights[k] != 0.0) f(c.nodes[k], c.weights[k], c);
+}
+
+/// Σ_j a_j x_j over the contact's nodes (x_j of pinned nodes included unless `freeOnly`).
+glm::dvec3 weightedSum(const ContactGeometry& c, const std::vector<glm::dvec3>& x, const NodeState& state,
+                       bool freeOnly) {
+    glm::dvec3 sum(0.0);
+    for (std::size_t k = 0; k < 4; ++k)
+        if (!freeOnly || state.inverseMasses[c.nodes[k]] > 0.0) sum += c.weights[k] * x[c.nodes[k]];
+    return sum;
+}
+
 /// The assembled per-node pieces of the system: right-hand side and diagonal blocks.
 struct Assembly {
     std::vector<glm::dvec3> b;
@@ -48,7 +66,7 @@ double massFactor(const ImplicitParams& p) {
 }
 
 Assembly assemble(const ImplicitParams& p, const std::vector<model::FlatSpring>& springs,
-                  const model::Csr& rows, const NodeState& state) {
+                  const model::Csr& rows, const NodeState& state, const ImplicitContactSet* contacts) {
     const std::size_t n = state.positions.size();
     Assembly a{std::vector<glm::dvec3>(n, glm::dvec3(0.0)), std::vector<glm::dmat3>(n, glm::dmat3(0.0))};
     for (std::size_t i = 0; i < n; ++i) {
@@ -67,13 +85,20 @@ Assembly assemble(const ImplicitParams& p, const std::vector<model::FlatSpring>&
         a.b[i] = p.h * f + p.h * p.h * stiffnessTimesVelocity;
         a.diagonal[i] = d;
     }
+    forEachContactRow(contacts, state, [&](std::uint32_t i, double ai, const ContactGeometry& c) {
+        const double k = contacts->stiffness;
+        const glm::dvec3 vRel = weightedSum(c, state.velocities, state, false);
+        a.b[i] +=
+            p.h * ai * k * c.depth * c.normal - p.h * p.h * k * ai * glm::dot(c.normal, vRel) * c.normal;
+        a.diagonal[i] += p.h * p.h * k * ai * ai * glm::outerProduct(c.normal, c.normal);
+    });
     return a;
 }
 
 /// q = A·x over the free nodes (pinned entries of x are ignored, pinned rows of q are 0).
 std::vector<glm::dvec3> multiply(const ImplicitParams& p, const std::vector<model::FlatSpring>& springs,
                                  const model::Csr& rows, const NodeState& state,
-                                 const std::vector<glm::dvec3>& x) {
+                                 const std::vector<glm::dvec3>& x, const ImplicitContactSet* contacts) {
     const std::size_t n = state.positions.size();
     std::vector<glm::dvec3> q(n, glm::dvec3(0.0));
     for (std::size_t i = 0; i < n; ++i) {
@@ -87,6 +112,10 @@ std::vector<glm::dvec3> multiply(const ImplicitParams& p, const std::vector<mode
         });
         q[i] = sum;
     }
+    forEachContactRow(contacts, state, [&](std::uint32_t i, double ai, const ContactGeometry& c) {
+        const glm::dvec3 xRel = weightedSum(c, x, state, true); // pinned nodes are not in the system
+        q[i] += p.h * p.h * contacts->stiffness * ai * glm::dot(c.normal, xRel) * c.normal;
+    });
     return q;
 }
 
@@ -115,11 +144,17 @@ SpringBlock springBlock(const model::FlatSpring& s, const glm::dvec3& xi, const 
     return b;
 }
 
+ImplicitContactSet implicitContacts(const ContactParams& params, const ContactInput& in,
+                                    const FeaturePairList& pairs) {
+    return {contactGeometries(params, in, pairs), params.stiffness};
+}
+
 ImplicitSolveStats implicitVelocityUpdate(const ImplicitParams& params,
                                           const std::vector<model::FlatSpring>& springs,
-                                          const model::Csr& nodeSprings, NodeState& state) {
+                                          const model::Csr& nodeSprings, NodeState& state,
+                                          const ImplicitContactSet* contacts) {
     const std::size_t n = state.positions.size();
-    const Assembly a = assemble(params, springs, nodeSprings, state);
+    const Assembly a = assemble(params, springs, nodeSprings, state, contacts);
     std::vector<glm::dmat3> inverse(n, glm::dmat3(0.0));
     for (std::size_t i = 0; i < n; ++i)
         if (state.inverseMasses[i] > 0.0) inverse[i] = glm::inverse(a.diagonal[i]);
@@ -145,7 +180,7 @@ ImplicitSolveStats implicitVelocityUpdate(const ImplicitParams& params,
         }
         const double beta = k == 0 ? 0.0 : rz / previousRz;
         for (std::size_t i = 0; i < n; ++i) direction[i] = z[i] + beta * direction[i];
-        const std::vector<glm::dvec3> q = multiply(params, springs, nodeSprings, state, direction);
+        const std::vector<glm::dvec3> q = multiply(params, springs, nodeSprings, state, direction, contacts);
         const double pq = dotAll(direction, q);
         const double alpha = pq > 0.0 ? rz / pq : 0.0; // as the GPU: no step without p·q > 0
         for (std::size_t i = 0; i < n; ++i) {
@@ -164,7 +199,8 @@ ImplicitSolveStats implicitVelocityUpdate(const ImplicitParams& params,
 
 std::vector<glm::dvec3> implicitVelocityChangeDense(const ImplicitParams& params,
                                                     const std::vector<model::FlatSpring>& springs,
-                                                    const model::Csr& nodeSprings, const NodeState& state) {
+                                                    const model::Csr& nodeSprings, const NodeState& state,
+                                                    const ImplicitContactSet* contacts) {
     const std::size_t n = state.positions.size();
     std::vector<std::size_t> freeIndex(n, n);
     std::vector<std::size_t> freeNodes;
@@ -176,11 +212,11 @@ std::vector<glm::dvec3> implicitVelocityChangeDense(const ImplicitParams& params
     const std::size_t m = 3 * freeNodes.size();
     // Column c of A is A·e_c: build it with the same product the solver uses.
     std::vector<double> A(m * m, 0.0), b(m, 0.0);
-    const Assembly a = assemble(params, springs, nodeSprings, state);
+    const Assembly a = assemble(params, springs, nodeSprings, state, contacts);
     for (std::size_t c = 0; c < m; ++c) {
         std::vector<glm::dvec3> e(n, glm::dvec3(0.0));
         e[freeNodes[c / 3]][static_cast<int>(c % 3)] = 1.0;
-        const std::vector<glm::dvec3> col = multiply(params, springs, nodeSprings, state, e);
+        const std::vector<glm::dvec3> col = multiply(params, springs, nodeSprings, state, e, contacts);
         for (std::size_t r = 0; r < m; ++r) A[r * m + c] = col[freeNodes[r / 3]][static_cast<int>(r % 3)];
     }
     for (std::size_t r = 0; r < m; ++r) b[r] = a.b[freeNodes[r / 3]][static_cast<int>(r % 3)];
@@ -211,20 +247,23 @@ std::vector<glm::dvec3> implicitVelocityChangeDense(const ImplicitParams& params
 
 std::vector<glm::dvec3> implicitRightHandSide(const ImplicitParams& params,
                                               const std::vector<model::FlatSpring>& springs,
-                                              const model::Csr& nodeSprings, const NodeState& state) {
-    return assemble(params, springs, nodeSprings, state).b;
+                                              const model::Csr& nodeSprings, const NodeState& state,
+                                              const ImplicitContactSet* contacts) {
+    return assemble(params, springs, nodeSprings, state, contacts).b;
 }
 
 std::vector<glm::dvec3> implicitSystemProduct(const ImplicitParams& params,
                                               const std::vector<model::FlatSpring>& springs,
                                               const model::Csr& nodeSprings, const NodeState& state,
-                                              const std::vector<glm::dvec3>& x) {
-    return multiply(params, springs, nodeSprings, state, x);
+                                              const std::vector<glm::dvec3>& x,
+                                              const ImplicitContactSet* contacts) {
+    return multiply(params, springs, nodeSprings, state, x, contacts);
 }
 
 double implicitRightHandSideNorm(const ImplicitParams& params, const std::vector<model::FlatSpring>& springs,
-                                 const model::Csr& nodeSprings, const NodeState& state) {
-    const Assembly a = assemble(params, springs, nodeSprings, state);
+                                 const model::Csr& nodeSprings, const NodeState& state,
+                                 const ImplicitContactSet* contacts) {
+    const Assembly a = assemble(params, springs, nodeSprings, state, contacts);
     return std::sqrt(dotAll(a.b, a.b));
 }
 

@@ -8,8 +8,15 @@
 // with K_s = k·[u uᵀ + max(0, 1 − L/l)(I − u uᵀ)] (the transverse term clamped at 0 for
 // compressed springs, so K_s is positive semidefinite) and C_s = c·u uᵀ. Pinned nodes keep
 // Δv = 0 (their rows and columns are removed). A is then symmetric positive definite.
+//
+// With an ImplicitContactSet (the contact term, implicit_contact_find.comp and the
+// GLC_IMPLICIT_CONTACTS variants of the solver) every contact c (nodes n, weights a, normal u,
+// depth δ) adds the force f_i = a_i·k·δ·u and the stiffness ∂f_i/∂x_j = −k·a_i a_j u uᵀ:
+//   b_i += h·a_i·k·δ·u − h²·k·a_i·u (u·Σ_j a_j v_j)   (all four nodes' v, pinned ones too)
+//   A_ij += h²·k·a_i a_j u uᵀ                            (free nodes only: positive semidefinite)
 
 #include "core/dynamics_params.hpp"
+#include "cpu/contact_twin.hpp"
 #include "cpu/dynamics_twin.hpp"
 #include "model/flat_model.hpp"
 
@@ -32,6 +39,17 @@ struct SpringBlock {
 SpringBlock springBlock(const model::FlatSpring& s, const glm::dvec3& xi, const glm::dvec3& xj,
                         const glm::dvec3& vi, const glm::dvec3& vj, double h);
 
+/// The contacts of one implicit solve and their stiffness k (N/m).
+struct ImplicitContactSet {
+    std::vector<ContactGeometry> contacts;
+    double stiffness = 0.0;
+};
+
+/// The active contacts of the feature pairs for the implicit solve: contactGeometries at
+/// params.thickness and params.substep (the side rule), with params.stiffness.
+ImplicitContactSet implicitContacts(const ContactParams& params, const ContactInput& in,
+                                    const FeaturePairList& pairs);
+
 /// What one solve did.
 struct ImplicitSolveStats {
     int iterations = 0;          ///< CG updates until ‖r‖ ≤ tol·‖b‖ (maxIterations if never)
@@ -44,18 +62,21 @@ struct ImplicitSolveStats {
 /// contact forces. Same algorithm and order as the GPU (block-Jacobi PCG starting from Δv = 0).
 ImplicitSolveStats implicitVelocityUpdate(const ImplicitParams& params,
                                           const std::vector<model::FlatSpring>& springs,
-                                          const model::Csr& nodeSprings, NodeState& state);
+                                          const model::Csr& nodeSprings, NodeState& state,
+                                          const ImplicitContactSet* contacts = nullptr);
 
 /// The exact Δv of the same system, by dense Cholesky factorisation of A in double (test oracle;
 /// O(n³): small systems only). Pinned nodes get 0.
 std::vector<glm::dvec3> implicitVelocityChangeDense(const ImplicitParams& params,
                                                     const std::vector<model::FlatSpring>& springs,
-                                                    const model::Csr& nodeSprings, const NodeState& state);
+                                                    const model::Csr& nodeSprings, const NodeState& state,
+                                                    const ImplicitContactSet* contacts = nullptr);
 
 /// The right-hand side b of the system, per node (0 for pinned nodes), as the twin assembles it.
 std::vector<glm::dvec3> implicitRightHandSide(const ImplicitParams& params,
                                               const std::vector<model::FlatSpring>& springs,
-                                              const model::Csr& nodeSprings, const NodeState& state);
+                                              const model::Csr& nodeSprings, const NodeState& state,
+                                              const ImplicitContactSet* contacts = nullptr);
 
 /// A·x, the matrix-free product the twin's PCG uses (pinned entries of x are ignored, pinned rows of
 /// the result are 0). With implicitRightHandSide a test evaluates the true residual b − A·Δv of any
@@ -63,10 +84,12 @@ std::vector<glm::dvec3> implicitRightHandSide(const ImplicitParams& params,
 std::vector<glm::dvec3> implicitSystemProduct(const ImplicitParams& params,
                                               const std::vector<model::FlatSpring>& springs,
                                               const model::Csr& nodeSprings, const NodeState& state,
-                                              const std::vector<glm::dvec3>& x);
+                                              const std::vector<glm::dvec3>& x,
+                                              const ImplicitContactSet* contacts = nullptr);
 
 /// ‖b‖₂ of the system (for the error bound ‖Δv − Δv*‖ ≤ tol·‖b‖ / min mass of the tests).
 double implicitRightHandSideNorm(const ImplicitParams& params, const std::vector<model::FlatSpring>& springs,
-                                 const model::Csr& nodeSprings, const NodeState& state);
+                                 const model::Csr& nodeSprings, const NodeState& state,
+                                 const ImplicitContactSet* contacts = nullptr);
 
 } // namespace glcollide::cpu

@@ -3,6 +3,8 @@
 #include "core/gpu_layout.hpp"
 #include "passes/dynamics_passes.hpp"
 
+#include <glcollide/error.hpp>
+
 #include <epoxy/gl.h>
 
 #include <cstddef>
@@ -11,18 +13,29 @@
 namespace glcollide::passes {
 namespace {
 
-std::vector<std::string> solverDefines(const ImplicitParams& c, bool setup) {
+std::vector<std::string> solverDefines(const ImplicitParams& c, bool setup, bool contacts = false) {
     std::vector<std::string> d = setup ? externalForceDefines(c.external) : std::vector<std::string>{};
     if (c.springs) d.emplace_back("GLC_SPRINGS");
+    if (contacts) d.emplace_back("GLC_IMPLICIT_CONTACTS");
     return d;
 }
+
+/// A program only when the pass is built with contacts (an empty one otherwise: nothing compiled).
+gl::ComputeProgram contactProgram(bool contacts, const char* shader,
+                                  const std::vector<std::string>& defines = {}) {
+    return contacts ? gl::ComputeProgram(shader, defines) : gl::ComputeProgram();
+}
+
+/// Incidence entries are 4·slot + corner in a uint.
+constexpr std::uint64_t kMaxContactSlots = std::uint64_t{1} << 30;
+constexpr std::size_t kRecordWords = sizeof(gpu::GpuImplicitContact) / sizeof(std::uint32_t);
 
 constexpr std::size_t kVec4 = 4 * sizeof(float);
 
 } // namespace
 
 ImplicitSolverPass::ImplicitSolverPass(const ImplicitParams& config, std::uint32_t nodeCount,
-                                       std::uint32_t heavyCount)
+                                       std::uint32_t heavyCount, bool contacts)
     : m_config(config), m_nodeCount(nodeCount), m_layout(nodeCount, heavyCount),
       m_setup("implicit_setup", solverDefines(config, true)),
       m_direction("implicit_cg_direction", solverDefines(config, false)), m_update("implicit_cg_update", {}),
@@ -33,8 +46,102 @@ ImplicitSolverPass::ImplicitSolverPass(const ImplicitParams& config, std::uint32
       m_blockInverse("solverBlockInverse", std::size_t{6} * nodeCount * sizeof(float)),
       m_partialsR("solverPartialsR", std::size_t{m_layout.groups()} * 2 * sizeof(float)),
       m_partialsPq("solverPartialsPq", std::size_t{m_layout.groups()} * sizeof(float)),
-      m_state("solverState", sizeof(gpu::GpuSolverState)) {
+      m_state("solverState", sizeof(gpu::GpuSolverState)), m_contacts(contacts),
+      m_setupContacts(contactProgram(contacts, "implicit_setup", solverDefines(config, true, true))),
+      m_directionContacts(
+          contactProgram(contacts, "implicit_cg_direction", solverDefines(config, false, true))),
+      m_contactFind(contactProgram(contacts, "implicit_contact_find")),
+      m_contactScan(contactProgram(contacts, "implicit_contact_scan")),
+      m_contactScatter(contactProgram(contacts, "implicit_contact_scatter")),
+      m_contactSort(contactProgram(contacts, "implicit_contact_sort")),
+      m_nodeContactCounts("solverNodeContactCounts", contacts ? nodeCount * sizeof(std::uint32_t) : 0) {
     resetStatistics();
+}
+
+void ImplicitSolverPass::reserveContacts(const AppendLists& lists) const {
+    const std::uint32_t vertexFace = lists.capacity(GLC_LIST_VERTEX_FACE);
+    const std::uint64_t slots = std::uint64_t{vertexFace} + lists.capacity(GLC_LIST_EDGE_EDGE);
+    if (slots > kMaxContactSlots)
+        throw Error(std::string(kName) + ": the feature-pair lists hold " + std::to_string(slots) +
+                    " slots, more than the " + std::to_string(kMaxContactSlots) +
+                    " the contact term can index");
+    if (vertexFace == m_contactEdgeEdgeBase && slots == m_contactSlots) return;
+    // Records are found by list slot, so every stored entry of either list has one: none dropped.
+    m_contactEdgeEdgeBase = vertexFace;
+    m_contactSlots = static_cast<std::uint32_t>(slots);
+    m_contactData = gl::Buffer("solverContactData",
+                               (contactRecordsWord() + slots * kRecordWords) * sizeof(std::uint32_t));
+}
+
+void ImplicitSolverPass::setContactWords(const gl::ComputeProgram& program) const {
+    program.set("u_contactEntries", contactEntriesWord());
+    program.set("u_contactRecords", static_cast<std::uint32_t>(contactRecordsWord()));
+}
+
+std::vector<gpu::GpuImplicitContact> ImplicitSolverPass::downloadContactRecords() const {
+    std::vector<gpu::GpuImplicitContact> records(m_contactSlots);
+    if (!records.empty())
+        m_contactData.download(contactRecordsWord() * sizeof(std::uint32_t),
+                               records.size() * sizeof(gpu::GpuImplicitContact), records.data());
+    return records;
+}
+
+std::vector<std::uint32_t> ImplicitSolverPass::downloadNodeContactOffsets() const {
+    std::vector<std::uint32_t> offsets(std::size_t{m_nodeCount} + 1);
+    m_contactData.download(0, offsets.size() * sizeof(std::uint32_t), offsets.data());
+    return offsets;
+}
+
+std::vector<std::uint32_t> ImplicitSolverPass::downloadNodeContactList() const {
+    std::vector<std::uint32_t> entries(downloadNodeContactOffsets().back());
+    if (!entries.empty())
+        m_contactData.download(std::size_t{contactEntriesWord()} * sizeof(std::uint32_t),
+                               entries.size() * sizeof(std::uint32_t), entries.data());
+    return entries;
+}
+
+void ImplicitSolverPass::buildContactRows(const DeviceBuffers& b, const ImplicitContacts& contacts) const {
+    const ContactInputs& in = contacts.inputs;
+    if (!in.lists || !in.faceInfo || !in.objects)
+        throw Error(std::string(kName) + ": collision buffers missing for the contact term");
+    if (!in.lists->declared(GLC_LIST_VERTEX_FACE) || !in.lists->declared(GLC_LIST_EDGE_EDGE))
+        throw Error(std::string(kName) + ": the vertex-face and edge-edge lists are not declared");
+    reserveContacts(*in.lists);
+    bindRequired(b.faces, GLC_BIND_FACES, kName, "faces");
+    bindRequired(*in.faceInfo, GLC_BIND_FACE_INFO, kName, "faceInfo");
+    bindRequired(*in.objects, GLC_BIND_OBJECTS, kName, "objects");
+    in.lists->bind(); // the counters, the dispatch arguments and both lists
+    m_contactData.bindStorage(GLC_BIND_IMPLICIT_CONTACTS);
+    m_nodeContactCounts.bindStorage(GLC_BIND_NODE_CONTACT_COUNTS);
+    m_nodeContactCounts.fill32(0u);
+    setContactWords(m_contactFind);
+    setContactWords(m_contactScan);
+    setContactWords(m_contactScatter);
+    setContactWords(m_contactSort);
+
+    m_contactFind.set("u_thickness", static_cast<float>(contacts.params.thickness));
+    m_contactFind.set("u_substep", static_cast<float>(contacts.params.substep));
+    m_contactFind.set("u_contactStiffness", static_cast<float>(contacts.params.stiffness));
+    for (const gl::ComputeProgram* p : {&m_contactFind, &m_contactScatter, &m_contactSort})
+        p->set("u_edgeEdgeBase", m_contactEdgeEdgeBase);
+    // Find and scatter run over each list (indirect: the counts stay on the GPU); every count is
+    // complete (both finds) before the scan, every entry written (both scatters) before the sort.
+    const auto overBothLists = [&](const gl::ComputeProgram& program) {
+        for (const std::uint32_t list : {GLC_LIST_VERTEX_FACE, GLC_LIST_EDGE_EDGE}) {
+            program.set("u_edgeEdge", list == GLC_LIST_EDGE_EDGE ? 1u : 0u);
+            in.lists->dispatchOver(program, list, GLC_WORKGROUP_SIZE);
+        }
+    };
+    overBothLists(m_contactFind);
+    m_contactScan.use();
+    m_contactScan.set("u_nodeCount", m_nodeCount);
+    gl::ComputeProgram::dispatch(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    overBothLists(m_contactScatter);
+    m_contactSort.use();
+    m_contactSort.set("u_nodeCount", m_nodeCount);
+    m_contactSort.dispatch1D(m_nodeCount, GLC_WORKGROUP_SIZE);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void ImplicitSolverPass::bindLayout(const gl::ComputeProgram& program, const DeviceBuffers& b) const {
@@ -44,14 +151,26 @@ void ImplicitSolverPass::bindLayout(const gl::ComputeProgram& program, const Dev
     m_layout.bind(program, b, kName);
 }
 
-void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& params) const {
+void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& params,
+                                  const ImplicitContacts* contacts) const {
+    if (contacts && !m_contacts)
+        throw Error(std::string(kName) + ": dispatched with contacts, but built without the contact term");
     if (m_nodeCount == 0) return;
+    const gl::ComputeProgram& setup = contacts ? m_setupContacts : m_setup;
+    const gl::ComputeProgram& direction = contacts ? m_directionContacts : m_direction;
     const float h = static_cast<float>(params.h);
     const float massFactor = static_cast<float>(1.0 + params.h * params.airDamping);
     const gl::Buffer* directions[2] = {&m_direction0, &m_direction1};
 
     bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
+    if (contacts) {
+        buildContactRows(b, *contacts); // reads the positions and velocities bound above
+        for (const gl::ComputeProgram* p : {&setup, &direction}) {
+            p->set("u_contactStiffness", static_cast<float>(contacts->params.stiffness));
+            setContactWords(*p); // after buildContactRows: it sizes the data
+        }
+    }
     if (m_config.springs) {
         bindRequired(b.springs, GLC_BIND_SPRINGS, kName, "springs");
         bindRequired(b.nodeSpringList, GLC_BIND_NODE_SPRING_LIST, kName, "nodeSpringList");
@@ -61,26 +180,26 @@ void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& 
     m_product.bindStorage(GLC_BIND_SOLVER_PRODUCT);
     m_blockInverse.bindStorage(GLC_BIND_SOLVER_BLOCK_INVERSE);
 
-    bindLayout(m_setup, b);
-    bindExternalForce(m_setup, b, params.external, m_config.external, kName);
+    bindLayout(setup, b);
+    bindExternalForce(setup, b, params.external, m_config.external, kName);
     directions[0]->bindStorage(GLC_BIND_SOLVER_DIRECTION_OUT);
-    m_setup.set("u_h", h);
-    m_setup.set("u_massFactor", massFactor);
-    m_layout.dispatch(m_setup);
+    setup.set("u_h", h);
+    setup.set("u_massFactor", massFactor);
+    m_layout.dispatch(setup);
 
     const auto maxIterations = static_cast<std::uint32_t>(params.maxIterations);
     const float tolerance2 = static_cast<float>(params.tolerance * params.tolerance);
     for (std::uint32_t k = 0; k <= maxIterations; ++k) {
         // Direction k reads p from buffer k % 2 and writes the new p into the other one.
-        bindLayout(m_direction, b);
+        bindLayout(direction, b);
         directions[k % 2]->bindStorage(GLC_BIND_SOLVER_DIRECTION_IN);
         directions[(k + 1) % 2]->bindStorage(GLC_BIND_SOLVER_DIRECTION_OUT);
-        m_direction.set("u_h", h);
-        m_direction.set("u_massFactor", massFactor);
-        m_direction.set("u_iteration", k);
-        m_direction.set("u_maxIterations", maxIterations);
-        m_direction.set("u_tolerance2", tolerance2);
-        m_layout.dispatch(m_direction);
+        direction.set("u_h", h);
+        direction.set("u_massFactor", massFactor);
+        direction.set("u_iteration", k);
+        direction.set("u_maxIterations", maxIterations);
+        direction.set("u_tolerance2", tolerance2);
+        m_layout.dispatch(direction);
         if (k == maxIterations) break; // that dispatch only checked the residual
         bindLayout(m_update, b);
         m_update.set("u_iteration", k);
@@ -112,6 +231,10 @@ std::vector<std::string> ImplicitSolverPass::allocatedLabels() const {
     for (const gl::Buffer* buffer : {&m_residual, &m_preconditioned, &m_direction0, &m_direction1, &m_product,
                                      &m_blockInverse, &m_partialsR, &m_partialsPq, &m_state})
         labels.push_back(buffer->label());
+    if (m_contacts)
+        for (const gl::Buffer* buffer :
+             std::initializer_list<const gl::Buffer*>{&m_nodeContactCounts, &m_contactData})
+            if (*buffer) labels.push_back(buffer->label());
     return labels;
 }
 
@@ -120,6 +243,10 @@ std::size_t ImplicitSolverPass::allocatedBytes() const {
     for (const gl::Buffer* buffer : {&m_residual, &m_preconditioned, &m_direction0, &m_direction1, &m_product,
                                      &m_blockInverse, &m_partialsR, &m_partialsPq, &m_state})
         bytes += buffer->bytes();
+    if (m_contacts)
+        for (const gl::Buffer* buffer :
+             std::initializer_list<const gl::Buffer*>{&m_nodeContactCounts, &m_contactData})
+            bytes += buffer->bytes();
     return bytes;
 }
 

@@ -8,10 +8,32 @@
 //
 // The pass owns the solver's vectors: r, z, two p, q (vec4 each) and P⁻¹ (6 floats), 104 bytes per
 // node, plus 12 bytes per work group of partial sums and 32 bytes of state.
+//
+// Contacts in the solve (docs/integration.md, "Contacts in the implicit solve"). A pass built with
+// `contacts` and dispatched with an ImplicitContacts adds the penalty contacts of the collision
+// detection's feature-pair lists to the system. Every pair the penalty response counts as a
+// contact at the positions x of the start of the substep (the same geometry, ownership and side
+// rules: common/contact_pair.glsl) is active, with nodes n, signed weights a, unit normal u and
+// depth δ (h_c − d, or the penalty's depth on the wrong side). It contributes
+//   force  f_i = a_i·k·δ·u            (to b: h·f_i)
+//   K      ∂f_i/∂x_j = −k·a_i a_j u uᵀ (to b: h²·Σ_j ∂f_i/∂x_j v_j; to A: +h²k·a_i a_j u uᵀ, PSD)
+// and its diagonal blocks h²k·a_i²·u uᵀ to the block-Jacobi preconditioner. Linearised at x: the
+// normal's rotation and the weights' change with x (the geometric stiffness, of order k·δ/ℓ, not
+// of order k), the activation of pairs that enter the thickness during the substep, damping and
+// the force cap of the penalty response are not in the system. Deterministic: the contacts reach
+// each row through a node → contact incidence list built per substep on the GPU (count with
+// integer atomics, prefix sum, scatter, sort each row by the pair's key), summed in row order.
+// Cost: kContactDispatches per substep to build the list (4 indirect over the lists, 4 writing
+// their arguments, the scan, the sort), and
+// per CG iteration 4 velocity-sized reads per incidence in ImplicitCgDirection; 48 bytes per
+// list slot (records), 16 per slot (the list), 8 per node.
 
+#include "core/contact_params.hpp"
 #include "core/dynamics_params.hpp"
+#include "core/gpu_layout.hpp"
 #include "gl/handles.hpp"
 #include "gl/program.hpp"
+#include "passes/contact_response.hpp"
 #include "passes/device_buffers.hpp"
 #include "passes/pass_id.hpp"
 #include "passes/row_layout.hpp"
@@ -30,6 +52,16 @@ struct ImplicitSolverCounts {
     std::uint32_t unconvergedSubsteps = 0; ///< substeps that hit the cap above the tolerance
 };
 
+/// The contacts of one implicit solve: the collision detection's feature-pair lists (vertex-face
+/// and edge-edge, declared) with the face info and objects, as the penalty response reads them,
+/// and its parameters: thickness (m), stiffness k (N/m) and substep (s; the open-surface side rule
+/// reads x − substep·v, as the penalty response; 0: the side at x). Damping, force cap, force scale
+/// and the Bridson settings are not used.
+struct ImplicitContacts {
+    ContactInputs inputs;
+    ContactParams params;
+};
+
 class ImplicitSolverPass {
   public:
     static constexpr PassId kId = PassId::ImplicitSolve;
@@ -37,11 +69,16 @@ class ImplicitSolverPass {
 
     /// `heavyNodes`: the nodes with more than kHeavyRow springs, ascending (DeviceBuffers::heavyNodes
     /// holds the same list on the device).
-    ImplicitSolverPass(const ImplicitParams& config, std::uint32_t nodeCount, std::uint32_t heavyCount);
+    /// `contacts`: also build the contact term's kernels and buffers (dispatch with contacts).
+    ImplicitSolverPass(const ImplicitParams& config, std::uint32_t nodeCount, std::uint32_t heavyCount,
+                       bool contacts = false);
 
     /// One velocity update: setup, then iterations until converged or the cap (dispatches are issued
-    /// for every iteration; after convergence they return at once).
-    void dispatch(const DeviceBuffers& buffers, const ImplicitParams& params) const;
+    /// for every iteration; after convergence they return at once). `contacts`: the contact term
+    /// (the pass must be built with contacts; the records grow with the lists' capacities, nothing
+    /// is read back); nullptr: the springs-only solve, the same kernels and bits as without contacts.
+    void dispatch(const DeviceBuffers& buffers, const ImplicitParams& params,
+                  const ImplicitContacts* contacts = nullptr) const;
 
     void resetStatistics();
     [[nodiscard]] ImplicitSolverCounts readStatistics() const;
@@ -57,12 +94,30 @@ class ImplicitSolverPass {
         return parity ? m_direction1 : m_direction0;
     }
 
+    /// The contact term after the last dispatch with contacts (tests compare them with the twin;
+    /// each a download): GpuImplicitContact per list slot (vertex-face slots first, then
+    /// contactEdgeEdgeBase() + the edge-edge slot), and the node → contact incidence list (row
+    /// offsets: nodes + 1; entries 4·slot + corner).
+    [[nodiscard]] std::vector<gpu::GpuImplicitContact> downloadContactRecords() const;
+    [[nodiscard]] std::vector<std::uint32_t> downloadNodeContactOffsets() const;
+    [[nodiscard]] std::vector<std::uint32_t> downloadNodeContactList() const;
+    [[nodiscard]] std::uint32_t contactEdgeEdgeBase() const { return m_contactEdgeEdgeBase; }
+
     /// Dispatches of one velocity update: 1 + 2·maxIterations + 1.
     [[nodiscard]] std::uint32_t dispatchesPerSubstep() const;
+    /// Dispatches a velocity update with contacts adds: find, scatter (each over both lists, with
+    /// their indirect-argument dispatches: 8), scan and sort.
+    static constexpr std::uint32_t kContactDispatches = 10;
 
   private:
     /// The row layout's bindings and uniforms plus the partial sums and the state.
     void bindLayout(const gl::ComputeProgram& program, const DeviceBuffers& b) const;
+    /// Builds the records and the sorted node → contact incidence list of this substep.
+    void buildContactRows(const DeviceBuffers& b, const ImplicitContacts& contacts) const;
+    /// Sizes the records and the incidence list for the lists' capacities (they only grow).
+    void reserveContacts(const AppendLists& lists) const;
+    /// Sets the word offsets of m_contactData's parts (u_contactEntries, u_contactRecords).
+    void setContactWords(const gl::ComputeProgram& program) const;
 
     ImplicitParams m_config;
     std::uint32_t m_nodeCount = 0;
@@ -72,6 +127,22 @@ class ImplicitSolverPass {
     gl::ComputeProgram m_update;
     gl::Buffer m_residual, m_preconditioned, m_direction0, m_direction1, m_product, m_blockInverse;
     gl::Buffer m_partialsR, m_partialsPq, m_state;
+    // The contact term (built with contacts): the springs-only kernels above stay as they are; these
+    // are their contact variants and the incidence list's builders.
+    bool m_contacts = false;
+    gl::ComputeProgram m_setupContacts, m_directionContacts;
+    gl::ComputeProgram m_contactFind, m_contactScan, m_contactScatter, m_contactSort;
+    mutable gl::Buffer m_nodeContactCounts; // cleared by every dispatch with contacts
+    // Row offsets, incidence entries and records (layout.glsl, GLC_BIND_IMPLICIT_CONTACTS), sized
+    // from the feature-pair lists' capacities at dispatch, which AppendLists::grow raises between
+    // substeps: reallocated there, hence mutable.
+    mutable gl::Buffer m_contactData;
+    mutable std::uint32_t m_contactEdgeEdgeBase = 0, m_contactSlots = 0;
+    /// Word offsets of the entries and of the records in m_contactData.
+    [[nodiscard]] std::uint32_t contactEntriesWord() const { return m_nodeCount + 1; }
+    [[nodiscard]] std::size_t contactRecordsWord() const {
+        return contactEntriesWord() + std::size_t{4} * m_contactSlots;
+    }
 };
 
 } // namespace glcollide::passes

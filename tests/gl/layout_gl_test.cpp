@@ -80,6 +80,8 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"PartialsPqBuf", GLC_BIND_SOLVER_PARTIALS_PQ},
     {"SolverStateBuf", GLC_BIND_SOLVER_STATE},
     {"HeavyNodesBuf", GLC_BIND_HEAVY_NODES},
+    {"ImplicitContactsBuf", GLC_BIND_IMPLICIT_CONTACTS},
+    {"NodeContactCountsBuf", GLC_BIND_NODE_CONTACT_COUNTS},
     // continuous detection (docs/ccd.md, "In the engine")
     {"PredictedPositionsBuf", GLC_BIND_PREDICTED_POSITIONS},
     {"NodeToiBuf", GLC_BIND_NODE_TOI},

@@ -1,0 +1,75 @@
+// The contact term of the implicit solve (docs/integration.md, "Contacts in the implicit solve"):
+// the records of implicit_contact_find.comp and the node → contact incidence list that
+// implicit_contact_scan/scatter/sort.comp build from them, read by implicit_setup.comp and
+// implicit_cg_direction.comp (compiled with GLC_IMPLICIT_CONTACTS). An incidence entry is
+// 4·slot + corner: the record's slot (the vertex-face list's slot i, or u_edgeEdgeBase + the
+// edge-edge list's slot) and which of its four nodes the row belongs to.
+// Twin: cpu::implicitVelocityUpdate with an ImplicitContactSet.
+#ifndef GLC_IMPLICIT_CONTACT_GLSL
+#define GLC_IMPLICIT_CONTACT_GLSL
+
+layout(std430, binding = GLC_BIND_IMPLICIT_CONTACTS) buffer ImplicitContactsBuf { uint g_contactData[]; };
+
+uniform float u_contactStiffness; // N/m: k of every contact (ContactParams::stiffness)
+uniform uint u_contactEntries;    // word of the first incidence entry: nodes + 1
+uniform uint u_contactRecords;    // word of the first record: nodes + 1 + 4 · record slots
+
+// Node i's row is entries [contactRowBegin(i), contactRowEnd(i)).
+uint contactRowBegin(uint node) {
+    return g_contactData[node];
+}
+
+uint contactRowEnd(uint node) {
+    return g_contactData[node + 1u];
+}
+
+void setContactRowOffset(uint node, uint offset) {
+    g_contactData[node] = offset;
+}
+
+uint contactEntry(uint e) {
+    return g_contactData[u_contactEntries + e];
+}
+
+void setContactEntry(uint e, uint entry) {
+    g_contactData[u_contactEntries + e] = entry;
+}
+
+GpuImplicitContact contactRecord(uint slot) {
+    uint w = u_contactRecords + 12u * slot;
+    GpuImplicitContact c;
+    c.nodes = uvec4(g_contactData[w], g_contactData[w + 1u], g_contactData[w + 2u], g_contactData[w + 3u]);
+    c.weights = uintBitsToFloat(uvec4(g_contactData[w + 4u], g_contactData[w + 5u], g_contactData[w + 6u],
+                                      g_contactData[w + 7u]));
+    c.normalForce = uintBitsToFloat(uvec4(g_contactData[w + 8u], g_contactData[w + 9u], g_contactData[w + 10u],
+                                          g_contactData[w + 11u]));
+    return c;
+}
+
+void storeContactRecord(uint slot, GpuImplicitContact c) {
+    uint w = u_contactRecords + 12u * slot;
+    uvec4 weights = floatBitsToUint(c.weights), normalForce = floatBitsToUint(c.normalForce);
+    for (uint k = 0u; k < 4u; ++k) {
+        g_contactData[w + k] = c.nodes[k];
+        g_contactData[w + 4u + k] = weights[k];
+        g_contactData[w + 8u + k] = normalForce[k];
+    }
+}
+
+uint incidenceSlot(uint entry) {
+    return entry >> 2u;
+}
+
+uint incidenceCorner(uint entry) {
+    return entry & 3u;
+}
+
+// Whether corner k of record c has a row of its own: an active contact (force > 0), a node that
+// moves (inverse mass > 0; a pinned node keeps Δv = 0) and a weight that is not 0 (a vertex-face
+// contact at an edge or a corner of the face leaves the other corners out). Counting and
+// scattering use this one rule, so the counts and the entries agree.
+bool hasRow(GpuImplicitContact c, uint k, float inverseMass) {
+    return c.normalForce.w > 0.0 && inverseMass > 0.0 && c.weights[k] != 0.0;
+}
+
+#endif

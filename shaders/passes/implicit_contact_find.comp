@@ -1,0 +1,58 @@
+#version 430 core
+// ImplicitContactFind — the contact term of the implicit solve, step 1 of 4: one invocation per
+// entry of GLC_LIST_VERTEX_FACE (u_edgeEdge = 0) or GLC_LIST_EDGE_EDGE (u_edgeEdge = 1), indirect
+// dispatch from the list's count. Whether the pair is a contact, and its nodes, weights, normal and
+// depth, are the penalty response's (common/contact_pair.glsl, at the positions of the start of the
+// substep); the record of slot i (edge-edge: u_edgeEdgeBase + i) holds it, with the penalty force
+// k·depth, or 0 when the pair is no contact. Every node row the contact adds to is counted with an
+// integer atomic (order-independent). Twin: cpu::implicitContacts.
+#include "common/layout.glsl"
+#include "common/lists.glsl"
+#include "common/face_nodes.glsl"
+
+layout(local_size_x = GLC_WORKGROUP_SIZE) in;
+#include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
+#include "common/contact_geometry.glsl"
+#include "common/implicit_contact.glsl"
+
+layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
+layout(std430, binding = GLC_BIND_NODE_VELOCITIES) readonly buffer NodeVelocitiesBuf { vec4 g_velocities[]; };
+layout(std430, binding = GLC_BIND_FACE_INFO) readonly buffer FaceInfoBuf { GpuFaceInfo g_faceInfo[]; };
+layout(std430, binding = GLC_BIND_OBJECTS) readonly buffer ObjectsBuf { GpuObject g_objects[]; };
+layout(std430, binding = GLC_BIND_VERTEX_FACE_PAIRS) readonly buffer VertexFacePairsBuf { uvec2 g_vertexFace[]; };
+layout(std430, binding = GLC_BIND_EDGE_EDGE_PAIRS) readonly buffer EdgeEdgePairsBuf { uvec2 g_edgeEdge[]; };
+layout(std430, binding = GLC_BIND_NODE_CONTACT_COUNTS) buffer NodeContactCountsBuf { uint g_nodeContactCounts[]; };
+
+uniform float u_thickness;    // m
+uniform float u_substep;      // s: the side rule's x − dt·v, as the penalty response (0: the current side)
+uniform uint u_edgeEdge;      // 0: the vertex-face list, 1: the edge-edge list
+uniform uint u_edgeEdgeBase;  // the first record of the edge-edge list: the vertex-face capacity
+
+vec3 previousPosition(uint n) { return g_positions[n].xyz - u_substep * g_velocities[n].xyz; }
+
+#include "common/contact_pair.glsl"
+
+ContactPair contactOf(uint i) {
+    if (u_edgeEdge == 0u) {
+        uvec2 item = g_vertexFace[i]; // (node, face)
+        GpuFaceInfo info = g_faceInfo[item.y];
+        return vertexFaceContact(item.x, faceNodes(item.y), info.owned, g_objects[info.object].closed != 0u);
+    }
+    uvec2 item = g_edgeEdge[i]; // (3*fa+e, 3*fb+g)
+    uvec3 a = faceNodes(item.x / 3u), b = faceNodes(item.y / 3u);
+    uint e = item.x % 3u, g = item.y % 3u;
+    return edgeEdgeContact(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]);
+}
+
+void main() {
+    uint i = globalIndex();
+    if (i >= storedCount(u_edgeEdge != 0u ? GLC_LIST_EDGE_EDGE : GLC_LIST_VERTEX_FACE)) return;
+    ContactPair pair = contactOf(i);
+    GpuImplicitContact c;
+    c.nodes = pair.nodes;
+    c.weights = pair.weights;
+    c.normalForce = pair.found ? vec4(pair.normal, u_contactStiffness * pair.depth) : vec4(0.0);
+    storeContactRecord((u_edgeEdge != 0u ? u_edgeEdgeBase : 0u) + i, c);
+    for (uint k = 0u; k < 4u; ++k)
+        if (hasRow(c, k, g_positions[c.nodes[k]].w)) atomicAdd(g_nodeContactCounts[c.nodes[k]], 1u);
+}
