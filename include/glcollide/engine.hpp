@@ -118,6 +118,7 @@ struct CollisionStats {
     std::uint32_t safeStepCuts = 0;
     std::uint32_t safeStepMaxRounds = 0;
     std::uint32_t safeStepFrozeAll = 0;
+    std::uint32_t safeStepGroundCrossings = 0; ///< node steps that crossed the ground (each cut its object)
     /// Substeps of the frame whose start had intersecting face pairs (intersectingPairs > 0).
     std::uint32_t substepsWithIntersections = 0;
 };

@@ -21,21 +21,25 @@ vec3 advancedPosition(vec3 x, vec3 v) {
 }
 
 #ifdef GLC_GROUND
-// The ground plane: a node below it is put on it; an approaching velocity is reflected with the
-// restitution and its tangential part reduced by Coulomb friction.
+// The ground's velocity response: an approaching velocity is reflected with the restitution and
+// its tangential part reduced by Coulomb friction.
+void groundResponse(inout vec3 v) {
+    if (!(v.y < 0.0)) return;
+    float normalSpeed = -v.y;
+    v.y = u_restitution * normalSpeed;
+    float tangentialSpeed = length(v.xz);
+    if (tangentialSpeed > 0.0) {
+        // Coulomb: the normal impulse (1+e)|vn| bounds the tangential change.
+        float scale = max(0.0, 1.0 - u_friction * (1.0 + u_restitution) * normalSpeed / tangentialSpeed);
+        v.xz *= scale;
+    }
+}
+
+// The ground plane: a node below it is put on it, with the velocity response.
 void applyGround(inout vec3 x, inout vec3 v) {
     if (!(x.y < u_groundHeight)) return; // (a NaN is left alone, as before)
     x.y = u_groundHeight;
-    if (v.y < 0.0) {
-        float normalSpeed = -v.y;
-        v.y = u_restitution * normalSpeed;
-        float tangentialSpeed = length(v.xz);
-        if (tangentialSpeed > 0.0) {
-            // Coulomb: the normal impulse (1+e)|vn| bounds the tangential change.
-            float scale = max(0.0, 1.0 - u_friction * (1.0 + u_restitution) * normalSpeed / tangentialSpeed);
-            v.xz *= scale;
-        }
-    }
+    groundResponse(v);
 }
 #endif
 

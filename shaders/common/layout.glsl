@@ -200,7 +200,8 @@ struct GpuListCounter {
 #define GLC_STAT_CCD_BOXES 8u            // CCD: boxes of (t, u, v) evaluated (modulo 2^32)
 #define GLC_STAT_CCD_EARLIEST_TOI 9u     // CCD: bits of the earliest time of impact of the substep (+inf: none)
 #define GLC_STAT_SAFE_STEP_CUTS 10u      // SafeStep: node steps cut (summed over the substep's rounds)
-#define GLC_STAT_COUNT 11
+#define GLC_STAT_SAFE_STEP_GROUND 11u    // SafeStep: nodes whose predicted step crossed the ground
+#define GLC_STAT_COUNT 12
 
 struct GpuCollisionCounters {
     GpuListCounter lists[GLC_LIST_COUNT]; // indexed by GLC_LIST_*

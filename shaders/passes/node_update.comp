@@ -1,5 +1,5 @@
 #version 430 core
-// glcollide-features: GLC_FORCES GLC_GROUND GLC_CONTACTS GLC_CHECK_FINITE GLC_PREDICT
+// glcollide-features: GLC_FORCES GLC_GROUND GLC_CONTACTS GLC_CHECK_FINITE GLC_PREDICT GLC_GROUND_BAND
 // NodeUpdate — one symplectic Euler substep (v += h w f; x += h v), pinned nodes (w = 0) held,
 // optional ground plane with restitution and Coulomb friction on the velocity.
 // The NodeUpdate stage of the AABB-octree pipeline (seeds/002, Table 2).
@@ -14,6 +14,11 @@
 // intersection-free response (decision 0024) NodePredict also adds the contact forces and applies
 // the ground to x1 (GLC_CONTACTS, GLC_GROUND): x1 is then the whole step, which the safe step
 // cuts where the CCD finds a possible contact, and there is no NodeUpdate.
+// GLC_GROUND_BAND (with GLC_PREDICT, the intersection-free response): the ground is a contact, not
+// a clamp. A node within u_groundBand above the ground gets the ground's velocity response; x1 is
+// not clamped (a per-node clamp crushes a body that lands fast: it put energy into its springs),
+// SafeStep cuts the step of an object whose node would cross the ground instead. A node that
+// starts below the ground (input) is still lifted onto it.
 // Twin: cpu::nodeUpdate.
 #include "common/layout.glsl"
 
@@ -38,6 +43,9 @@ uniform uint u_substep; // index of this substep within its frame
 #ifdef GLC_PREDICT
 layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) writeonly buffer PredictedPositionsBuf { vec4 g_predicted[]; };
 #endif
+#if defined(GLC_GROUND_BAND) && defined(GLC_GROUND)
+uniform float u_groundBand; // m: nodes this close above the ground are in contact with it
+#endif
 
 uniform uint u_nodeCount;
 #include "common/advance_node.glsl"
@@ -51,9 +59,15 @@ void predictNode(uint i, vec3 f, uint substep) {
         return;
     }
     vec3 v = advancedVelocity(g_velocities[i].xyz, p.w, f);
+#if defined(GLC_GROUND_BAND) && defined(GLC_GROUND)
+    if (p.y <= u_groundHeight + u_groundBand) groundResponse(v);
+    vec3 x = advancedPosition(p.xyz, v);
+    if (p.y < u_groundHeight) x.y = max(x.y, u_groundHeight);
+#else
     vec3 x = advancedPosition(p.xyz, v);
 #ifdef GLC_GROUND
     applyGround(x, v);
+#endif
 #endif
     g_velocities[i] = vec4(v, 0.0);
     g_predicted[i] = vec4(x, p.w);

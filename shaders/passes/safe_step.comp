@@ -32,6 +32,8 @@ uniform uint u_reduce;    // 1: lower the objects' times of impact; 0: cut
 uniform float u_fraction; // of the time of impact a cut node advances to; 0 freezes it
 uniform float u_h;        // s: the substep
 uniform uint u_everyNode; // 1: the last resort, every moving node stays at x0
+uniform uint u_ground;    // 1: the ground is on: a step that crosses it is an impact too
+uniform float u_groundHeight; // m
 
 const uint kNoImpact = 0x7F800000u; // +inf bits: no pair of this node (object) may touch
 
@@ -50,6 +52,16 @@ void main() {
     if (i >= u_nodeCount) return;
     if (u_reduce != 0u) {
         uint toiBits = g_nodeToi[i];
+        // The ground (NodePredict no longer clamps x1): a node that would go below it from above
+        // reaches it at t = (y0 − g) / (y0 − y1), in [0, 1).
+        if (u_ground != 0u) {
+            float y0 = g_positions[i].y, y1 = g_predicted[i].y;
+            if (y0 >= u_groundHeight && y1 < u_groundHeight) {
+                float t = clamp((y0 - u_groundHeight) / (y0 - y1), 0.0, 1.0);
+                toiBits = min(toiBits, floatBitsToUint(t));
+                atomicAdd(g_counters.stats[GLC_STAT_SAFE_STEP_GROUND], 1u);
+            }
+        }
         if (toiBits != kNoImpact) atomicMin(g_objectToi[objectOf(i)], toiBits);
         return;
     }

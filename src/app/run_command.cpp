@@ -73,7 +73,8 @@ nlohmann::json frameRecord(const Engine& engine) {
             record["safe_step"] = {{"substeps_cut", c.safeStepSubsteps},
                                    {"node_steps_cut", c.safeStepCuts},
                                    {"max_rounds", c.safeStepMaxRounds},
-                                   {"froze_all", c.safeStepFrozeAll}};
+                                   {"froze_all", c.safeStepFrozeAll},
+                                   {"ground_crossings", c.safeStepGroundCrossings}};
         record["collision"]["substeps_with_intersections"] = c.substepsWithIntersections;
     }
     return record;

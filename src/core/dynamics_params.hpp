@@ -35,6 +35,9 @@ struct NodeUpdateParams {
     double groundHeight = 0.0;
     double restitution = 0.0;
     double friction = 0.0;
+    /// m, > 0 (the intersection-free response's NodePredict): the ground is a contact, not a clamp;
+    /// nodes this close above it get its velocity response and SafeStep cuts crossings (GLC_GROUND_BAND).
+    double groundBand = 0.0;
     bool checkFinite = false; ///< record the first non-finite node in the health buffer (GPU only)
 };
 

@@ -266,7 +266,7 @@ void Engine::Impl::makePass(engine::Stage stage) {
         break;
     case Stage::ImplicitSolve:
         implicitSolve.emplace(plan.implicitParams, buffers.nodeCount,
-                              static_cast<std::uint32_t>(heavyNodes.size()));
+                              static_cast<std::uint32_t>(heavyNodes.size()), plan.implicitContacts);
         break;
     case Stage::ContactResponse:
         contact.emplace();
@@ -282,7 +282,8 @@ void Engine::Impl::makePass(engine::Stage stage) {
         contactApply.emplace(plan.contactApplyParams);
         break;
     case Stage::SafeStep:
-        safeStep.emplace(passes::SafeStepSettings{}, static_cast<std::uint32_t>(model.objects.size()));
+        safeStep.emplace(passes::SafeStepSettings{}, static_cast<std::uint32_t>(model.objects.size()),
+                         plan.nodeUpdateParams.ground, plan.nodeUpdateParams.groundHeight);
         break;
     case Stage::FrameStep: {
         FrameStepParams& f = frameStepParams;
@@ -367,6 +368,7 @@ void addSafeStepCounts(const passes::SafeStepCounts& counts, CollisionStats& c) 
     c.safeStepCuts += counts.cuts;
     c.safeStepMaxRounds = std::max(c.safeStepMaxRounds, counts.rounds);
     c.safeStepFrozeAll += counts.frozeAll ? 1u : 0u;
+    c.safeStepGroundCrossings += counts.groundCrossings;
 }
 } // namespace
 
@@ -386,7 +388,18 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
                              stats.collision);
             break;
         case Stage::ImplicitSolve:
-            run(*implicitSolve, plan.implicitParams);
+            if (plan.implicitContacts) {
+                // The contacts of the last substep's feature pairs at x0 (decision 0024); the
+                // first substep has none yet.
+                ContactParams params = plan.contact;
+                if (!params.sidesFromPrevious) params.substep = 0.0; // sides from x0 itself
+                const passes::ImplicitContacts contacts{
+                    passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects()},
+                    params};
+                run(*implicitSolve, plan.implicitParams, &contacts);
+            } else {
+                run(*implicitSolve, plan.implicitParams);
+            }
             break;
         case Stage::ContactResponse:
             run(*contact,

@@ -182,6 +182,7 @@ PipelinePlan planPipeline(const Scene& scene) {
     nu.groundHeight = scene.ground.height;
     nu.restitution = scene.ground.restitution;
     nu.friction = scene.ground.friction;
+    plan.implicitContacts = plan.safeStep && plan.implicitSolve;
     if (plan.safeStep) {
         // x1 is the whole step with the ground (SafeStep then commits it; there is no NodeUpdate):
         // NodePredict applies the forces, ContactApply each response iteration's contact forces.
@@ -190,6 +191,7 @@ PipelinePlan planPipeline(const Scene& scene) {
         np.groundHeight = nu.groundHeight;
         np.restitution = nu.restitution;
         np.friction = nu.friction;
+        np.groundBand = nu.ground ? plan.contact.thickness : 0.0; // SafeStep cuts ground crossings
         NodeUpdateParams& ca = plan.contactApplyParams;
         ca = np;
         ca.forces = false;

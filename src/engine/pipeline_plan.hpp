@@ -64,6 +64,9 @@ struct PipelinePlan {
     /// their approaches instead of the single Jacobi average (decision 0024).
     int responseIterations = 4;
     NodeUpdateParams contactApplyParams; ///< safe step: ContactApply (contacts and ground only)
+    /// Safe step under implicit Euler: the penalty contacts of the last substep's feature pairs
+    /// enter the solve's matrix (ImplicitSolverPass with contacts; docs/integration.md).
+    bool implicitContacts = false;
     CollisionSettings collision;
     ContactParams contact;
 

@@ -14,6 +14,7 @@ std::vector<std::string> nodeUpdateDefines(const NodeUpdateParams& c) {
     std::vector<std::string> d;
     if (c.forces) d.emplace_back("GLC_FORCES");
     if (c.ground) d.emplace_back("GLC_GROUND");
+    if (c.ground && c.groundBand > 0.0) d.emplace_back("GLC_GROUND_BAND");
     if (c.contacts) d.emplace_back("GLC_CONTACTS");
     if (c.checkFinite) d.emplace_back("GLC_CHECK_FINITE");
     return d;
@@ -95,6 +96,7 @@ void bindNodeUpdate(const gl::ComputeProgram& program, const DeviceBuffers& b, c
         program.set("u_groundHeight", static_cast<float>(params.groundHeight));
         program.set("u_restitution", static_cast<float>(params.restitution));
         program.set("u_friction", static_cast<float>(params.friction));
+        if (config.groundBand > 0.0) program.set("u_groundBand", static_cast<float>(params.groundBand));
     }
 }
 

@@ -15,14 +15,17 @@ namespace {
 constexpr std::uint32_t kNoImpact = 0x7F800000u; // bits of +inf: above every time in [0, 1]
 } // namespace
 
-SafeStepPass::SafeStepPass(const SafeStepSettings& settings, std::uint32_t objectCount)
-    : m_settings(settings), m_objectCount(objectCount),
+SafeStepPass::SafeStepPass(const SafeStepSettings& settings, std::uint32_t objectCount, bool ground,
+                           double groundHeight)
+    : m_settings(settings), m_objectCount(objectCount), m_ground(ground),
       m_objectToi(gl::makeBuffer("objectToi", std::vector<std::uint32_t>(objectCount, kNoImpact))),
       m_program("safe_step") {
     if (!(settings.fraction > 0.0f && settings.fraction < 1.0f))
         throw Error("SafeStep: fraction must be in (0, 1), got " + std::to_string(settings.fraction));
     if (settings.maxRounds < settings.cutRounds)
         throw Error("SafeStep: maxRounds must be at least cutRounds");
+    m_program.set("u_ground", ground ? 1u : 0u);
+    m_program.set("u_groundHeight", static_cast<float>(groundHeight));
 }
 
 void SafeStepPass::cut(const DeviceBuffers& b, const CollisionDetection& collision, float fraction,
@@ -52,9 +55,10 @@ SafeStepCounts SafeStepPass::dispatch(const DeviceBuffers& b, CollisionDetection
                                       std::uint32_t mayTouch) const {
     m_program.set("u_h", static_cast<float>(h));
     SafeStepCounts counts;
-    // Round r cuts the steps of the nodes of every pair that may touch, then checks again. The
-    // cut rounds move a node to a fraction of its time of impact; the later rounds freeze it.
-    while (mayTouch > 0) {
+    // Round r cuts the steps of the objects of every pair that may touch (and, in the first
+    // round, of every object whose step crosses the ground), then checks again. The cut rounds
+    // move an object to a fraction of its time of impact; the later rounds freeze it.
+    while (mayTouch > 0 || (m_ground && counts.rounds == 0)) {
         if (counts.rounds == m_settings.maxRounds) {
             cut(b, collision, 0.0f, true); // the last resort: nothing moves, so nothing can cross
             counts.frozeAll = true;
@@ -62,10 +66,18 @@ SafeStepCounts SafeStepPass::dispatch(const DeviceBuffers& b, CollisionDetection
         }
         const float fraction = counts.rounds < m_settings.cutRounds ? m_settings.fraction : 0.0f;
         cut(b, collision, fraction, false);
+        if (mayTouch == 0 && counts.rounds == 0) {
+            // Only the ground was to check: nothing crossed it, nothing was cut, x1 is safe.
+            counts.groundCrossings = collision.readStat(GLC_STAT_SAFE_STEP_GROUND);
+            if (counts.groundCrossings == 0) break;
+        }
         ++counts.rounds;
         mayTouch = collision.recheckCcd(b);
     }
-    if (counts.rounds > 0) counts.cuts = collision.readStat(GLC_STAT_SAFE_STEP_CUTS);
+    if (counts.rounds > 0) {
+        counts.cuts = collision.readStat(GLC_STAT_SAFE_STEP_CUTS);
+        counts.groundCrossings = collision.lists().stat(GLC_STAT_SAFE_STEP_GROUND);
+    }
     // x1 is safe: it becomes the positions (vec4 with the inverse mass, as NodePredict wrote it).
     gl::copyBufferData(b.predictedPositions, b.positions, std::size_t{b.nodeCount} * 4 * sizeof(float));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

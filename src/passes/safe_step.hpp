@@ -34,16 +34,20 @@ struct SafeStepSettings {
 
 /// What one substep's safe step did.
 struct SafeStepCounts {
-    std::uint32_t rounds = 0; ///< cut-and-check rounds (0: the detection's CCD found nothing)
-    std::uint32_t cuts = 0;   ///< node steps cut, summed over the rounds
-    bool frozeAll = false;    ///< the last resort acted: every node stayed at x0
+    std::uint32_t rounds = 0;          ///< cut-and-check rounds (0: the detection's CCD found nothing)
+    std::uint32_t cuts = 0;            ///< node steps cut, summed over the rounds
+    std::uint32_t groundCrossings = 0; ///< nodes whose predicted step crossed the ground
+    bool frozeAll = false;             ///< the last resort acted: every node stayed at x0
 };
 
 class SafeStepPass {
   public:
     static constexpr PassId kId = PassId::SafeStep;
     static constexpr const char* kName = passName(kId);
-    SafeStepPass(const SafeStepSettings& settings, std::uint32_t objectCount);
+    /// `ground`: the scene's ground plane is on at `groundHeight` (NodePredict does not clamp x1 to
+    /// it: a crossing is an impact that cuts its object's step).
+    SafeStepPass(const SafeStepSettings& settings, std::uint32_t objectCount, bool ground,
+                 double groundHeight);
     /// `h`: the substep; `mayTouch`: pairs the detection's CCD found that may touch.
     SafeStepCounts dispatch(const DeviceBuffers& buffers, CollisionDetection& collision, double h,
                             std::uint32_t mayTouch) const;
@@ -56,6 +60,7 @@ class SafeStepPass {
 
     SafeStepSettings m_settings;
     std::uint32_t m_objectCount;
+    bool m_ground;
     mutable gl::Buffer m_objectToi; ///< uint per object: the bits of its earliest time of impact this round
     gl::ComputeProgram m_program;
 };
