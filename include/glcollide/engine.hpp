@@ -177,7 +177,11 @@ struct SubstepInfo {
 struct EnergyReport {
     double kinetic = 0.0;
     double potential = 0.0; ///< gravity (if on) + springs (if on)
-    [[nodiscard]] double total() const { return kinetic + potential; }
+    /// The intersection-free response's penalty contacts (decision 0024): ½·k·depth² summed over the
+    /// feature pairs within the thickness at the current positions (the last detection's lists,
+    /// which hold every such pair). 0 for the other responses.
+    double contact = 0.0;
+    [[nodiscard]] double total() const { return kinetic + potential + contact; }
 };
 
 /// Simulates a scene on the current GL ≥ 4.3 context: a HeadlessContext or the caller's own.

@@ -30,6 +30,7 @@ nlohmann::json frameRecord(const Engine& engine) {
                              {"wall_ms", s.wallMilliseconds},
                              {"kinetic_energy_J", e.kinetic},
                              {"potential_energy_J", e.potential},
+                             {"contact_energy_J", e.contact},
                              {"total_energy_J", e.total()},
                              {"dispatches_per_substep", s.dispatchesPerSubstep},
                              {"gpu_ms", gpu}};

@@ -1,6 +1,7 @@
 #include <glcollide/engine.hpp>
 
 #include "core/gpu_layout.hpp"
+#include "cpu/contact_twin.hpp"
 #include "cpu/dynamics_twin.hpp"
 #include "cpu/stability.hpp"
 #include "engine/pipeline_plan.hpp"
@@ -89,6 +90,7 @@ struct Engine::Impl {
     void readHealth();
     void readSolverStats();
     void readContacts();
+    [[nodiscard]] double contactEnergy() const;
     template <typename Pass, typename... Args> decltype(auto) run(const Pass& pass, Args&&... args);
 };
 
@@ -617,7 +619,39 @@ EnergyReport Engine::energy() const {
     const cpu::Energy e =
         cpu::energy(readPositions(), readVelocities(), d.model.masses, d.model.inverseMasses,
                     gravity ? &d.scene.gravity : nullptr, d.plan.springs ? &d.model.springs : nullptr);
-    return {e.kinetic, e.gravitational + e.elastic};
+    EnergyReport report{e.kinetic, e.gravitational + e.elastic, 0.0};
+    if (d.plan.safeStep) {
+        const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Transfer, d.glFeatures);
+        report.contact = d.contactEnergy();
+    }
+    return report;
+}
+
+/// ½·k·depth² of every penalty contact at the current positions: the contact geometry of the
+/// response's rules (cpu::contactGeometries) on the last detection's feature pairs, sides from the
+/// positions themselves (decision 0024).
+double Engine::Impl::contactEnergy() const {
+    const std::vector<glm::dvec3> x = unpackNodes(buffers.positions, buffers.nodeCount);
+    const std::vector<glm::dvec3> v = unpackNodes(buffers.velocities, buffers.nodeCount);
+    std::vector<std::uint8_t> faceClosed(model.faceCount());
+    const model::OctreeLayout& layout = collision->layout();
+    for (std::size_t f = 0; f < faceClosed.size(); ++f) faceClosed[f] = layout.closed[layout.faceObject[f]];
+    cpu::ContactInput in;
+    in.positions = &x;
+    in.velocities = &v;
+    in.faceIndices = &model.faceIndices;
+    in.faceOwned = &layout.faceOwned;
+    in.faceClosed = &faceClosed;
+    in.inverseMasses = &model.inverseMasses;
+    cpu::FeaturePairList pairs;
+    pairs.vertexFace = collision->readVertexFacePairs();
+    pairs.edgeEdge = collision->readEdgeEdgePairs();
+    ContactParams params = plan.contact;
+    params.substep = 0.0; // sides from x
+    double energy = 0.0;
+    for (const cpu::ContactGeometry& c : cpu::contactGeometries(params, in, pairs))
+        energy += 0.5 * params.stiffness * c.depth * c.depth;
+    return energy;
 }
 
 std::uint32_t Engine::positionBuffer() const {
