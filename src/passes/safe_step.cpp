@@ -30,12 +30,19 @@ SafeStepPass::SafeStepPass(const SafeStepSettings& settings, std::uint32_t objec
 
 void SafeStepPass::cut(const DeviceBuffers& b, const CollisionDetection& collision, float fraction,
                        bool everyNode) const {
+    round(b, SafeStepInputs{&collision.nodeToi(), &collision.objects(), &collision.counters()}, fraction,
+          everyNode);
+}
+
+void SafeStepPass::round(const DeviceBuffers& b, const SafeStepInputs& in, float fraction,
+                         bool everyNode) const {
     bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, kName, "predictedPositions");
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
-    bindRequired(collision.nodeToi(), GLC_BIND_NODE_TOI, kName, "nodeToi");
-    bindRequired(collision.counters(), GLC_BIND_COLLISION_COUNTERS, kName, "collisionCounters");
-    bindRequired(collision.objects(), GLC_BIND_OBJECTS, kName, "objects");
+    if (!in.nodeToi || !in.objects || !in.counters) throw Error(std::string(kName) + ": inputs missing");
+    bindRequired(*in.nodeToi, GLC_BIND_NODE_TOI, kName, "nodeToi");
+    bindRequired(*in.counters, GLC_BIND_COLLISION_COUNTERS, kName, "collisionCounters");
+    bindRequired(*in.objects, GLC_BIND_OBJECTS, kName, "objects");
     m_objectToi.bindStorage(GLC_BIND_OBJECT_TOI);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after the last round's reads of the times
     m_objectToi.fill32(kNoImpact);
@@ -51,9 +58,13 @@ void SafeStepPass::cut(const DeviceBuffers& b, const CollisionDetection& collisi
     }
 }
 
+void SafeStepPass::setSubstep(double h) const {
+    m_program.set("u_h", static_cast<float>(h));
+}
+
 SafeStepCounts SafeStepPass::dispatch(const DeviceBuffers& b, CollisionDetection& collision, double h,
                                       std::uint32_t mayTouch) const {
-    m_program.set("u_h", static_cast<float>(h));
+    setSubstep(h);
     SafeStepCounts counts;
     // Round r cuts the steps of the objects of every pair that may touch (and, in the first
     // round, of every object whose step crosses the ground), then checks again. The cut rounds

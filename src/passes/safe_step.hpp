@@ -40,6 +40,13 @@ struct SafeStepCounts {
     bool frozeAll = false;             ///< the last resort acted: every node stayed at x0
 };
 
+/// What one round reads besides the node buffers (the collision detection's).
+struct SafeStepInputs {
+    const gl::Buffer* nodeToi = nullptr;  ///< uint per node: bits of its earliest time of impact
+    const gl::Buffer* objects = nullptr;  ///< GpuObject per object, ascending firstNode
+    const gl::Buffer* counters = nullptr; ///< GpuCollisionCounters (GLC_STAT_SAFE_STEP_*)
+};
+
 class SafeStepPass {
   public:
     static constexpr PassId kId = PassId::SafeStep;
@@ -51,6 +58,14 @@ class SafeStepPass {
     /// `h`: the substep; `mayTouch`: pairs the detection's CCD found that may touch.
     SafeStepCounts dispatch(const DeviceBuffers& buffers, CollisionDetection& collision, double h,
                             std::uint32_t mayTouch) const;
+
+    /// One round on its own (tests; dispatch() runs them): the objects' earliest times (with the
+    /// ground's crossings), then every node of an object with one advances to `fraction` of it
+    /// (0: stays at x0; `everyNode`: every moving node stays). setSubstep() first. CPU twin:
+    /// cpu::safeStepRound.
+    void round(const DeviceBuffers& buffers, const SafeStepInputs& inputs, float fraction,
+               bool everyNode) const;
+    void setSubstep(double h) const;
 
   private:
     /// One safe_step.comp dispatch: nodes with a time of impact (every moving node when
