@@ -73,7 +73,10 @@ std::vector<std::array<std::uint32_t, 2>> readList(const passes::AppendLists& li
     return pairs;
 }
 
-GpuResult runGpu(const Soup& s, const ContactParams& params, std::uint32_t listCapacity = 1u << 16) {
+// `ccdComplete`: the expansion of continuous detection (GLC_CCD_COMPLETE), which adds entries
+// marked GLC_PAIR_CCD_ONLY that the response must skip.
+GpuResult runGpu(const Soup& s, const ContactParams& params, std::uint32_t listCapacity = 1u << 16,
+                 bool ccdComplete = false) {
     passes::DeviceBuffers b;
     b.nodeCount = static_cast<std::uint32_t>(s.positions.size());
     b.faceCount = static_cast<std::uint32_t>(s.faces.size() / 3);
@@ -94,7 +97,9 @@ GpuResult runGpu(const Soup& s, const ContactParams& params, std::uint32_t listC
     lists.declare(GLC_LIST_CANDIDATES,
                   {"candidates", "pairs", sizeof(glm::uvec2), GLC_BIND_FACE_PAIRS, std::max(count, 1u)});
     passes::StageChain chain;
-    passes::FeaturePairs expansion;
+    passes::FeaturePairs expansion(ccdComplete);
+    const gl::Buffer owners = upload("featureOwners", model::featureOwners(s.faces));
+    owners.bindStorage(GLC_BIND_FEATURE_OWNERS);
     expansion.addStages(chain, lists, listCapacity, listCapacity);
     if (count != 0)
         poke(lists.storage(GLC_LIST_CANDIDATES), 0, pairs.size() * sizeof(glm::uvec2), pairs.data());
