@@ -382,7 +382,8 @@ Soup crumpledClothSoup(std::uint32_t seed, double thickness) {
     std::vector<glm::vec3> x;
     for (std::uint32_t j = 0; j <= n; ++j)
         for (std::uint32_t i = 0; i <= n; ++i) {
-            x.emplace_back(i * cell + crumple(rng), crumple(rng), j * cell + crumple(rng));
+            x.emplace_back(static_cast<float>(i) * cell + crumple(rng), crumple(rng),
+                           static_cast<float>(j) * cell + crumple(rng));
             s.positions.emplace_back(x.back());
             s.velocities.emplace_back(speed(rng), speed(rng), speed(rng));
         }

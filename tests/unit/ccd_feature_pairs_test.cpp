@@ -81,8 +81,9 @@ SelfScene crumpledSoup(std::uint32_t seed) {
         addGrid(s, static_cast<std::uint32_t>(s.x0.size()), n, n, o);
         for (std::uint32_t j = 0; j <= n; ++j)
             for (std::uint32_t i = 0; i <= n; ++i)
-                s.x0.emplace_back(i * cell + crumple(rng) + 0.05f * o, crumple(rng) + 0.01f * o,
-                                  j * cell + crumple(rng));
+                s.x0.emplace_back(static_cast<float>(i) * cell + crumple(rng) + 0.05f * static_cast<float>(o),
+                                  crumple(rng) + 0.01f * static_cast<float>(o),
+                                  static_cast<float>(j) * cell + crumple(rng));
     }
     for (const glm::vec3& p : s.x0) s.x1.push_back(p + glm::vec3(move(rng), move(rng), move(rng)));
     return s;
@@ -109,7 +110,7 @@ std::vector<cpu::IndexPair> withoutMarked(const std::vector<cpu::IndexPair>& lis
     return out;
 }
 
-bool sharesNode(const SelfScene& s, std::array<std::uint32_t, 2> a, std::array<std::uint32_t, 2> b) {
+bool sharesNode(std::array<std::uint32_t, 2> a, std::array<std::uint32_t, 2> b) {
     return a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1];
 }
 
@@ -166,7 +167,7 @@ void expectCompleteAndUnchanged(const SelfScene& s, const std::string& what, boo
     for (const cpu::IndexPair& p : e.complete.edgeEdge) {
         if (!cpu::ccdOnly(p)) continue;
         const cpu::IndexPair q = cpu::unmarked(p);
-        EXPECT_FALSE(sharesNode(s, model::faceEdge(s.faces, q[0] / 3, static_cast<int>(q[0] % 3)),
+        EXPECT_FALSE(sharesNode(model::faceEdge(s.faces, q[0] / 3, static_cast<int>(q[0] % 3)),
                                 model::faceEdge(s.faces, q[1] / 3, static_cast<int>(q[1] % 3))));
     }
     std::printf("%s: %zu candidates; vertex-face %zu + %zu CCD-only (%.3f per candidate), missed without "
