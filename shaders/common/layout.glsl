@@ -78,13 +78,14 @@
 #define GLC_BIND_IMPLICIT_CONTACTS 50       // uint[nodes + 1 + 16 · (vertex-face + edge-edge capacity)]
 #define GLC_BIND_NODE_CONTACT_COUNTS 51     // uint[nodes]: incidences per node (integer atomics), then scatter cursors
 #define GLC_BIND_OBJECT_TOI 52            // uint[objects]: the earliest time of impact of the object's nodes
+#define GLC_BIND_FEATURE_OWNERS 53        // uint[6*faces]: owner face of corners 0..2, then of edges 0..2 (FeaturePairs, continuous)
                                           // (SafeStep, decision 0024), bits as GLC_BIND_NODE_TOI
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 53
+#define GLC_BINDING_COUNT 54
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -127,6 +128,13 @@
 #define GLC_LIST_INTERSECTIONS 3u // uvec2 face pairs whose closed triangles intersect
 #define GLC_LIST_VERTEX_FACE 4u   // uvec2 (node, face) feature pairs of the candidates (R-Triangles)
 #define GLC_LIST_EDGE_EDGE 5u     // uvec2 (edge, edge) feature pairs of the candidates (R-Triangles)
+// With continuous detection FeaturePairs also appends the feature pairs whose owner faces make no
+// valid pair (they share a node), so the CCD sees every feature pair of every candidate whose
+// features may touch (decision 0018, addendum). Those entries carry this bit in the second word
+// (the face of a vertex-face pair, the second edge of an edge-edge pair): the CCD clears it and
+// tests them; every kernel that computes forces skips them, since the owner rule already finds or
+// excludes their contacts and a second copy would double the force.
+#define GLC_PAIR_CCD_ONLY 0x80000000u
 #define GLC_LIST_COUNT 6
 
 // A spring between two nodes (global node indices).

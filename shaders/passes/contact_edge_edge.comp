@@ -28,6 +28,7 @@ void main() {
     uint i = globalIndex();
     if (i >= storedCount(GLC_LIST_EDGE_EDGE)) return;
     uvec2 item = g_edgeEdge[i]; // (3*fa+e, 3*fb+g)
+    if ((item.y & GLC_PAIR_CCD_ONLY) != 0u) return; // for the CCD only: its contact is found, or excluded, by its owners
     uvec3 a = faceNodes(item.x / 3u), b = faceNodes(item.y / 3u);
     uint e = item.x % 3u, g = item.y % 3u;
     if (edgeEdge(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]) != 0u) atomicAdd(g_counters.stats[GLC_STAT_CONTACTS], 1u);

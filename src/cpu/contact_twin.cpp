@@ -32,7 +32,9 @@ struct Geometry {
 
     const glm::dvec3& x(std::uint32_t n) const { return (*in.positions)[n]; }
     const glm::dvec3& v(std::uint32_t n) const { return (*in.velocities)[n]; }
-    glm::dvec3 previous(std::uint32_t n) const { return x(n) - (p.sidesFromPrevious ? p.substep : 0.0) * v(n); }
+    glm::dvec3 previous(std::uint32_t n) const {
+        return x(n) - (p.sidesFromPrevious ? p.substep : 0.0) * v(n);
+    }
 
     std::optional<ContactGeometry> vertexFace(std::uint32_t node, const std::array<std::uint32_t, 3>& f,
                                               std::uint32_t faceOwned, bool closed) const {
@@ -106,13 +108,17 @@ void forEachContact(const ContactParams& params, const ContactInput& in, const F
                     F&& f) {
     const Geometry geometry{params, in};
     const std::vector<std::uint32_t>& idx = *in.faceIndices;
-    for (const auto& [node, face] : pairs.vertexFace) {
+    for (const IndexPair& vf : pairs.vertexFace) {
+        if (ccdOnly(vf)) continue; // the owner rule finds its contact, or excludes it, elsewhere
+        const auto [node, face] = vf;
         const std::array<std::uint32_t, 3> nodes{idx[3 * face], idx[3 * face + 1], idx[3 * face + 2]};
         if (const auto c =
                 geometry.vertexFace(node, nodes, (*in.faceOwned)[face], (*in.faceClosed)[face] != 0))
             f(*c);
     }
-    for (const auto& [edgeA, edgeB] : pairs.edgeEdge) {
+    for (const IndexPair& ee : pairs.edgeEdge) {
+        if (ccdOnly(ee)) continue;
+        const auto [edgeA, edgeB] = ee;
         const auto a = model::faceEdge(idx, edgeA / 3, static_cast<int>(edgeA % 3));
         const auto b = model::faceEdge(idx, edgeB / 3, static_cast<int>(edgeB % 3));
         if (const auto c = geometry.edgeEdge(a[0], a[1], b[0], b[1])) f(*c);
@@ -275,6 +281,45 @@ FeaturePairList featurePairs(const std::vector<std::uint32_t>& faceIndices,
             for (std::uint32_t g = 0; g < 3; ++g)
                 if (ob & (GLC_OWN_EDGE01 << g)) out.edgeEdge.push_back({3 * a + e, 3 * b + g});
         }
+    }
+    std::sort(out.vertexFace.begin(), out.vertexFace.end());
+    std::sort(out.edgeEdge.begin(), out.edgeEdge.end());
+    return out;
+}
+
+namespace {
+
+bool sharesNode(const std::vector<std::uint32_t>& faceIndices, std::uint32_t f, std::uint32_t g) {
+    for (std::uint32_t i = 0; i < 3; ++i)
+        for (std::uint32_t j = 0; j < 3; ++j)
+            if (faceIndices[3 * std::size_t{f} + i] == faceIndices[3 * std::size_t{g} + j]) return true;
+    return false;
+}
+
+} // namespace
+
+FeaturePairList ccdFeaturePairs(const std::vector<std::uint32_t>& faceIndices,
+                                const std::vector<std::uint32_t>& faceOwned,
+                                const std::vector<std::uint32_t>& featureOwners,
+                                const std::vector<IndexPair>& candidates) {
+    FeaturePairList out = featurePairs(faceIndices, faceOwned, candidates);
+    const auto vertexOwner = [&](std::uint32_t f, std::uint32_t k) {
+        return featureOwners[6 * std::size_t{f} + k];
+    };
+    const auto edgeOwner = [&](std::uint32_t f, std::uint32_t k) {
+        return featureOwners[6 * std::size_t{f} + 3 + k];
+    };
+    for (const auto& [a, b] : candidates) {
+        for (std::uint32_t k = 0; k < 3; ++k) {
+            if (sharesNode(faceIndices, vertexOwner(a, k), b))
+                out.vertexFace.push_back({faceIndices[3 * a + k], b | GLC_PAIR_CCD_ONLY});
+            if (sharesNode(faceIndices, vertexOwner(b, k), a))
+                out.vertexFace.push_back({faceIndices[3 * b + k], a | GLC_PAIR_CCD_ONLY});
+        }
+        for (std::uint32_t e = 0; e < 3; ++e)
+            for (std::uint32_t g = 0; g < 3; ++g)
+                if (sharesNode(faceIndices, edgeOwner(a, e), edgeOwner(b, g)))
+                    out.edgeEdge.push_back({3 * a + e, (3 * b + g) | GLC_PAIR_CCD_ONLY});
     }
     std::sort(out.vertexFace.begin(), out.vertexFace.end());
     std::sort(out.edgeEdge.begin(), out.edgeEdge.end());

@@ -6,6 +6,7 @@
 // fixed-point sums differ from these by at most 0.5/forceScale per contribution).
 
 #include "core/contact_params.hpp"
+#include "core/gpu_layout.hpp"
 
 #include <glm/vec3.hpp>
 
@@ -47,6 +48,24 @@ struct FeaturePairList {
 FeaturePairList featurePairs(const std::vector<std::uint32_t>& faceIndices,
                              const std::vector<std::uint32_t>& faceOwned,
                              const std::vector<IndexPair>& candidates);
+
+/// Continuous detection's expansion (feature_pairs.comp with GLC_CCD_COMPLETE): featurePairs plus,
+/// marked GLC_PAIR_CCD_ONLY in the second word, for each candidate (fa, fb) every corner of one
+/// face not owned by it whose owner face (model::featureOwners) shares a node with the other face,
+/// against the other face, and every edge pair (e of fa, g of fb) whose owner faces share a node.
+FeaturePairList ccdFeaturePairs(const std::vector<std::uint32_t>& faceIndices,
+                                const std::vector<std::uint32_t>& faceOwned,
+                                const std::vector<std::uint32_t>& featureOwners,
+                                const std::vector<IndexPair>& candidates);
+
+/// True for an entry that only the CCD tests (GLC_PAIR_CCD_ONLY); the response skips it.
+constexpr bool ccdOnly(const IndexPair& pair) {
+    return (pair[1] & GLC_PAIR_CCD_ONLY) != 0u;
+}
+/// The entry without its GLC_PAIR_CCD_ONLY mark.
+constexpr IndexPair unmarked(const IndexPair& pair) {
+    return {pair[0], pair[1] & ~GLC_PAIR_CCD_ONLY};
+}
 
 /// One contact (shaders/common/contact_pair.glsl): four nodes with signed weights (side A: +,
 /// summing to 1; side B: −, summing to −1), the unit normal from B to A and the depth inside the

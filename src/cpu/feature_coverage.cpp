@@ -1,12 +1,16 @@
 #include "cpu/feature_coverage.hpp"
 
+#include "cpu/ccd_twin.hpp"
 #include "cpu/contact_twin.hpp"
+#include "model/face_box.hpp"
 #include "model/features.hpp"
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <limits>
 #include <map>
+#include <set>
 
 namespace glcollide::cpu {
 
@@ -62,6 +66,73 @@ OwnershipCoverage ownershipCoverage(const std::vector<std::uint32_t>& faceIndice
                 ++c.edgeEdgeLost;
         }
     }
+    return c;
+}
+
+namespace {
+
+// The swept box of nodes `nodes` over x0 -> x1, inflated by `half`: sweptFaceBox's operations on a
+// subset of a face's nodes, so it lies inside the box of every face containing them.
+template <std::size_t N>
+FloatBox sweptFeatureBox(const std::array<std::uint32_t, N>& nodes, const std::vector<glm::vec3>& x0,
+                         const std::vector<glm::vec3>& x1, float half) {
+    glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+    for (const std::uint32_t n : nodes) {
+        lo = glm::min(glm::min(lo, x0[n]), x1[n]);
+        hi = glm::max(glm::max(hi, x0[n]), x1[n]);
+    }
+    return {lo - glm::vec3(half), hi + glm::vec3(half)};
+}
+
+} // namespace
+
+CcdCoverage ccdCoverage(const std::vector<std::uint32_t>& faceIndices,
+                        const std::vector<std::uint32_t>& faceObject, const std::vector<glm::vec3>& x0,
+                        const std::vector<glm::vec3>& x1, double thickness, const PairRules& rules,
+                        const FeaturePairList& pairs) {
+    const auto faces = static_cast<std::uint32_t>(faceIndices.size() / 3);
+    const float half = model::halfThicknessFloat(thickness);
+    std::set<IndexPair> seenVertexFace;
+    std::set<std::array<std::uint64_t, 2>> seenEdgeEdge;
+    const auto edgeKeyOf = [&](std::uint32_t edge) {
+        const auto [a, b] = model::faceEdge(faceIndices, edge / 3, static_cast<int>(edge % 3));
+        return model::edgeKey(a, b);
+    };
+    for (const IndexPair& vf : pairs.vertexFace) seenVertexFace.insert(unmarked(vf));
+    for (const IndexPair& ee : pairs.edgeEdge) {
+        const std::uint64_t a = edgeKeyOf(unmarked(ee)[0]), b = edgeKeyOf(unmarked(ee)[1]);
+        seenEdgeEdge.insert({std::min(a, b), std::max(a, b)});
+    }
+    std::vector<FloatBox> boxes(faces);
+    for (std::uint32_t f = 0; f < faces; ++f) boxes[f] = sweptFaceBox(faceIndices, x0, x1, f, half);
+    std::set<IndexPair> neededVertexFace;
+    std::set<std::array<std::uint64_t, 2>> neededEdgeEdge;
+    const auto corner = [&](std::uint32_t f, std::uint32_t k) { return faceIndices[3 * std::size_t{f} + k]; };
+    const auto vertexAgainst = [&](std::uint32_t p, std::uint32_t face) {
+        if (boxesOverlap(sweptFeatureBox(std::array{p}, x0, x1, half), boxes[face]))
+            neededVertexFace.insert({p, face});
+    };
+    for (const auto& [a, b] : overlappingValidPairs(faceIndices, faceObject, boxes, rules)) {
+        for (std::uint32_t k = 0; k < 3;
+             ++k) { // a valid pair shares no node: no vertex lies in the other face
+            vertexAgainst(corner(a, k), b);
+            vertexAgainst(corner(b, k), a);
+        }
+        for (std::uint32_t e = 0; e < 3; ++e)
+            for (std::uint32_t g = 0; g < 3; ++g) {
+                const auto ea = model::faceEdge(faceIndices, a, static_cast<int>(e));
+                const auto eb = model::faceEdge(faceIndices, b, static_cast<int>(g));
+                if (!boxesOverlap(sweptFeatureBox(ea, x0, x1, half), sweptFeatureBox(eb, x0, x1, half)))
+                    continue;
+                const std::uint64_t ka = model::edgeKey(ea[0], ea[1]), kb = model::edgeKey(eb[0], eb[1]);
+                neededEdgeEdge.insert({std::min(ka, kb), std::max(ka, kb)});
+            }
+    }
+    CcdCoverage c;
+    c.vertexFaceNeeded = neededVertexFace.size();
+    c.edgeEdgeNeeded = neededEdgeEdge.size();
+    for (const IndexPair& p : neededVertexFace) c.vertexFaceMissing += seenVertexFace.count(p) ? 0u : 1u;
+    for (const auto& p : neededEdgeEdge) c.edgeEdgeMissing += seenEdgeEdge.count(p) ? 0u : 1u;
     return c;
 }
 

@@ -8,6 +8,7 @@
 // CPU measurement counts those pairs on a state, so the loss is a number, not a guess.
 
 #include "cpu/collision_twin.hpp"
+#include "cpu/contact_twin.hpp"
 
 #include <glm/vec3.hpp>
 
@@ -35,5 +36,26 @@ OwnershipCoverage ownershipCoverage(const std::vector<std::uint32_t>& faceIndice
                                     const std::vector<std::uint32_t>& faceObject,
                                     const std::vector<glm::vec3>& positions, double thickness,
                                     const PairRules& rules);
+
+/// What the CCD must see over a substep x0 -> x1 and what a feature-pair list misses of it.
+struct CcdCoverage {
+    /// (vertex p, face B): p in some face A with (A, B) valid and the swept face boxes overlapping,
+    /// and p's swept box (its two positions, inflated by the half thickness) overlapping B's.
+    std::uint64_t vertexFaceNeeded = 0, vertexFaceMissing = 0;
+    /// (edge e, edge g) without a common node: faces A around e and B around g with (A, B) valid
+    /// and overlapping, and the edges' swept boxes overlapping.
+    std::uint64_t edgeEdgeNeeded = 0, edgeEdgeMissing = 0;
+};
+
+/// Brute force over every valid face pair whose swept boxes (cpu::sweptFaceBox) overlap: every
+/// vertex of one face against the other face and every edge pair, kept when the features' own
+/// swept boxes overlap (a feature's box lies inside every face box around it, same float
+/// operations, so a pair whose feature boxes do not overlap cannot touch within the thickness);
+/// counts those absent from `pairs` (entries marked GLC_PAIR_CCD_ONLY count, unmarked; edge pairs
+/// in either order). Independent of ownership.
+CcdCoverage ccdCoverage(const std::vector<std::uint32_t>& faceIndices,
+                        const std::vector<std::uint32_t>& faceObject, const std::vector<glm::vec3>& x0,
+                        const std::vector<glm::vec3>& x1, double thickness, const PairRules& rules,
+                        const FeaturePairList& pairs);
 
 } // namespace glcollide::cpu

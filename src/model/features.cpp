@@ -28,6 +28,26 @@ std::vector<std::uint32_t> ownedFeatures(const std::vector<std::uint32_t>& faceI
     return owned;
 }
 
+std::vector<std::uint32_t> featureOwners(const std::vector<std::uint32_t>& faceIndices) {
+    const auto faces = static_cast<std::uint32_t>(faceIndices.size() / 3);
+    std::unordered_map<std::uint32_t, std::uint32_t> nodeOwner;
+    std::unordered_map<std::uint64_t, std::uint32_t> edgeOwner;
+    for (std::uint32_t f = 0; f < faces; ++f) // increasing index: the first face seen is the owner
+        for (int k = 0; k < 3; ++k) {
+            const auto [a, b] = faceEdge(faceIndices, f, k);
+            nodeOwner.try_emplace(a, f);
+            edgeOwner.try_emplace(edgeKey(a, b), f);
+        }
+    std::vector<std::uint32_t> owners(6 * static_cast<std::size_t>(faces));
+    for (std::uint32_t f = 0; f < faces; ++f)
+        for (int k = 0; k < 3; ++k) {
+            const auto [a, b] = faceEdge(faceIndices, f, k);
+            owners[6 * std::size_t{f} + static_cast<std::size_t>(k)] = nodeOwner.at(a);
+            owners[6 * std::size_t{f} + 3 + static_cast<std::size_t>(k)] = edgeOwner.at(edgeKey(a, b));
+        }
+    return owners;
+}
+
 bool isClosedSurface(const std::vector<std::uint32_t>& faceIndices, std::uint32_t firstFace,
                      std::uint32_t faceCount) {
     if (faceCount == 0) return false;

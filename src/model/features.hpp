@@ -45,6 +45,10 @@ inline std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
 /// containing it, an edge (unordered node pair) by the lowest-indexed face containing it.
 std::vector<std::uint32_t> ownedFeatures(const std::vector<std::uint32_t>& faceIndices);
 
+/// Owner face of every feature, 6 per face (GLC_BIND_FEATURE_OWNERS): [6f + k] the owner of corner k
+/// (0..2) of face f, [6f + 3 + k] the owner of edge k; the same owners as ownedFeatures.
+std::vector<std::uint32_t> featureOwners(const std::vector<std::uint32_t>& faceIndices);
+
 /// 1 when every edge of faces [firstFace, firstFace + faceCount) has exactly two of those faces;
 /// 0 otherwise, and for an object without faces (it bounds no volume).
 bool isClosedSurface(const std::vector<std::uint32_t>& faceIndices, std::uint32_t firstFace,

@@ -3,6 +3,7 @@
 #include "core/contact_params.hpp"
 
 #include "model/face_box.hpp"
+#include "model/features.hpp"
 #include "core/gpu_layout.hpp"
 #include "passes/broad_phase/create_broad_phase.hpp"
 
@@ -30,7 +31,8 @@ const CollisionSettings& checked(const CollisionSettings& s) {
 
 } // namespace
 
-CollisionTables::CollisionTables(const model::FlatModel& model, const model::OctreeLayout& layout) {
+CollisionTables::CollisionTables(const model::FlatModel& model, const model::OctreeLayout& layout,
+                                 bool withFeatureOwners) {
     std::vector<gpu::GpuFaceInfo> info(model.faceCount());
     for (std::size_t f = 0; f < info.size(); ++f)
         info[f] = {layout.faceObject[f], layout.faceBox[f], layout.faceOwned[f], 0u};
@@ -42,17 +44,22 @@ CollisionTables::CollisionTables(const model::FlatModel& model, const model::Oct
                          layout.firstBox[o], layout.closed[o]});
     }
     objects = gl::makeBuffer("objects", table);
+    if (withFeatureOwners)
+        featureOwners = gl::makeBuffer("featureOwners", model::featureOwners(model.faceIndices));
 }
 
 void CollisionTables::bind() const {
     faceInfo.bindStorage(GLC_BIND_FACE_INFO);
     objects.bindStorage(GLC_BIND_OBJECTS);
+    if (featureOwners) featureOwners.bindStorage(GLC_BIND_FEATURE_OWNERS);
 }
 
 CollisionDetection::CollisionDetection(const CollisionConfig& config, const model::FlatModel& model)
     : m_faceCount(static_cast<std::uint32_t>(model.faceCount())),
-      m_layout(model::buildOctree(model, checked(config.settings).octreeDepth)), m_tables(model, m_layout),
-      m_lists(std::make_unique<AppendLists>(config.listByteLimit)), m_narrowPhase(config.settings.precision) {
+      m_layout(model::buildOctree(model, checked(config.settings).octreeDepth)),
+      m_tables(model, m_layout, config.settings.detection == Detection::Continuous),
+      m_lists(std::make_unique<AppendLists>(config.listByteLimit)), m_narrowPhase(config.settings.precision),
+      m_featurePairs(config.settings.detection == Detection::Continuous) {
     const CollisionSettings& s = config.settings;
     const auto initial = [&](std::uint32_t capacity) { return capacity ? capacity : s.initialCapacity; };
     m_lists->declare(GLC_LIST_CANDIDATES, {"candidates", "pairs", kPairBytes, GLC_BIND_FACE_PAIRS,
@@ -193,6 +200,7 @@ const gl::Buffer& CollisionDetection::broadPhaseBuffer(const std::string& label)
 
 std::vector<const gl::Buffer*> CollisionDetection::allBuffers() const {
     std::vector<const gl::Buffer*> all = {&m_tables.faceInfo, &m_tables.objects};
+    if (m_tables.featureOwners) all.push_back(&m_tables.featureOwners);
     for (const gl::Buffer* b : m_broadPhase->buffers()) all.push_back(b);
     for (const gl::Buffer* b : m_lists->buffers()) all.push_back(b);
     if (m_ccd) all.push_back(&m_ccd->nodeToi());

@@ -78,10 +78,16 @@ struct CollisionCounts {
 
 /// The per-face and per-object tables of the collision kernels and the contact response.
 struct CollisionTables {
-    CollisionTables(const model::FlatModel& model, const model::OctreeLayout& layout);
+    /// `featureOwners`: also upload the feature-owner table (continuous detection).
+    CollisionTables(const model::FlatModel& model, const model::OctreeLayout& layout,
+                    bool featureOwners = false);
     void bind() const;
     gl::Buffer faceInfo; ///< GpuFaceInfo per face (object, leaf box, owned features)
     gl::Buffer objects;  ///< GpuObject per object
+    /// Owner face of every corner and edge (model::featureOwners, GLC_BIND_FEATURE_OWNERS): read by
+    /// FeaturePairs under continuous detection only, to complete the CCD's feature pairs; none
+    /// (no GL name) otherwise.
+    gl::Buffer featureOwners;
 };
 
 class CollisionDetection {

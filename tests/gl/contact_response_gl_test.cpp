@@ -5,6 +5,7 @@
 // (a stage chain of the one FeaturePairs stage) and the response reads the two feature-pair lists.
 
 #include "core/gpu_layout.hpp"
+#include "cpu/collision_twin.hpp"
 #include "cpu/contact_twin.hpp"
 #include "model/features.hpp"
 #include "passes/collision/feature_pairs.hpp"
@@ -73,7 +74,10 @@ std::vector<std::array<std::uint32_t, 2>> readList(const passes::AppendLists& li
     return pairs;
 }
 
-GpuResult runGpu(const Soup& s, const ContactParams& params, std::uint32_t listCapacity = 1u << 16) {
+// `ccdComplete`: the expansion of continuous detection (GLC_CCD_COMPLETE), which adds entries
+// marked GLC_PAIR_CCD_ONLY that the response must skip.
+GpuResult runGpu(const Soup& s, const ContactParams& params, std::uint32_t listCapacity = 1u << 16,
+                 bool ccdComplete = false) {
     passes::DeviceBuffers b;
     b.nodeCount = static_cast<std::uint32_t>(s.positions.size());
     b.faceCount = static_cast<std::uint32_t>(s.faces.size() / 3);
@@ -94,7 +98,9 @@ GpuResult runGpu(const Soup& s, const ContactParams& params, std::uint32_t listC
     lists.declare(GLC_LIST_CANDIDATES,
                   {"candidates", "pairs", sizeof(glm::uvec2), GLC_BIND_FACE_PAIRS, std::max(count, 1u)});
     passes::StageChain chain;
-    passes::FeaturePairs expansion;
+    passes::FeaturePairs expansion(ccdComplete);
+    const gl::Buffer owners = upload("featureOwners", model::featureOwners(s.faces));
+    owners.bindStorage(GLC_BIND_FEATURE_OWNERS);
     expansion.addStages(chain, lists, listCapacity, listCapacity);
     if (count != 0)
         poke(lists.storage(GLC_LIST_CANDIDATES), 0, pairs.size() * sizeof(glm::uvec2), pairs.data());
@@ -361,6 +367,68 @@ TEST(ContactResponseGl, StripsExpandOnlyOwnedFeaturesOnceAndMatchTheTwin) {
                     "%zu), contacts %u, %u nodes with several active contacts\n",
                     what.c_str(), soup.candidates.size(), want.vertexFace.size(), want.edgeEdge.size(),
                     6 * soup.candidates.size(), 9 * soup.candidates.size(), gpu.contacts, several);
+    }
+}
+
+// One crumpled grid cloth of 12 x 12 cells of 0.02 m (every node displaced by up to a cell per
+// axis) with self-collisions: faces a ring or two apart on the mesh are candidates, so continuous
+// detection's expansion adds CCD-only entries.
+Soup crumpledClothSoup(std::uint32_t seed, double thickness) {
+    const std::uint32_t n = 12;
+    const float cell = 0.02f;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> crumple(-cell, cell), speed(-0.5f, 0.5f);
+    Soup s;
+    std::vector<glm::vec3> x;
+    for (std::uint32_t j = 0; j <= n; ++j)
+        for (std::uint32_t i = 0; i <= n; ++i) {
+            x.emplace_back(static_cast<float>(i) * cell + crumple(rng), crumple(rng),
+                           static_cast<float>(j) * cell + crumple(rng));
+            s.positions.emplace_back(x.back());
+            s.velocities.emplace_back(speed(rng), speed(rng), speed(rng));
+        }
+    const auto node = [&](std::uint32_t i, std::uint32_t j) { return j * (n + 1) + i; };
+    for (std::uint32_t j = 0; j < n; ++j)
+        for (std::uint32_t i = 0; i < n; ++i)
+            s.faces.insert(s.faces.end(), {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j),
+                                           node(i + 1, j + 1), node(i, j + 1)});
+    s.faceObject.assign(s.faces.size() / 3, 0u);
+    s.objectClosed = {0u};
+    s.owned = model::ownedFeatures(s.faces);
+    s.candidates = cpu::twinCandidates(s.faces, s.faceObject, x, thickness, {false, true});
+    return s;
+}
+
+// Continuous detection's expansion on the GPU equals its twin (with CCD-only entries), and the
+// response skips those entries: the fixed-point force sums and the contact count are bit for bit
+// those of discrete detection's expansion, in every response mode; the discrete lists are still
+// the twin's featurePairs.
+TEST(ContactResponseGl, CcdOnlyEntriesChangeNoForce) {
+    const double h = 0.01;
+    const Soup soup = crumpledClothSoup(7, h);
+    const cpu::FeaturePairList complete =
+        cpu::ccdFeaturePairs(soup.faces, soup.owned, model::featureOwners(soup.faces), soup.candidates);
+    const auto marked = [](const std::vector<std::array<std::uint32_t, 2>>& list) {
+        return std::count_if(list.begin(), list.end(), [](const auto& p) { return cpu::ccdOnly(p); });
+    };
+    ASSERT_GT(marked(complete.vertexFace) + marked(complete.edgeEdge), 0)
+        << "the soup must need CCD-only entries";
+    for (const ResponseMode& mode : kResponseModes) {
+        const std::string what = std::string("crumpled cloth, ") + mode.name;
+        const ContactParams params = inMode(h, mode);
+        const GpuResult discrete = runGpu(soup, params, 1u << 20, false);
+        const GpuResult continuous = runGpu(soup, params, 1u << 20, true);
+        EXPECT_EQ(discrete.pairs.vertexFace, cpuPairs(soup).vertexFace) << what;
+        EXPECT_EQ(discrete.pairs.edgeEdge, cpuPairs(soup).edgeEdge) << what;
+        EXPECT_EQ(continuous.pairs.vertexFace, complete.vertexFace) << what;
+        EXPECT_EQ(continuous.pairs.edgeEdge, complete.edgeEdge) << what;
+        EXPECT_GT(discrete.contacts, 0u) << what;
+        EXPECT_EQ(continuous.contacts, discrete.contacts) << what;
+        EXPECT_EQ(continuous.fixedPoint, discrete.fixedPoint) << what;
+        // (Against the twin's forces: the expansions' twins give identical forces, checked exactly
+        // in tests/unit/ccd_feature_pairs_test.cpp; the GPU-vs-twin bound of
+        // expectForcesMatchTheTwin is for well-shaped soups, and this crumpled cloth's slivers
+        // exceed it by 10 % at one node in discrete detection already.)
     }
 }
 

@@ -10,7 +10,9 @@
 // scaled by 2^k.
 
 #include "cpu/ccd_twin.hpp"
+#include "cpu/feature_coverage.hpp"
 #include "cpu/oracle/exact_ccd.hpp"
+#include "model/features.hpp"
 #include "model/flat_model.hpp"
 #include "model/octree_layout.hpp"
 #include "passes/collision_detection.hpp"
@@ -201,10 +203,18 @@ TEST_P(ContinuousDetectionGl, SweptCandidatesAndTimesOfImpactMatchTheTwinAndMiss
     const Pairs expected = cpu::twinSweptCandidates(m.model.faceIndices, detection.layout().faceObject, m.x0,
                                                     m.x1, m.thickness, rules);
     ASSERT_EQ(detection.readCandidates(), expected);
+    // Continuous detection's expansion: the owned pairs plus the CCD-only ones ownership loses.
     const cpu::FeaturePairList features =
-        cpu::featurePairs(m.model.faceIndices, detection.layout().faceOwned, expected);
+        cpu::ccdFeaturePairs(m.model.faceIndices, detection.layout().faceOwned,
+                             model::featureOwners(m.model.faceIndices), expected);
     ASSERT_EQ(detection.readVertexFacePairs(), features.vertexFace);
     ASSERT_EQ(detection.readEdgeEdgePairs(), features.edgeEdge);
+    // Complete: every feature pair of every valid overlapping face pair whose swept feature boxes
+    // overlap is in the GPU's lists (brute force without ownership, cpu::ccdCoverage).
+    const cpu::CcdCoverage coverage = cpu::ccdCoverage(m.model.faceIndices, detection.layout().faceObject,
+                                                       m.x0, m.x1, m.thickness, rules, features);
+    EXPECT_EQ(coverage.vertexFaceMissing, 0u) << "of " << coverage.vertexFaceNeeded;
+    EXPECT_EQ(coverage.edgeEdgeMissing, 0u) << "of " << coverage.edgeEdgeNeeded;
 
     const cpu::FeatureCcdResult twin =
         cpu::featureCcd(m.model.faceIndices, m.x0, m.x1, features, kBudget, 0.0f);

@@ -7,7 +7,9 @@ namespace {
 constexpr std::size_t kPairBytes = 2 * sizeof(std::uint32_t); // uvec2
 } // namespace
 
-FeaturePairs::FeaturePairs() : m_program("feature_pairs") {}
+FeaturePairs::FeaturePairs(bool ccdComplete)
+    : m_program("feature_pairs",
+                ccdComplete ? std::vector<std::string>{"GLC_CCD_COMPLETE"} : std::vector<std::string>{}) {}
 
 void FeaturePairs::addStages(StageChain& chain, AppendLists& lists, std::uint32_t vertexFaceCapacity,
                              std::uint32_t edgeEdgeCapacity) {

@@ -17,7 +17,9 @@ namespace glcollide::passes {
 
 class FeaturePairs {
   public:
-    FeaturePairs();
+    /// `ccdComplete` (continuous detection): also append the feature pairs that ownership loses in
+    /// self-collisions, marked GLC_PAIR_CCD_ONLY (GLC_CCD_COMPLETE; reads GLC_BIND_FEATURE_OWNERS).
+    explicit FeaturePairs(bool ccdComplete);
     /// Declares the vertex-face and edge-edge lists with these first capacities (>= 1) and adds
     /// the FeaturePairs stage to `chain`. Call after the candidate list is declared and the stages
     /// that write it are added.
