@@ -4,6 +4,7 @@
 #include "benchkit/ccd_experiment.hpp"
 #include "benchkit/oscillator.hpp"
 #include "benchkit/paper_fused_tri_tri.hpp"
+#include "benchkit/response_experiment.hpp"
 
 #include "core/gpu_layout.hpp"
 #include "cpu/oracle/ground_truth.hpp"
@@ -30,13 +31,9 @@
 #include <optional>
 
 namespace glcollide::benchkit {
-namespace {
 
 using json = nlohmann::json;
-using Pairs = std::vector<std::array<std::uint32_t, 2>>;
 
-/// The scene of `entry` with the configuration's merge patch applied, parsed (and so validated)
-/// by the scene reader; errors name the scene's source and the configuration.
 Scene buildScene(const SceneEntry& entry, const ConfigEntry& config) {
     json document = json::parse(entry.sceneJson);
     document.merge_patch(json::parse(config.patchJson));
@@ -46,7 +43,6 @@ Scene buildScene(const SceneEntry& entry, const ConfigEntry& config) {
     return scene;
 }
 
-/// Multiplies the scene's substeps per frame (its explicit count, or the automatic one).
 void applySubstepFactor(Scene& scene, int factor) {
     if (factor == 1) return;
     const int base = scene.time.substeps != 0 ? scene.time.substeps
@@ -54,10 +50,6 @@ void applySubstepFactor(Scene& scene, int factor) {
     scene.time.substeps = base * factor;
 }
 
-/// Called after every frame (warm-up included) with the 1-based frame number.
-using FrameHook = std::function<void(Engine&, int frame)>;
-
-/// Steps warm-up frames, then measured frames, collecting per-pass GPU time and wall time.
 RunResult measureRun(Engine& engine, const Experiment& experiment, const FrameHook& hook) {
     RunResult r;
     r.nodes = engine.nodeCount();
@@ -106,6 +98,10 @@ RunResult measureRun(Engine& engine, const Experiment& experiment, const FrameHo
                     std::to_string(bad.object) + ", node " + std::to_string(bad.node);
     return r;
 }
+
+namespace {
+
+using Pairs = std::vector<std::array<std::uint32_t, 2>>;
 
 double passMedian(const RunResult& r, std::initializer_list<const char*> names) {
     double sum = 0.0;
@@ -767,6 +763,9 @@ ExperimentResult runExperiment(const Experiment& experiment, const Progress& pro
         break;
     case ExperimentKind::Ccd:
         runCcdExperiment(experiment, out, counted);
+        break;
+    case ExperimentKind::Response:
+        runResponseExperiment(experiment, out, counted);
         break;
     }
     return out;

@@ -5,6 +5,9 @@
 #include "benchkit/results.hpp"
 #include "benchkit/suite.hpp"
 
+#include <glcollide/engine.hpp>
+#include <glcollide/scene.hpp>
+
 #include <functional>
 #include <string>
 
@@ -17,5 +20,21 @@ using Progress = std::function<void(const std::string&)>;
 /// configuration). Problems with a run that are not setup errors (a simulation that diverges)
 /// are recorded in RunResult::failure; setup errors (bad scenes) throw glcollide::Error.
 ExperimentResult runExperiment(const Experiment& experiment, const Progress& progress);
+
+// Pieces the experiments share (experiments.cpp).
+
+/// The scene of `entry` with the configuration's merge patch applied, parsed (and so validated)
+/// by the scene reader; errors name the scene's source and the configuration.
+Scene buildScene(const SceneEntry& entry, const ConfigEntry& config);
+
+/// Multiplies the scene's substeps per frame (its explicit count, or the automatic one).
+void applySubstepFactor(Scene& scene, int factor);
+
+/// Called after every frame (warm-up included) with the 1-based frame number.
+using FrameHook = std::function<void(Engine&, int frame)>;
+
+/// Steps warm-up frames, then measured frames, collecting per-pass GPU time and wall time (of
+/// the measured frames) and the largest intersecting-pair count (of all frames).
+RunResult measureRun(Engine& engine, const Experiment& experiment, const FrameHook& hook);
 
 } // namespace glcollide::benchkit

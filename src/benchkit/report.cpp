@@ -124,6 +124,15 @@ std::vector<std::pair<std::string, std::string>> tableMetrics(const Experiment& 
                 {"ours_per_ti_double_qps", "ours/TI double"},
                 {"candidate_pairs", "candidates"},
                 {"ccd_capped", "CCD capped"}};
+    case ExperimentKind::Response:
+        return {{"max_intersecting_pairs", "max intersecting pairs"},
+                {"energy_start_j", "E start (J)"},
+                {"energy_end_j", "E end (J)"},
+                {"energy_max_rise_j", "largest rise (J)"},
+                {"safe_step_fraction", "cut substeps"},
+                {"safe_step_froze_all", "froze all"},
+                {"solver_iterations_per_substep", "CG it./substep"},
+                {"gpu_ms_per_substep", "GPU ms/substep"}};
     }
     return {};
 }

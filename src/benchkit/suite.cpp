@@ -79,13 +79,13 @@ std::string readFile(const std::filesystem::path& path, const std::string& what)
 
 ExperimentKind parseKind(const json& experiment, const Where& at) {
     const std::string kind = stringAt(experiment, at, "kind");
-    for (ExperimentKind k :
-         {ExperimentKind::Scaling, ExperimentKind::BroadPhase, ExperimentKind::NarrowPhase,
-          ExperimentKind::Integration, ExperimentKind::Contact, ExperimentKind::Bvh, ExperimentKind::Ccd})
+    for (ExperimentKind k : {ExperimentKind::Scaling, ExperimentKind::BroadPhase, ExperimentKind::NarrowPhase,
+                             ExperimentKind::Integration, ExperimentKind::Contact, ExperimentKind::Bvh,
+                             ExperimentKind::Ccd, ExperimentKind::Response})
         if (kind == kindName(k)) return k;
     (at / "kind")
         .fail("unknown kind \"" + kind +
-              "\" (expected scaling, broad_phase, narrow_phase, integration, contact, bvh or ccd)");
+              "\" (expected scaling, broad_phase, narrow_phase, integration, contact, bvh, ccd or response)");
 }
 
 /// A scene is inline (an object in the scene format) or a path relative to the suite; either may
@@ -264,6 +264,49 @@ constexpr const char* kCcdKeys[] = {
     "sets",        "budgets",         "min_separations", "scale_exponents", "peer", "peer_timeout_seconds",
     "engine_sets", "engine_thickness"};
 
+constexpr const char* kResponseNames[] = {"penalty", "bridson", "intersection_free"};
+
+/// The configurations of a response experiment: every response of `responses` at every substep
+/// count of `substeps` (the scene's own count when that list is absent). Penalty and bridson run
+/// with discrete detection (what they were measured with), intersection_free with continuous
+/// detection (the only one it accepts).
+std::vector<ConfigEntry> responseConfigs(const json& e, const Where& at) {
+    if (e.contains("configs"))
+        (at / "configs").fail("a response experiment makes its configs from responses and substeps");
+    if (!e.contains("responses")) (at / "responses").fail("required list of responses is missing");
+    const json& list = e.at("responses");
+    if (!list.is_array() || list.empty()) (at / "responses").fail("expected a non-empty array");
+    const std::vector<double> substeps = numbersAt(e, at, "substeps", true, 1, 1000000);
+    if (e.contains("substeps") && substeps.empty()) (at / "substeps").fail("expected a non-empty array");
+    std::vector<ConfigEntry> configs;
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        const std::string response = list[i].is_string() ? list[i].get<std::string>() : "";
+        if (std::none_of(std::begin(kResponseNames), std::end(kResponseNames),
+                         [&](const char* n) { return response == n; }))
+            (at / "responses" / i).fail("unknown response (expected penalty, bridson or intersection_free)");
+        if (!seen.insert(response).second) (at / "responses" / i).fail("duplicate response");
+        json patch = {{"collision",
+                       {{"response", response},
+                        {"detection", response == "intersection_free" ? "continuous" : "discrete"}}}};
+        if (substeps.empty()) {
+            configs.push_back({response, patch.dump(), 1});
+            continue;
+        }
+        for (std::size_t k = 0; k < substeps.size(); ++k) {
+            const int count = static_cast<int>(substeps[k]);
+            if (std::count(substeps.begin(), substeps.begin() + static_cast<std::ptrdiff_t>(k), substeps[k]) >
+                0)
+                (at / "substeps" / k).fail("duplicate substep count");
+            patch["time"] = {{"substeps", count}};
+            configs.push_back(
+                {response + ", " + std::to_string(count) + (count == 1 ? " substep" : " substeps"),
+                 patch.dump(), 1});
+        }
+    }
+    return configs;
+}
+
 constexpr const char* kBvhKeys[] = {"table_faces",         "scaling_faces",  "octree_max_faces",
                                     "slow_run_seconds",    "fold_layers",    "cloth_patch",
                                     "cpu_check_max_faces", "engine_configs", "scene_configs"};
@@ -297,7 +340,9 @@ Experiment parseExperiment(const json& e, const Where& at, const std::filesystem
                "peer",
                "peer_timeout_seconds",
                "engine_sets",
-               "engine_thickness"});
+               "engine_thickness",
+               "responses",
+               "substeps"});
     Experiment x;
     x.kind = parseKind(e, at);
     x.name = stringAt(e, at, "name");
@@ -315,6 +360,8 @@ Experiment parseExperiment(const json& e, const Where& at, const std::filesystem
             e, at, "scenes", [&](const json& s, const Where& w) { return parseSceneEntry(s, w, baseDir); });
     if (ccd && !e.contains("configs"))
         x.configs = {ConfigEntry{"glcollide GPU"}};
+    else if (x.kind == ExperimentKind::Response)
+        x.configs = responseConfigs(e, at);
     else
         x.configs = parseList<ConfigEntry>(e, at, "configs", parseConfig);
     if (ccd)
@@ -322,6 +369,9 @@ Experiment parseExperiment(const json& e, const Where& at, const std::filesystem
     else
         for (const char* key : kCcdKeys)
             if (e.contains(key)) (at / key).fail("only ccd experiments have this key");
+    if (x.kind != ExperimentKind::Response)
+        for (const char* key : {"responses", "substeps"})
+            if (e.contains(key)) (at / key).fail("only response experiments have this key");
     if (x.kind == ExperimentKind::Bvh) {
         x.bvh = parseBvhSpec(e, at, x.configs);
         if (x.bvh.tableFaces.empty() && x.bvh.scalingFaces.empty() && x.scenes.empty())
@@ -384,6 +434,8 @@ const char* kindName(ExperimentKind kind) {
         return "bvh";
     case ExperimentKind::Ccd:
         return "ccd";
+    case ExperimentKind::Response:
+        return "response";
     }
     return "unknown";
 }

@@ -20,6 +20,8 @@ enum class ExperimentKind {
                  ///< (bvh_experiment.hpp)
     Ccd,         ///< continuous collision queries against ground truth, beside Tight-Inclusion, and
                  ///< swept against discrete detection as an engine workload (ccd_experiment.hpp)
+    Response,    ///< contact responses against step size: intersecting pairs (the exact TriTri),
+                 ///< energy drift, safe-step cuts, solver iterations, time (response_experiment.hpp)
 };
 
 const char* kindName(ExperimentKind kind);

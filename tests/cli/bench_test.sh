@@ -37,7 +37,7 @@ for b in doc["benchmarks"]:
         assert key in b, b["name"] + " lacks " + key
     assert b["time_unit"] == "ms"
 # Every experiment kind and every pass of a collision run are there.
-for prefix in ["broad_phase/", "narrow_phase/", "integration_ballistic/", "integration_cloth/", "contact/", "scaling/", "bvh/", "ccd/"]:
+for prefix in ["broad_phase/", "narrow_phase/", "integration_ballistic/", "integration_cloth/", "contact/", "scaling/", "bvh/", "ccd/", "response/"]:
     assert any(n.startswith(prefix) for n in names), "no entry for " + prefix
 for p in ["BBUpdate", "BBCollision", "TriTri", "ContactResponse", "NodeUpdate", "gpu_total", "wall"]:
     assert "broad_phase/two tet boxes/octree d2/" + p in names, "missing pass " + p
@@ -99,6 +99,16 @@ ccd = [s for s in doc["experiment_summaries"] if s["experiment"] == "ccd"][0]
 ccd_titles = [t["title"] for t in ccd["tables"]]
 for want in ["CCD query sets", "budget", "minimum separation", "2^k"]:
     assert any(want in t for t in ccd_titles), "no ccd table " + want
+# The response experiment (smoke: a ball onto a small pinned cloth, every response): its metrics are
+# there, and the intersection-free response left no face pair intersecting in any substep.
+resp = [b for b in doc["benchmarks"] if b["experiment"] == "response" and b["pass"] == "gpu_total"]
+assert sorted(b["config"] for b in resp) == ["bridson", "intersection_free", "penalty"], [b["name"] for b in resp]
+for b in resp:
+    for key in ["max_intersecting_pairs", "energy_start_j", "energy_end_j", "energy_max_rise_j", "safe_step_fraction",
+                "safe_step_froze_all", "solver_iterations_per_substep", "wall_ms_per_substep", "gpu_ms_per_substep"]:
+        assert key in b, b["name"] + " lacks " + key
+    if b["config"] == "intersection_free":
+        assert b["max_intersecting_pairs"] == 0 and 0 <= b["safe_step_fraction"] <= 1, b["name"]
 svgs = [f for f in os.listdir(out) if f.endswith(".svg")]
 assert len(svgs) >= 6, svgs
 for f in svgs:

@@ -8,6 +8,7 @@
 #include "benchkit/folded_cloth.hpp"
 #include "benchkit/oscillator.hpp"
 #include "benchkit/report.hpp"
+#include "benchkit/response_experiment.hpp"
 #include "benchkit/results.hpp"
 #include "benchkit/suite.hpp"
 
@@ -154,6 +155,81 @@ TEST(BenchkitSuite, CcdKeys) {
     EXPECT_THAT(errorOf(suiteWith(R"("kind": "scaling", "sets": ["cloth-ball"], )" + sceneList() +
                                   R"(, "configs": [{"name": "c"}])")),
                 HasSubstr("/experiments/0/sets: only ccd experiments have this key"));
+}
+
+TEST(BenchkitSuite, ResponseConfigsAreEveryResponseAtEverySubstepCount) {
+    const Suite s = parseSuite(
+        suiteWith(
+            R"("kind": "response", "responses": ["intersection_free", "penalty"], "substeps": [1, 4], )" +
+            sceneList()),
+        {}, "t.json");
+    const Experiment& e = s.experiments.at(0);
+    EXPECT_EQ(e.kind, ExperimentKind::Response);
+    std::vector<std::string> names;
+    for (const ConfigEntry& c : e.configs) names.push_back(c.name);
+    EXPECT_EQ(names,
+              (std::vector<std::string>{"intersection_free, 1 substep", "intersection_free, 4 substeps",
+                                        "penalty, 1 substep", "penalty, 4 substeps"}));
+    // intersection_free with continuous detection (the only one it accepts), the others as measured
+    // in the issue: discrete; the substep count replaces the scene's.
+    const nlohmann::json first = nlohmann::json::parse(e.configs[1].patchJson);
+    EXPECT_EQ(first["collision"]["response"], "intersection_free");
+    EXPECT_EQ(first["collision"]["detection"], "continuous");
+    EXPECT_EQ(first["time"]["substeps"], 4);
+    const nlohmann::json third = nlohmann::json::parse(e.configs[2].patchJson);
+    EXPECT_EQ(third["collision"]["response"], "penalty");
+    EXPECT_EQ(third["collision"]["detection"], "discrete");
+    EXPECT_EQ(third["time"]["substeps"], 1);
+    // Without substeps: one configuration per response at the scene's own count.
+    const Suite own = parseSuite(suiteWith(R"("kind": "response", "responses": ["bridson"], )" + sceneList()),
+                                 {}, "t.json");
+    ASSERT_EQ(own.experiments.at(0).configs.size(), 1u);
+    EXPECT_EQ(own.experiments.at(0).configs[0].name, "bridson");
+    EXPECT_FALSE(nlohmann::json::parse(own.experiments.at(0).configs[0].patchJson).contains("time"));
+    // The smoke suite runs it (every response, one small scene); the shipped response suite parses.
+    const Suite smoke = smokeSuite();
+    EXPECT_TRUE(std::any_of(smoke.experiments.begin(), smoke.experiments.end(),
+                            [](const Experiment& x) { return x.kind == ExperimentKind::Response; }));
+    EXPECT_EQ(loadSuite(GLCOLLIDE_SOURCE_DIR "/bench/suites/response.json").experiments.at(0).configs.size(),
+              9u);
+
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "response", )" + sceneList())),
+                HasSubstr("/experiments/0/responses: required list of responses is missing"));
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "response", "responses": ["ipc"], )" + sceneList())),
+                HasSubstr("/experiments/0/responses/0: unknown response"));
+    EXPECT_THAT(
+        errorOf(suiteWith(R"("kind": "response", "responses": ["penalty", "penalty"], )" + sceneList())),
+        HasSubstr("/experiments/0/responses/1: duplicate response"));
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "response", "responses": ["penalty"], "substeps": [2, 2], )" +
+                                  sceneList())),
+                HasSubstr("/experiments/0/substeps/1: duplicate substep count"));
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "response", "responses": ["penalty"], "substeps": [0], )" +
+                                  sceneList())),
+                HasSubstr("/experiments/0/substeps/0: expected an integer"));
+    EXPECT_THAT(
+        errorOf(suiteWith(R"("kind": "response", "responses": ["penalty"], "configs": [{"name": "c"}], )" +
+                          sceneList())),
+        HasSubstr("/experiments/0/configs: a response experiment makes its configs"));
+    EXPECT_THAT(errorOf(suiteWith(R"("kind": "scaling", "responses": ["penalty"], )" + sceneList() +
+                                  R"(, "configs": [{"name": "c"}])")),
+                HasSubstr("/experiments/0/responses: only response experiments have this key"));
+}
+
+// Drift and largest rise on a series whose answers are known: the rise is the largest single
+// step up (not the total climb, not the first one), and a series that only falls never rose.
+TEST(BenchkitResponse, EnergyDriftAndLargestRise) {
+    const EnergyDrift d = energyDrift({10.0, 12.0, 11.0, 14.5, 14.0, 9.0});
+    EXPECT_EQ(d.start, 10.0);
+    EXPECT_EQ(d.end, 9.0);
+    EXPECT_EQ(d.drift, -1.0);
+    EXPECT_EQ(d.maxRise, 3.5); // 11 -> 14.5, exact in binary
+    EXPECT_EQ(d.maxRiseFrame, 3);
+    const EnergyDrift falling = energyDrift({3.0, 2.0, 1.0});
+    EXPECT_EQ(falling.maxRise, 0.0);
+    EXPECT_EQ(falling.maxRiseFrame, 0);
+    EXPECT_EQ(falling.drift, -2.0);
+    const EnergyDrift none = energyDrift({});
+    EXPECT_EQ(none.drift, 0.0);
 }
 
 // The tally against ground truth: a set with every combination of truth and answer, each repeated
