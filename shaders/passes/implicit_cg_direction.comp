@@ -1,5 +1,5 @@
 #version 430 core
-// glcollide-features: GLC_SPRINGS GLC_IMPLICIT_CONTACTS
+// glcollide-features: GLC_SPRINGS GLC_IMPLICIT_CONTACTS GLC_IMPLICIT_GROUND
 // ImplicitCgDirection — iteration u_iteration of the implicit solver's conjugate gradients, first
 // width: from the previous pass's partial sums of r·z and r·r every group computes the same
 // rz and ‖r‖²; if ‖r‖ ≤ tolerance·‖b‖ (or the cap is reached) the solve is over and invocation 0
@@ -55,6 +55,11 @@ uniform uint u_iteration;     // k = 0, 1, …, u_maxIterations (the last one on
 uniform uint u_maxIterations; // the cap
 uniform float u_tolerance2;   // tolerance²
 
+#ifdef GLC_IMPLICIT_GROUND
+uniform float u_groundStiffness; // N/m per node
+uniform float u_groundLevel;     // m: the ground's height plus its band
+#endif
+
 void main() {
     if (groupIsPadding()) return; // whole groups only: the rest meet at barriers
     uint k = u_iteration;
@@ -106,6 +111,9 @@ void main() {
             q += (u_massFactor / w) * pi;
 #ifdef GLC_IMPLICIT_CONTACTS
             q += contactProduct(i, beta);
+#endif
+#ifdef GLC_IMPLICIT_GROUND
+            if (u_groundLevel - g_positions[i].y > 0.0) q.y += u_h * u_h * u_groundStiffness * pi.y;
 #endif
         } else {
             q = vec3(0.0);

@@ -1,5 +1,5 @@
 #version 430 core
-// glcollide-features: GLC_SPRINGS GLC_GRAVITY GLC_DAMPING GLC_WIND GLC_IMPLICIT_CONTACTS
+// glcollide-features: GLC_SPRINGS GLC_GRAVITY GLC_DAMPING GLC_WIND GLC_IMPLICIT_CONTACTS GLC_IMPLICIT_GROUND
 // ImplicitSetup — assembles one implicit Euler substep's system A·Δv = b per node (Baraff &
 // Witkin 1998, one Newton step of backward Euler) and starts the conjugate gradients at Δv = 0:
 //   b = h·f + h²·Σ K_s (v_j − v_i),   P = m(1 + h·c_air)·I + Σ (h·C_s + h²·K_s)  (A's diagonal block)
@@ -58,6 +58,11 @@ layout(std430, binding = GLC_BIND_SOLVER_PRECONDITIONED) writeonly buffer Precon
 layout(std430, binding = GLC_BIND_SOLVER_DIRECTION_OUT) writeonly buffer DirectionOutBuf { vec4 g_direction[]; };
 layout(std430, binding = GLC_BIND_SOLVER_BLOCK_INVERSE) writeonly buffer BlockInverseBuf { float g_blockInverse[]; };
 
+#ifdef GLC_IMPLICIT_GROUND
+uniform float u_groundStiffness; // N/m per node
+uniform float u_groundLevel;     // m: the ground's height plus its band
+#endif
+
 void main() {
     if (groupIsPadding()) return; // whole groups only: the rest meet at barriers
     RowTask task = rowTask();
@@ -107,6 +112,16 @@ void main() {
             stiffnessTerm += contacts.stiffnessTimesVelocity;
             a += contacts.blockA;
             b += contacts.blockB;
+#endif
+#ifdef GLC_IMPLICIT_GROUND
+            // The ground as a penalty below u_groundLevel (height + band): force k_g·depth up, its
+            // stiffness −k_g·e_y e_yᵀ into the matrix and the right-hand side (decision 0024).
+            float groundDepth = u_groundLevel - g_positions[i].y;
+            if (groundDepth > 0.0) {
+                f.y += u_groundStiffness * groundDepth;
+                stiffnessTerm.y -= u_groundStiffness * g_velocities[i].y;
+                a.w += u_h * u_h * u_groundStiffness;
+            }
 #endif
             symInverse(a, b, inverseA, inverseB);
             r = u_h * f + (u_h * u_h) * stiffnessTerm;

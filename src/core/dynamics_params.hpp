@@ -50,6 +50,12 @@ struct ImplicitParams {
     double airDamping = 0.0;   ///< 1/s: the air damping c (f = −c·m·v) of `external`, 0 when off
     bool springs = false;      ///< the springs effect is on
     NodeForceParams external;  ///< gravity, air damping, wind: added in the setup dispatch
+    /// N/m, > 0 (the intersection-free response, decision 0024): the ground enters the solve as a
+    /// penalty k_g·(g + band − y) on every node below g + band, with its stiffness k_g in the
+    /// matrix (GLC_IMPLICIT_GROUND), so a body resting on it is held by the solve itself.
+    double groundStiffness = 0.0;
+    double groundHeight = 0.0; ///< m
+    double groundBand = 0.0;   ///< m
     double tolerance = 1.0e-4; ///< stop when ‖r‖ ≤ tolerance·‖b‖
     int maxIterations = 64;    ///< CG iteration cap
 };

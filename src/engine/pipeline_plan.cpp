@@ -192,6 +192,13 @@ PipelinePlan planPipeline(const Scene& scene) {
         np.restitution = nu.restitution;
         np.friction = nu.friction;
         np.groundBand = nu.ground ? plan.contact.thickness : 0.0; // SafeStep cuts ground crossings
+        if (plan.implicitSolve && nu.ground) {
+            // The ground in the solve's matrix, as stiff as a contact (decision 0024).
+            ImplicitParams& ip = plan.implicitParams;
+            ip.groundStiffness = plan.contact.stiffness;
+            ip.groundHeight = nu.groundHeight;
+            ip.groundBand = np.groundBand;
+        }
         NodeUpdateParams& ca = plan.contactApplyParams;
         ca = np;
         ca.forces = false;

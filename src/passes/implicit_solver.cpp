@@ -17,6 +17,7 @@ std::vector<std::string> solverDefines(const ImplicitParams& c, bool setup, bool
     std::vector<std::string> d = setup ? externalForceDefines(c.external) : std::vector<std::string>{};
     if (c.springs) d.emplace_back("GLC_SPRINGS");
     if (contacts) d.emplace_back("GLC_IMPLICIT_CONTACTS");
+    if (c.groundStiffness > 0.0) d.emplace_back("GLC_IMPLICIT_GROUND");
     return d;
 }
 
@@ -185,6 +186,11 @@ void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& 
     directions[0]->bindStorage(GLC_BIND_SOLVER_DIRECTION_OUT);
     setup.set("u_h", h);
     setup.set("u_massFactor", massFactor);
+    if (m_config.groundStiffness > 0.0)
+        for (const gl::ComputeProgram* p : {&setup, &direction}) {
+            p->set("u_groundStiffness", static_cast<float>(params.groundStiffness));
+            p->set("u_groundLevel", static_cast<float>(params.groundHeight + params.groundBand));
+        }
     m_layout.dispatch(setup);
 
     const auto maxIterations = static_cast<std::uint32_t>(params.maxIterations);
