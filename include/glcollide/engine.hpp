@@ -121,6 +121,13 @@ struct CollisionStats {
     std::uint32_t safeStepGroundCrossings = 0; ///< node steps that crossed the ground (each cut its object)
     /// Substeps of the frame whose start had intersecting face pairs (intersectingPairs > 0).
     std::uint32_t substepsWithIntersections = 0;
+    /// Recovery from intersecting input (since the engine was made, not per frame): substeps that
+    /// began with intersecting pairs before the first one that began without, and whether that
+    /// one has come (intersection-free since). Feature pairs the safe step's CCD left out in the
+    /// last substep because their faces intersect at its start.
+    std::uint64_t substepsUntilIntersectionFree = 0;
+    bool reachedIntersectionFree = false;
+    std::uint32_t ccdTangledPairs = 0;
 };
 
 /// The first non-finite state NodeUpdate produced (EngineOptions::checkFinite).

@@ -78,6 +78,8 @@
 #define GLC_BIND_IMPLICIT_CONTACTS 50       // uint[nodes + 1 + 16 · (vertex-face + edge-edge capacity)]
 #define GLC_BIND_NODE_CONTACT_COUNTS 51     // uint[nodes]: incidences per node (integer atomics), then scatter cursors
 #define GLC_BIND_OBJECT_TOI 52            // uint[objects]: the earliest time of impact of the object's nodes
+#define GLC_BIND_TANGLED 54               // uint[nodes + faces]: 1 for the nodes, then the faces, of the face pairs
+                                          // that intersect at x0 (the safe step's CCD leaves their pairs out)
 #define GLC_BIND_FEATURE_OWNERS 53        // uint[6*faces]: owner face of corners 0..2, then of edges 0..2 (FeaturePairs, continuous)
                                           // (SafeStep, decision 0024), bits as GLC_BIND_NODE_TOI
 
@@ -85,7 +87,7 @@
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 54
+#define GLC_BINDING_COUNT 55
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -209,7 +211,8 @@ struct GpuListCounter {
 #define GLC_STAT_CCD_EARLIEST_TOI 9u     // CCD: bits of the earliest time of impact of the substep (+inf: none)
 #define GLC_STAT_SAFE_STEP_CUTS 10u      // SafeStep: node steps cut (summed over the substep's rounds)
 #define GLC_STAT_SAFE_STEP_GROUND 11u    // SafeStep: nodes whose predicted step crossed the ground
-#define GLC_STAT_COUNT 12
+#define GLC_STAT_CCD_TANGLED 12u         // CCD (safe step): feature pairs left out because their faces intersect at x0
+#define GLC_STAT_COUNT 13
 
 struct GpuCollisionCounters {
     GpuListCounter lists[GLC_LIST_COUNT]; // indexed by GLC_LIST_*

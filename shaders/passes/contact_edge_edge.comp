@@ -15,6 +15,7 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/contact_geometry.glsl"
 #include "common/contact_force.glsl"
 #include "common/contact_pair.glsl"
+#include "common/tangled.glsl"
 
 layout(std430, binding = GLC_BIND_EDGE_EDGE_PAIRS) readonly buffer EdgeEdgePairsBuf { uvec2 g_edgeEdge[]; };
 
@@ -29,6 +30,7 @@ void main() {
     if (i >= storedCount(GLC_LIST_EDGE_EDGE)) return;
     uvec2 item = g_edgeEdge[i]; // (3*fa+e, 3*fb+g)
     if ((item.y & GLC_PAIR_CCD_ONLY) != 0u) return; // for the CCD only: its contact is found, or excluded, by its owners
+    if (faceTangled(item.x / 3u) || faceTangled(item.y / 3u)) return; // intersecting at x0 (tangled.glsl)
     uvec3 a = faceNodes(item.x / 3u), b = faceNodes(item.y / 3u);
     uint e = item.x % 3u, g = item.y % 3u;
     if (edgeEdge(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]) != 0u) atomicAdd(g_counters.stats[GLC_STAT_CONTACTS], 1u);

@@ -24,6 +24,7 @@ layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) readonly buffer Predicted
 layout(std430, binding = GLC_BIND_VERTEX_FACE_PAIRS) readonly buffer VertexFacePairsBuf { uvec2 g_vertexFace[]; };
 layout(std430, binding = GLC_BIND_EDGE_EDGE_PAIRS) readonly buffer EdgeEdgePairsBuf { uvec2 g_edgeEdge[]; };
 layout(std430, binding = GLC_BIND_NODE_TOI) buffer NodeToiBuf { uint g_nodeToi[]; };
+layout(std430, binding = GLC_BIND_TANGLED) readonly buffer TangledBuf { uint g_tangled[]; };
 
 uniform uint u_edgeEdge;       // 0: vertex-face pairs, 1: edge-edge pairs
 uniform uint u_budget;         // boxes one pair may evaluate (llvmpipe: <= 21844, docs/ccd.md)
@@ -38,6 +39,11 @@ uniform uint u_skipStill;
 // u_minSeparation, inside the thickness where the response pushes it apart; a pair already closer
 // may lose at most half its gap in a substep instead of being frozen for being close.
 uniform uint u_gapRelative;
+// 1 (the safe step): pairs of the features of faces that intersect at x0 (TangledMarks) are left
+// out — they would touch at t = 0, or block the way back, and freeze their objects while the
+// response pushes them apart.
+uniform uint u_skipTangled;
+uniform uint u_nodeCount; // GLC_BIND_TANGLED: the faces' marks start after the nodes'
 
 // Distance at x0 of the pair (vertex-face: s0 against s1 s2 s3; edge-edge: s0s1 against s2s3).
 float startDistance(vec3 s0, vec3 s1, vec3 s2, vec3 s3) {
@@ -61,6 +67,19 @@ uvec4 pairNodes(uint i) {
     uvec3 a = faceNodes(item.x / 3u), b = faceNodes(item.y / 3u);
     uint e = item.x % 3u, g = item.y % 3u;
     return uvec4(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]);
+}
+
+// Whether pair i has a marked node or face (vertex-face) or a marked face (edge-edge): to come
+// apart, an intersecting region must pass back through the faces around it, so every pair of its
+// features is left out, not only those between the intersecting faces themselves.
+bool tangledPair(uint i) {
+    if (u_edgeEdge == 0u) {
+        uvec2 item = g_vertexFace[i];
+        return g_tangled[item.x] != 0u || g_tangled[u_nodeCount + (item.y & ~GLC_PAIR_CCD_ONLY)] != 0u;
+    }
+    uvec2 item = g_edgeEdge[i];
+    return g_tangled[u_nodeCount + item.x / 3u] != 0u ||
+           g_tangled[u_nodeCount + (item.y & ~GLC_PAIR_CCD_ONLY) / 3u] != 0u;
 }
 
 // The safe step's second lower bound for a capped pair (conservative advancement): every point of
@@ -87,6 +106,10 @@ void main() {
     uint i = globalIndex();
     uint list = u_edgeEdge == 0u ? GLC_LIST_VERTEX_FACE : GLC_LIST_EDGE_EDGE;
     if (i >= storedCount(list)) return;
+    if (u_skipTangled != 0u && tangledPair(i)) {
+        atomicAdd(g_counters.stats[GLC_STAT_CCD_TANGLED], 1u);
+        return;
+    }
     uvec4 n = pairNodes(i);
     vec3 s0 = g_positions[n.x].xyz, s1 = g_positions[n.y].xyz, s2 = g_positions[n.z].xyz, s3 = g_positions[n.w].xyz;
     vec3 e0 = g_predicted[n.x].xyz, e1 = g_predicted[n.y].xyz, e2 = g_predicted[n.z].xyz, e3 = g_predicted[n.w].xyz;

@@ -31,6 +31,7 @@ uniform uint u_edgeEdgeBase;  // the first record of the edge-edge list: the ver
 vec3 previousPosition(uint n) { return g_positions[n].xyz - u_substep * g_velocities[n].xyz; }
 
 #include "common/contact_pair.glsl"
+#include "common/tangled.glsl"
 
 ContactPair contactOf(uint i) {
     if (u_edgeEdge == 0u) {
@@ -41,6 +42,7 @@ ContactPair contactOf(uint i) {
     }
     uvec2 item = g_edgeEdge[i]; // (3*fa+e, 3*fb+g)
     if ((item.y & GLC_PAIR_CCD_ONLY) != 0u) return noContact(); // for the CCD only (layout.glsl)
+    if (faceTangled(item.x / 3u) || faceTangled(item.y / 3u)) return noContact(); // tangled.glsl
     uvec3 a = faceNodes(item.x / 3u), b = faceNodes(item.y / 3u);
     uint e = item.x % 3u, g = item.y % 3u;
     return edgeEdgeContact(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]);

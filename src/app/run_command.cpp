@@ -77,6 +77,11 @@ nlohmann::json frameRecord(const Engine& engine) {
                                    {"froze_all", c.safeStepFrozeAll},
                                    {"ground_crossings", c.safeStepGroundCrossings}};
         record["collision"]["substeps_with_intersections"] = c.substepsWithIntersections;
+        // Recovery from intersecting input: null until a substep begins intersection-free.
+        record["collision"]["substeps_until_intersection_free"] =
+            c.reachedIntersectionFree ? nlohmann::json(c.substepsUntilIntersectionFree)
+                                      : nlohmann::json(nullptr);
+        if (s.safeStep) record["safe_step"]["ccd_pairs_left_out_intersecting"] = c.ccdTangledPairs;
     }
     return record;
 }

@@ -68,6 +68,8 @@ struct Engine::Impl {
     std::optional<passes::NodeUpdatePass> nodeUpdate;
     std::optional<passes::NodePredictPass> nodePredict;
     std::optional<passes::SafeStepPass> safeStep;
+    std::uint64_t tangledSubsteps = 0;    ///< CollisionStats::substepsUntilIntersectionFree
+    bool reachedIntersectionFree = false; ///< CollisionStats::reachedIntersectionFree
     std::optional<passes::ContactApplyPass> contactApply;
     std::optional<passes::ImplicitSolverPass> implicitSolve;
     std::optional<passes::FrameStepPass> frameStep;
@@ -362,6 +364,17 @@ void addSubstepCounts(const passes::CollisionCounts& counts, CollisionStats& c) 
     c.ccdEarliestToi = std::min(c.ccdEarliestToi, counts.ccdEarliestToi);
     c.ccdCappedInFrame += counts.ccdCapped;
     c.substepsWithIntersections += counts.intersections > 0 ? 1u : 0u;
+    c.ccdTangledPairs = counts.ccdTangled;
+}
+
+/// Recovery from intersecting input: counts the substeps that began with intersecting pairs until
+/// the first that began without (kept across frames in `c`'s engine-wide fields).
+void addRecoveryCounts(const passes::CollisionCounts& counts, std::uint64_t& tangledSubsteps, bool& reached) {
+    if (reached) return;
+    if (counts.intersections == 0)
+        reached = true;
+    else
+        ++tangledSubsteps;
 }
 
 /// Folds one substep's safe step into the frame's statistics.
@@ -385,10 +398,15 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
         case Stage::SpringUpdate:
             run(*springUpdate, plan.springUpdateParams);
             break;
-        case Stage::CollisionDetection:
-            addSubstepCounts(collision->detect(buffers, options.gpuTiming ? &timer : nullptr),
-                             stats.collision);
+        case Stage::CollisionDetection: {
+            const passes::CollisionCounts counts =
+                collision->detect(buffers, options.gpuTiming ? &timer : nullptr);
+            addSubstepCounts(counts, stats.collision);
+            addRecoveryCounts(counts, tangledSubsteps, reachedIntersectionFree);
+            stats.collision.substepsUntilIntersectionFree = tangledSubsteps;
+            stats.collision.reachedIntersectionFree = reachedIntersectionFree;
             break;
+        }
         case Stage::ImplicitSolve:
             if (plan.implicitContacts) {
                 // The contacts of the last substep's feature pairs at x0 (decision 0024); the
@@ -396,7 +414,8 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
                 ContactParams params = plan.contact;
                 if (!params.sidesFromPrevious) params.substep = 0.0; // sides from x0 itself
                 const passes::ImplicitContacts contacts{
-                    passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects()},
+                    passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects(),
+                                          &collision->tangled()},
                     params};
                 run(*implicitSolve, plan.implicitParams, &contacts);
             } else {
@@ -405,14 +424,16 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             break;
         case Stage::ContactResponse:
             run(*contact,
-                passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects()},
+                passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects(),
+                                      &collision->tangled()},
                 plan.contact);
             if (lastOfFrame) readContacts();
             break;
         case Stage::ContactIterations:
             for (int k = 0; k < plan.responseIterations; ++k) {
                 run(*contact,
-                    passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects()},
+                    passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects(),
+                                          &collision->tangled()},
                     plan.contact);
                 if (lastOfFrame && k == 0) readContacts(); // the contacts, not their iterations
                 run(*contactApply, plan.contactApplyParams, static_cast<std::uint32_t>(index));

@@ -80,13 +80,15 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const mode
     m_featurePairs.addStages(m_chain, *m_lists, initial(config.vertexFaceCapacity),
                              initial(config.edgeEdgeCapacity));
     if (s.detection == Detection::Continuous) {
-        m_ccd.emplace(static_cast<std::uint32_t>(model.nodeCount()), s.ccd.budget,
+        m_ccd.emplace(static_cast<std::uint32_t>(model.nodeCount()),
+                      static_cast<std::uint32_t>(model.faceCount()), s.ccd.budget,
                       static_cast<float>(s.ccd.minSeparation));
         m_ccd->addStages(m_chain, *m_lists);
         // The safe step cuts moving nodes only: a still pair must not keep its rounds going.
         if (s.response == ContactResponse::IntersectionFree) {
             m_ccd->skipStillPairs(true);
             m_ccd->relativeSeparation(true, static_cast<float>(safeStepSeparation(s)));
+            m_ccd->skipTangledPairs(true);
         }
     }
 }
@@ -98,9 +100,14 @@ std::uint32_t CollisionDetection::recheckCcd(const DeviceBuffers& buffers) {
     bindRequired(buffers.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, "Ccd", "predictedPositions");
     m_ccd->bind();
     m_lists->bind();
-    m_ccd->run(*m_lists);
+    m_ccd->run(*m_lists, false); // x0 and the intersections are the detection's: the marks stand
     m_lists->readCounters();
     return m_lists->stat(GLC_STAT_CCD_VERTEX_FACE_HITS) + m_lists->stat(GLC_STAT_CCD_EDGE_EDGE_HITS);
+}
+
+const gl::Buffer& CollisionDetection::tangled() const {
+    static const gl::Buffer kNone;
+    return m_ccd && m_ccd->skipsTangledPairs() ? m_ccd->tangled() : kNone;
 }
 
 std::uint32_t CollisionDetection::readStat(std::uint32_t id) {
@@ -162,6 +169,7 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
     m_counts.ccdCapped = l.stat(GLC_STAT_CCD_CAPPED);
     m_counts.ccdBoxes = l.stat(GLC_STAT_CCD_BOXES);
     m_counts.ccdEarliestToi = std::bit_cast<float>(l.stat(GLC_STAT_CCD_EARLIEST_TOI));
+    m_counts.ccdTangled = l.stat(GLC_STAT_CCD_TANGLED);
     return m_counts;
 }
 

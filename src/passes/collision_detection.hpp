@@ -74,6 +74,7 @@ struct CollisionCounts {
     /// time of impact in [0, 1] (+inf when none may touch).
     std::uint32_t ccdVertexFaceHits = 0, ccdEdgeEdgeHits = 0, ccdCapped = 0, ccdBoxes = 0;
     float ccdEarliestToi = 0.0f;
+    std::uint32_t ccdTangled = 0; ///< safe step: feature pairs left out, their faces intersect at x0
 };
 
 /// The per-face and per-object tables of the collision kernels and the contact response.
@@ -118,6 +119,9 @@ class CollisionDetection {
     std::uint32_t recheckCcd(const DeviceBuffers& buffers);
     /// The counter block's statistic `id` (GLC_STAT_*), read back now.
     std::uint32_t readStat(std::uint32_t id);
+    /// The safe step's marks of the faces (and nodes) that intersect at the start of the last
+    /// substep (FeatureCcd); an empty buffer without the intersection-free response.
+    [[nodiscard]] const gl::Buffer& tangled() const;
 
     /// uvec2 face pairs (lower, higher); the first lastCounts().candidates are valid.
     [[nodiscard]] const gl::Buffer& candidates() const { return m_lists->storage(GLC_LIST_CANDIDATES); }

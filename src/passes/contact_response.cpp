@@ -6,6 +6,15 @@
 
 namespace glcollide::passes {
 
+void bindTangled(const gl::ComputeProgram& program, const ContactInputs& inputs, std::uint32_t nodeCount) {
+    if (inputs.tangled && *inputs.tangled) {
+        inputs.tangled->bindStorage(GLC_BIND_TANGLED);
+        program.set("u_tangledFaces", nodeCount);
+    } else {
+        program.set("u_tangledFaces", 0xFFFFFFFFu); // no marks: the block is never read
+    }
+}
+
 ContactResponsePass::ContactResponsePass()
     : m_vertexFace("contact_vertex_face"), m_edgeEdge("contact_edge_edge") {}
 
@@ -32,6 +41,7 @@ void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& 
         p->set("u_velocityResponse", params.velocityResponse ? 1u : 0u);
         p->set("u_relaxationTime", static_cast<float>(params.relaxationTime));
         p->set("u_previousSides", params.sidesFromPrevious ? 1u : 0u);
+        if (p == &m_edgeEdge) bindTangled(*p, in, b.nodeCount);
         p->set("u_friction", static_cast<float>(params.friction));
     }
     // Sized on the GPU from each list's count; each dispatch ends with a storage barrier. First

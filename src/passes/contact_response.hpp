@@ -20,7 +20,13 @@ struct ContactInputs {
     const AppendLists* lists = nullptr;
     const gl::Buffer* faceInfo = nullptr; ///< GpuFaceInfo per face
     const gl::Buffer* objects = nullptr;  ///< GpuObject per object
+    /// uint per node, then per face: 1 for the faces that intersect at x0 (the safe step's marks,
+    /// CollisionDetection::tangled()); edge-edge contacts between them are left out. nullptr: none.
+    const gl::Buffer* tangled = nullptr;
 };
+
+/// Binds `inputs.tangled` for tangled.glsl, or tells the program there are no marks.
+void bindTangled(const gl::ComputeProgram& program, const ContactInputs& inputs, std::uint32_t nodeCount);
 
 class ContactResponsePass {
   public:

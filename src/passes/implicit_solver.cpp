@@ -123,6 +123,7 @@ void ImplicitSolverPass::buildContactRows(const DeviceBuffers& b, const Implicit
     m_contactFind.set("u_thickness", static_cast<float>(contacts.params.thickness));
     m_contactFind.set("u_substep", static_cast<float>(contacts.params.substep));
     m_contactFind.set("u_contactStiffness", static_cast<float>(contacts.params.stiffness));
+    bindTangled(m_contactFind, contacts.inputs, b.nodeCount);
     for (const gl::ComputeProgram* p : {&m_contactFind, &m_contactScatter, &m_contactSort})
         p->set("u_edgeEdgeBase", m_contactEdgeEdgeBase);
     // Find and scatter run over each list (indirect: the counts stay on the GPU); every count is

@@ -96,6 +96,40 @@ TEST(IntersectionFreeGl, AFastBallStaysAboveAPinnedCloth) {
     EXPECT_EQ(exactIntersectingPairs(engine), 0u);
 }
 
+// Recovery from intersecting input (issue 23, item 5): two tet boxes that overlap by 4 mm (within
+// the thickness) at the start. The scene is simulated, not refused; the intersecting pairs are
+// reported; the CCD leaves their regions out (nothing freezes) and the response pushes them apart;
+// once a substep starts intersection-free, every later one does too.
+TEST(IntersectionFreeGl, AnIntersectingStartIsPushedApart) {
+    const std::string json =
+        R"({"format_version": 1, "name": "tangled", "effects": ["springs", "collisions"],
+      "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 1},
+      "collision": {"broad_phase": "bvh", "thickness": 0.01, "stiffness": 500, "response": "intersection_free"},
+      "objects": [
+        {"name": "a", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]},
+         "mass": 0.2, "springs": {"stiffness": 400}},
+        {"name": "b", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]},
+         "transform": {"translate": [0.096, 0.02, 0.01]}, "mass": 0.2, "springs": {"stiffness": 400}}]})";
+    Engine engine(parseScene(json, ".", "tangled"));
+    ASSERT_GT(exactIntersectingPairs(engine), 0u) << "the start must intersect";
+    bool free = false;
+    for (int frame = 1; frame <= 20; ++frame) {
+        engine.step();
+        const CollisionStats& c = engine.lastStep().collision;
+        EXPECT_EQ(c.safeStepFrozeAll, 0u) << "frame " << frame;
+        if (frame == 1) {
+            EXPECT_GT(c.maxIntersectingPairs, 0u) << "reported";
+        }
+        if (free) {
+            EXPECT_EQ(c.maxIntersectingPairs, 0u) << "frame " << frame << ": intersecting again";
+        }
+        free = c.reachedIntersectionFree;
+    }
+    EXPECT_TRUE(free);
+    EXPECT_GT(engine.lastStep().collision.substepsUntilIntersectionFree, 0u);
+    EXPECT_EQ(exactIntersectingPairs(engine), 0u);
+}
+
 // Randomised drops: small tet boxes and a cloth thrown at each other fast (6 m/s), onto the
 // ground, under symplectic Euler at its automatic substeps and implicit Euler at one substep per
 // frame. Every substep starts intersection-free (the engine's exact TriTri) and so does the end

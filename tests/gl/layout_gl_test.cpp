@@ -87,6 +87,7 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"PredictedPositionsBuf", GLC_BIND_PREDICTED_POSITIONS},
     {"NodeToiBuf", GLC_BIND_NODE_TOI},
     {"ObjectToiBuf", GLC_BIND_OBJECT_TOI},
+    {"TangledBuf", GLC_BIND_TANGLED},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {

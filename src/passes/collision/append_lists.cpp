@@ -28,6 +28,7 @@ constexpr std::array<CollisionStatSpec, GLC_STAT_COUNT> kCollisionStats = {{
     {"ccd_earliest_toi", kPlusInfinityBits, true},
     {"safe_step_cuts", 0u, false},
     {"safe_step_ground_crossings", 0u, false},
+    {"ccd_tangled", 0u, true},
 }};
 constexpr std::size_t kArgsPerList = 3 * sizeof(std::uint32_t); // glDispatchComputeIndirect's x, y, z
 } // namespace

@@ -19,7 +19,7 @@ namespace glcollide::passes {
 class FeatureCcd {
   public:
     /// `budget`: boxes per pair (1 ... 21844, CcdSettings::budget); `minSeparation` in metres.
-    FeatureCcd(std::uint32_t nodeCount, std::uint32_t budget, float minSeparation);
+    FeatureCcd(std::uint32_t nodeCount, std::uint32_t faceCount, std::uint32_t budget, float minSeparation);
     /// Adds the Ccd stage to `chain`; call after FeaturePairs::addStages.
     void addStages(StageChain& chain, AppendLists& lists);
     /// Binds the per-node times of impact (GLC_BIND_NODE_TOI).
@@ -34,13 +34,24 @@ class FeatureCcd {
         m_program.set("u_gapRelative", relative ? 1u : 0u);
         m_program.set("u_minSeparation", minSeparation);
     }
-    /// The stage itself: resets the times of impact and the CCD statistics, tests every pair.
-    /// Expects the positions, the predicted positions, the lists and bind() bound.
-    void run(AppendLists& lists);
+    /// Pairs between faces that intersect at x0 are left out (the safe step's recovery from
+    /// intersecting input, decision 0024): run() first marks them from the intersection list.
+    void skipTangledPairs(bool skip);
+    [[nodiscard]] bool skipsTangledPairs() const { return m_skipTangled; }
+    /// uint per node, then per face: the marks of the last run() (TangledMarks).
+    [[nodiscard]] const gl::Buffer& tangled() const { return m_tangled; }
+    /// The stage itself: resets the times of impact and the CCD statistics, (re)marks the tangled
+    /// faces when `mark` and skipTangledPairs is on, tests every pair. Expects the positions, the
+    /// predicted positions, the lists and bind() bound.
+    void run(AppendLists& lists, bool mark = true);
 
   private:
     gl::Buffer m_nodeToi;
+    gl::Buffer m_tangled; ///< uint per node, then per face: 1 where a face pair intersects at x0
+    std::uint32_t m_nodeCount;
+    bool m_skipTangled = false;
     gl::ComputeProgram m_program;
+    gl::ComputeProgram m_marks; ///< tangled_marks.comp
 };
 
 } // namespace glcollide::passes
