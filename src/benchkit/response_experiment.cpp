@@ -101,8 +101,9 @@ void runResponseExperiment(const Experiment& x, ExperimentResult& out, const Pro
     out.notes.push_back(
         "Over all frames (warm-up included; times over the measured frames only): max_intersecting_pairs "
         "is the most exactly intersecting face pairs (robust TriTri) at the start of any substep, and "
-        "must be 0 under intersection_free; energy (kinetic + gravity + springs, J, from the read-back "
-        "state; contact potential not counted) before the first frame, after the last, and the largest "
+        "must be 0 under intersection_free; energy (kinetic + gravity + springs, and for intersection_free "
+        "the penalty contacts, J, from the read-back "
+        "state) before the first frame, after the last, and the largest "
         "rise from one frame to the next (0: never rose).");
     out.notes.push_back(
         "Safe step (intersection_free only): the fraction of substeps in which it cut any node's step, "
