@@ -46,10 +46,10 @@ struct NodeUpdateParams {
 /// solved by block-Jacobi preconditioned conjugate gradients (docs/integration.md). Positions
 /// then move by NodeUpdate without forces (x += h·v, ground).
 struct ImplicitParams {
-    double h = 0.0;            ///< s, substep length
-    double airDamping = 0.0;   ///< 1/s: the air damping c (f = −c·m·v) of `external`, 0 when off
-    bool springs = false;      ///< the springs effect is on
-    NodeForceParams external;  ///< gravity, air damping, wind: added in the setup dispatch
+    double h = 0.0;           ///< s, substep length
+    double airDamping = 0.0;  ///< 1/s: the air damping c (f = −c·m·v) of `external`, 0 when off
+    bool springs = false;     ///< the springs effect is on
+    NodeForceParams external; ///< gravity, air damping, wind: added in the setup dispatch
     /// N/m, > 0 (the intersection-free response, decision 0024): the ground enters the solve as a
     /// penalty k_g·(g + band − y) on every node below g + band, with its stiffness k_g in the
     /// matrix (GLC_IMPLICIT_GROUND), so a body resting on it is held by the solve itself.
