@@ -20,7 +20,7 @@ FeatureCcd::FeatureCcd(std::uint32_t nodeCount, std::uint32_t faceCount, std::ui
     : m_nodeToi(gl::makeBuffer("nodeToi", std::vector<std::uint32_t>(nodeCount, kNoImpact))),
       m_tangled(
           gl::makeBuffer("tangled", std::vector<std::uint32_t>(std::size_t{nodeCount} + faceCount, 0u))),
-      m_nodeCount(nodeCount), m_program("feature_ccd"), m_marks("tangled_marks") {
+      m_program("feature_ccd"), m_marks("tangled_marks") {
     if (budget < 1 || budget > kMaxBudget)
         throw Error("collision: ccd budget must be in 1 ... 21844 (llvmpipe ends a shader loop after 65,535 "
                     "iterations; a box costs three), got " +

@@ -48,7 +48,6 @@ class FeatureCcd {
   private:
     gl::Buffer m_nodeToi;
     gl::Buffer m_tangled; ///< uint per node, then per face: 1 where a face pair intersects at x0
-    std::uint32_t m_nodeCount;
     bool m_skipTangled = false;
     gl::ComputeProgram m_program;
     gl::ComputeProgram m_marks; ///< tangled_marks.comp
