@@ -119,6 +119,19 @@ struct CollisionStats {
     std::uint32_t safeStepMaxRounds = 0;
     std::uint32_t safeStepFrozeAll = 0;
     std::uint32_t safeStepGroundCrossings = 0; ///< node steps that crossed the ground (each cut its object)
+    /// The intersection-free response's energy guard (decision 0024), over the frame: substeps
+    /// whose total energy rose beyond the float resolution of its sum; of those, substeps whose
+    /// step it pulled back (the kinetic energy could not pay) and pulled back all the way to the
+    /// start at rest; the energy it took out (J), rises left in the state (J: rounding at the
+    /// start only) and the largest rise (J). energyGuard: the guard runs (collision.energy_guard).
+    bool energyGuard = false;
+    std::uint32_t energyGuardSubsteps = 0;
+    std::uint32_t energyGuardPulledBack = 0;
+    std::uint32_t energyGuardBackToStart = 0;
+    double energyGuardRemoved = 0.0;
+    double energyGuardUnremoved = 0.0;
+    double energyGuardLargestRise = 0.0;
+    double energyGuardTotal = 0.0; ///< J: the guard's float sum of the energy the frame ended with
     /// Substeps of the frame whose start had intersecting face pairs (intersectingPairs > 0).
     std::uint32_t substepsWithIntersections = 0;
     /// Recovery from intersecting input (since the engine was made, not per frame): substeps that
@@ -186,8 +199,13 @@ struct EnergyReport {
     double potential = 0.0; ///< gravity (if on) + springs (if on)
     /// The intersection-free response's penalty contacts (decision 0024): ½·k·depth² summed over the
     /// feature pairs within the thickness at the current positions (the last detection's lists,
-    /// which hold every such pair). 0 for the other responses.
+    /// which hold every such pair), plus under implicit Euler the ground's penalty ½·k·depth² per
+    /// node below the ground's band. 0 for the other responses.
     double contact = 0.0;
+    /// J: the intersection-free response's energy guard compares float sums of these terms on the
+    /// GPU, each off by at most this (EnergyGuardPass::resolutionFactor × the terms' magnitude
+    /// scale); it lets the total rise by the start's plus the end's. 0 for the other responses.
+    double resolution = 0.0;
     [[nodiscard]] double total() const { return kinetic + potential + contact; }
 };
 

@@ -129,6 +129,10 @@ struct CollisionSettings {
     /// is at most μ times the normal one, and at most what stops the sliding); 0: frictionless
     double friction = 0.0;
     ContactResponse response = ContactResponse::Penalty;
+    /// intersection_free only: a rise of the total energy in a substep (beyond the float resolution
+    /// of its sum) is taken out of the velocities (decision 0024, "Energy guard"). Needs a closed
+    /// scene: no wind, which does work on it.
+    bool energyGuard = true;
     std::uint32_t initialCapacity = 4096; ///< >= 1: first size of every pair list (grown on overflow)
     BvhSettings bvh;                      ///< used by BroadPhase::Bvh
     Detection detection = Detection::Discrete;

@@ -80,6 +80,7 @@
 #define GLC_BIND_OBJECT_TOI 52            // uint[objects]: the earliest time of impact of the object's nodes
 #define GLC_BIND_TANGLED 54               // uint[nodes + faces]: 1 for the nodes, then the faces, of the face pairs
                                           // that intersect at x0 (the safe step's CCD leaves their pairs out)
+#define GLC_BIND_ENERGY_GUARD 55          // GpuEnergyGuard: the energy guard's sums and counts (decision 0024)
 #define GLC_BIND_FEATURE_OWNERS 53        // uint[6*faces]: owner face of corners 0..2, then of edges 0..2 (FeaturePairs, continuous)
                                           // (SafeStep, decision 0024), bits as GLC_BIND_NODE_TOI
 
@@ -87,7 +88,7 @@
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 55
+#define GLC_BINDING_COUNT 56
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -238,6 +239,26 @@ struct GpuSolverState {
                               // floats order like their bits, so atomicMax picks the largest)
     uint totalIterations;     // frame: iterations summed over substeps
     uint unconvergedSubsteps; // frame: substeps that reached the iteration cap above the tolerance
+};
+
+// The energy guard (energy_guard.comp, decision 0024): the start of the substep's total energy,
+// what the guard did this frame (the host clears the counts when a frame starts) and one partial
+// sum per terms group: (energy, magnitude scale, kinetic energy, 0).
+#define GLC_ENERGY_GROUPS 256 // groups of the terms dispatch; the decide group sums their partials
+struct GpuEnergyGuard {
+    float startTotal;     // J: the total energy at the start of the substep
+    float startMagnitude; // J: the magnitude scale of its terms (the resolution's base)
+    uint hasStart;        // 0 until a total was recorded
+    float scale;          // the velocity scale the last decide chose (1: none)
+    float lastTotal;      // J: the last total summed (before the scale)
+    float firstTotal;     // J: the substep's first total (before any pull-back)
+    uint outcome;         // the last decide: 0 accepted (maybe with a scale), 1 pull the step back
+    uint acted;           // frame: substeps whose energy rose beyond the resolution
+    float removed;        // J, frame: energy taken out (velocity scales and pull-backs)
+    float unremoved;      // J, frame: rises left in the state (only rounding at x0 can leave any)
+    float largestExcess;  // J, frame: the largest rise found
+    uint pad0;
+    vec4 partials[GLC_ENERGY_GROUPS];
 };
 
 struct GpuHealth {

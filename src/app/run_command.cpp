@@ -82,6 +82,13 @@ nlohmann::json frameRecord(const Engine& engine) {
             c.reachedIntersectionFree ? nlohmann::json(c.substepsUntilIntersectionFree)
                                       : nlohmann::json(nullptr);
         if (s.safeStep) record["safe_step"]["ccd_pairs_left_out_intersecting"] = c.ccdTangledPairs;
+        if (c.energyGuard)
+            record["energy_guard"] = {{"substeps_acted", c.energyGuardSubsteps},
+                                      {"substeps_pulled_back", c.energyGuardPulledBack},
+                                      {"substeps_back_to_start", c.energyGuardBackToStart},
+                                      {"removed_J", c.energyGuardRemoved},
+                                      {"unremoved_J", c.energyGuardUnremoved},
+                                      {"largest_rise_J", c.energyGuardLargestRise}};
     }
     return record;
 }

@@ -54,6 +54,8 @@ static_assert(offsetof(GpuListCounter, capacity) == 4);
 static_assert(sizeof(GpuCollisionCounters) == 8 * GLC_LIST_COUNT + 4 * GLC_STAT_COUNT);
 static_assert(offsetof(GpuCollisionCounters, lists) == 0);
 static_assert(offsetof(GpuCollisionCounters, stats) == 8 * GLC_LIST_COUNT);
+static_assert(offsetof(GpuEnergyGuard, partials) == 48);
+static_assert(sizeof(GpuEnergyGuard) == 48 + 16 * GLC_ENERGY_GROUPS);
 static_assert(sizeof(GpuHealth) == 16);
 static_assert(offsetof(GpuHealth, firstBadNode) == 0);
 static_assert(offsetof(GpuHealth, badSubstep) == 4);

@@ -97,13 +97,20 @@ Energy energy(const std::vector<glm::dvec3>& positions, const std::vector<glm::d
     Energy e;
     for (std::size_t i = 0; i < positions.size(); ++i) {
         if (inverseMasses[i] <= 0.0) continue; // pinned nodes neither move nor change energy
-        e.kinetic += 0.5 * masses[i] * glm::dot(velocities[i], velocities[i]);
-        if (gravity) e.gravitational -= masses[i] * glm::dot(*gravity, positions[i]);
+        const double kinetic = 0.5 * masses[i] * glm::dot(velocities[i], velocities[i]);
+        const double gravitational = gravity ? -masses[i] * glm::dot(*gravity, positions[i]) : 0.0;
+        e.kinetic += kinetic;
+        e.gravitational += gravitational;
+        e.magnitude += kinetic + std::abs(gravitational);
     }
     if (springs)
         for (const model::FlatSpring& s : *springs) {
-            const double stretch = glm::length(positions[s.b] - positions[s.a]) - s.restLength;
+            const double length = glm::length(positions[s.b] - positions[s.a]);
+            const double stretch = length - s.restLength;
             e.elastic += 0.5 * s.stiffness * stretch * stretch;
+            // A float length − L is off relative to the length, not to the stretch.
+            e.magnitude +=
+                0.5 * s.stiffness * stretch * stretch + s.stiffness * length * (length + s.restLength);
         }
     return e;
 }

@@ -37,6 +37,9 @@ void nodeUpdate(const NodeUpdateParams& params, NodeState& state);
 /// Energies of a state (J). Potential includes gravity (if given) and springs (if given).
 struct Energy {
     double kinetic = 0, gravitational = 0, elastic = 0;
+    /// The scale of a float sum's rounding: each term's magnitude as energy_guard.comp adds it
+    /// (kinetic, |gravitational|, a spring's energy plus k·length·(length + L)).
+    double magnitude = 0;
     [[nodiscard]] double total() const { return kinetic + gravitational + elastic; }
 };
 Energy energy(const std::vector<glm::dvec3>& positions, const std::vector<glm::dvec3>& velocities,

@@ -17,6 +17,7 @@
 #include "passes/dynamics_passes.hpp"
 #include "passes/implicit_solver.hpp"
 #include "passes/row_layout.hpp"
+#include "passes/energy_guard.hpp"
 #include "passes/safe_step.hpp"
 
 #include <glcollide/error.hpp>
@@ -68,6 +69,7 @@ struct Engine::Impl {
     std::optional<passes::NodeUpdatePass> nodeUpdate;
     std::optional<passes::NodePredictPass> nodePredict;
     std::optional<passes::SafeStepPass> safeStep;
+    std::optional<passes::EnergyGuardPass> energyGuard;
     std::uint64_t tangledSubsteps = 0;    ///< CollisionStats::substepsUntilIntersectionFree
     bool reachedIntersectionFree = false; ///< CollisionStats::reachedIntersectionFree
     std::optional<passes::ContactApplyPass> contactApply;
@@ -91,8 +93,13 @@ struct Engine::Impl {
     void substep(int index, bool lastOfFrame);
     void readHealth();
     void readSolverStats();
+    void readEnergyGuard();
     void readContacts();
-    [[nodiscard]] double contactEnergy() const;
+    [[nodiscard]] passes::ContactInputs contactInputs() const;
+    struct ContactEnergy {
+        double energy = 0.0, magnitude = 0.0;
+    };
+    [[nodiscard]] ContactEnergy contactEnergy() const;
     template <typename Pass, typename... Args> decltype(auto) run(const Pass& pass, Args&&... args);
 };
 
@@ -289,6 +296,11 @@ void Engine::Impl::makePass(engine::Stage stage) {
         safeStep.emplace(passes::SafeStepSettings{}, static_cast<std::uint32_t>(model.objects.size()),
                          plan.nodeUpdateParams.ground, plan.nodeUpdateParams.groundHeight);
         break;
+    case Stage::EnergyGuard:
+        energyGuard.emplace(plan.energyGuardParams, buffers.springCount);
+        break;
+    case Stage::Commit:
+        break; // SafeStepPass::commit: a copy
     case Stage::FrameStep: {
         FrameStepParams& f = frameStepParams;
         f.external = plan.nodeForceParams;
@@ -413,28 +425,19 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
                 // first substep has none yet.
                 ContactParams params = plan.contact;
                 if (!params.sidesFromPrevious) params.substep = 0.0; // sides from x0 itself
-                const passes::ImplicitContacts contacts{
-                    passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects(),
-                                          &collision->tangled()},
-                    params};
+                const passes::ImplicitContacts contacts{contactInputs(), params};
                 run(*implicitSolve, plan.implicitParams, &contacts);
             } else {
                 run(*implicitSolve, plan.implicitParams);
             }
             break;
         case Stage::ContactResponse:
-            run(*contact,
-                passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects(),
-                                      &collision->tangled()},
-                plan.contact);
+            run(*contact, contactInputs(), plan.contact);
             if (lastOfFrame) readContacts();
             break;
         case Stage::ContactIterations:
             for (int k = 0; k < plan.responseIterations; ++k) {
-                run(*contact,
-                    passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects(),
-                                          &collision->tangled()},
-                    plan.contact);
+                run(*contact, contactInputs(), plan.contact);
                 if (lastOfFrame && k == 0) readContacts(); // the contacts, not their iterations
                 run(*contactApply, plan.contactApplyParams, static_cast<std::uint32_t>(index));
             }
@@ -449,6 +452,14 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
                               stats.collision);
             break;
         }
+        case Stage::EnergyGuard: {
+            const passes::ContactInputs inputs = contactInputs();
+            run(*energyGuard, &inputs, *collision);
+            break;
+        }
+        case Stage::Commit:
+            passes::SafeStepPass::commit(buffers);
+            break;
         case Stage::NodeUpdate:
             run(*nodeUpdate, plan.nodeUpdateParams, static_cast<std::uint32_t>(index));
             break;
@@ -457,6 +468,25 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             break; // every substep of the frame
         }
     }
+}
+
+void Engine::Impl::readEnergyGuard() {
+    const passes::EnergyGuardCounts g = energyGuard->frameCounts();
+    CollisionStats& c = stats.collision;
+    c.energyGuard = true;
+    c.energyGuardSubsteps = g.acted;
+    c.energyGuardPulledBack = g.pulledBack;
+    c.energyGuardBackToStart = g.backToStart;
+    c.energyGuardRemoved = g.removed;
+    c.energyGuardUnremoved = g.unremoved;
+    c.energyGuardLargestRise = g.largestExcess;
+    c.energyGuardTotal = g.total;
+}
+
+/// The collision detection's buffers that the contact passes read.
+passes::ContactInputs Engine::Impl::contactInputs() const {
+    return passes::ContactInputs{&collision->lists(), &collision->faceInfo(), &collision->objects(),
+                                 &collision->tangled()};
 }
 
 /// The contacts the response found in the last substep (its count in the counter block, which
@@ -512,9 +542,16 @@ void Engine::step() {
     {
         gl::DebugGroup frame("glcollide::Engine::step");
         // FrameStep runs the frame's substeps in its one dispatch.
+        // The energy guard's start: the host may have moved nodes since the last frame.
+        if (d.energyGuard) {
+            const passes::ContactInputs inputs = d.contactInputs();
+            d.energyGuard->clearFrameCounts();
+            d.energyGuard->record(d.buffers, &inputs);
+        }
         const int calls = d.frameStep ? 1 : d.substeps.substeps;
         for (int s = 0; s < calls; ++s) d.substep(s, s + 1 == calls);
     }
+    if (d.energyGuard) d.readEnergyGuard();
     d.stats.dispatchesPerSubstep =
         static_cast<double>(gl::dispatchCount() - dispatchesBefore) / d.substeps.substeps;
     // A host draws positions as vertices and faces as indices right after step().
@@ -640,18 +677,26 @@ EnergyReport Engine::energy() const {
     const cpu::Energy e =
         cpu::energy(readPositions(), readVelocities(), d.model.masses, d.model.inverseMasses,
                     gravity ? &d.scene.gravity : nullptr, d.plan.springs ? &d.model.springs : nullptr);
-    EnergyReport report{e.kinetic, e.gravitational + e.elastic, 0.0};
+    EnergyReport report{e.kinetic, e.gravitational + e.elastic, 0.0, 0.0};
     if (d.plan.safeStep) {
         const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Transfer, d.glFeatures);
-        report.contact = d.contactEnergy();
+        const Impl::ContactEnergy contact = d.contactEnergy();
+        report.contact = contact.energy;
+        const passes::AppendLists& lists = d.collision->lists();
+        const std::uint64_t terms = std::uint64_t{d.buffers.nodeCount} +
+                                    (d.plan.springs ? d.buffers.springCount : 0u) +
+                                    lists.capacity(GLC_LIST_VERTEX_FACE) + lists.capacity(GLC_LIST_EDGE_EDGE);
+        report.resolution =
+            passes::EnergyGuardPass::resolutionFactor(terms) * (e.magnitude + contact.magnitude);
     }
     return report;
 }
 
 /// ½·k·depth² of every penalty contact at the current positions: the contact geometry of the
 /// response's rules (cpu::contactGeometries) on the last detection's feature pairs, sides from the
-/// positions themselves (decision 0024).
-double Engine::Impl::contactEnergy() const {
+/// positions themselves (decision 0024); and the ground's penalty under implicit Euler. With the
+/// magnitude scale of those terms as energy_guard.comp adds them (k·thickness² per contact).
+Engine::Impl::ContactEnergy Engine::Impl::contactEnergy() const {
     const std::vector<glm::dvec3> x = unpackNodes(buffers.positions, buffers.nodeCount);
     const std::vector<glm::dvec3> v = unpackNodes(buffers.velocities, buffers.nodeCount);
     std::vector<std::uint8_t> faceClosed(model.faceCount());
@@ -669,10 +714,23 @@ double Engine::Impl::contactEnergy() const {
     pairs.edgeEdge = collision->readEdgeEdgePairs();
     ContactParams params = plan.contact;
     params.substep = 0.0; // sides from x
-    double energy = 0.0;
-    for (const cpu::ContactGeometry& c : cpu::contactGeometries(params, in, pairs))
-        energy += 0.5 * params.stiffness * c.depth * c.depth;
-    return energy;
+    ContactEnergy out;
+    for (const cpu::ContactGeometry& c : cpu::contactGeometries(params, in, pairs)) {
+        const double e = 0.5 * params.stiffness * c.depth * c.depth;
+        out.energy += e;
+        out.magnitude += e + params.stiffness * params.thickness * params.thickness;
+    }
+    // The implicit solve's ground penalty below the ground's band (decision 0024).
+    const ImplicitParams& ip = plan.implicitParams;
+    if (ip.groundStiffness > 0.0)
+        for (std::size_t i = 0; i < x.size(); ++i) {
+            const double depth = ip.groundHeight + ip.groundBand - x[i].y;
+            if (depth > 0.0 && model.inverseMasses[i] > 0.0) {
+                out.energy += 0.5 * ip.groundStiffness * depth * depth;
+                out.magnitude += 0.5 * ip.groundStiffness * depth * depth;
+            }
+        }
+    return out;
 }
 
 std::uint32_t Engine::positionBuffer() const {

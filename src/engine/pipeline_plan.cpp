@@ -32,7 +32,8 @@ std::vector<Stage> PipelinePlan::stages() const {
 /// NodePredict the step x1 they lead to; the contact response, iterated, acts on the pairs the last
 /// substep's swept detection found (they include every pair within the thickness at x0, whose
 /// boxes lie inside the last substep's swept boxes) and ContactApply moves v and x1 after each
-/// iteration; the detection runs over [x0, x1] with CCD; SafeStep cuts and commits.
+/// iteration; the detection runs over [x0, x1] with CCD; SafeStep cuts; the energy guard takes a
+/// rise of the total energy back out; the checked x1 becomes the positions.
 std::vector<Stage> PipelinePlan::safeStepStages() const {
     std::vector<Stage> s;
     if (nodeForce) s.push_back(Stage::NodeForce);
@@ -40,6 +41,8 @@ std::vector<Stage> PipelinePlan::safeStepStages() const {
     if (implicitSolve) s.push_back(Stage::ImplicitSolve);
     s.insert(s.end(),
              {Stage::NodePredict, Stage::ContactIterations, Stage::CollisionDetection, Stage::SafeStep});
+    if (energyGuard) s.push_back(Stage::EnergyGuard);
+    s.push_back(Stage::Commit);
     return s;
 }
 
@@ -74,6 +77,11 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
         case Stage::SafeStep:
             p.push_back(PassId::SafeStep);
             break;
+        case Stage::EnergyGuard:
+            p.push_back(PassId::EnergyGuard);
+            break;
+        case Stage::Commit:
+            break; // a buffer copy: no pass of its own
         case Stage::ContactIterations:
             p.push_back(PassId::ContactResponse);
             p.push_back(PassId::ContactApply);
@@ -199,6 +207,17 @@ PipelinePlan planPipeline(const Scene& scene) {
             ip.groundHeight = nu.groundHeight;
             ip.groundBand = np.groundBand;
         }
+        // The energy guard sums what the substep's forces derive from: gravity, the springs, the
+        // contacts' and the ground's penalties (a closed scene: the scene refuses it with wind).
+        plan.energyGuard = scene.collision.energyGuard && !nf.wind;
+        passes::EnergyGuardParams& eg = plan.energyGuardParams;
+        eg.gravity = nf.gravity ? scene.gravity : glm::dvec3(0.0);
+        eg.springs = plan.springs;
+        eg.contacts = true;
+        eg.thickness = plan.contact.thickness;
+        eg.stiffness = plan.contact.stiffness;
+        eg.groundStiffness = plan.implicitParams.groundStiffness;
+        eg.groundLevel = plan.implicitParams.groundHeight + plan.implicitParams.groundBand;
         NodeUpdateParams& ca = plan.contactApplyParams;
         ca = np;
         ca.forces = false;

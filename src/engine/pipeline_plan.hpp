@@ -5,6 +5,7 @@
 #include "core/contact_params.hpp"
 #include "core/dynamics_params.hpp"
 #include "passes/device_buffers.hpp"
+#include "passes/energy_guard.hpp"
 #include "passes/pass_id.hpp"
 
 #include <glcollide/scene.hpp>
@@ -26,6 +27,8 @@ enum class Stage : std::uint8_t {
     ImplicitSolve,      ///< implicit Euler: the springs' linear solve, v += Δv
     ContactResponse,    ///< contact forces or impulses on the feature pairs
     SafeStep,           ///< intersection-free response: steps cut to before the first contact, committed
+    EnergyGuard,        ///< intersection-free response: a rise of the total energy taken out of v or x1
+    Commit,             ///< intersection-free response: the checked x1 becomes the positions
     ContactIterations,  ///< intersection-free response: (ContactResponse, ContactApply) × responseIterations
     NodeUpdate,         ///< velocities and positions, pins, ground
     FrameStep           ///< a whole frame of SpringUpdate + NodeUpdate in one dispatch (once per frame)
@@ -67,6 +70,9 @@ struct PipelinePlan {
     /// Safe step under implicit Euler: the penalty contacts of the last substep's feature pairs
     /// enter the solve's matrix (ImplicitSolverPass with contacts; docs/integration.md).
     bool implicitContacts = false;
+    /// Safe step with collision.energyGuard: EnergyGuard after SafeStep (decision 0024).
+    bool energyGuard = false;
+    passes::EnergyGuardParams energyGuardParams;
     CollisionSettings collision;
     ContactParams contact;
 

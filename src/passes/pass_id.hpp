@@ -23,6 +23,7 @@ enum class PassId : std::uint8_t {
     FeaturePairs, ///< Representative Triangles: candidate face pairs -> vertex-face, edge-edge pairs
     Ccd,          ///< continuous detection: vertex-face and edge-edge CCD over the substep, times of impact
     SafeStep,     ///< intersection-free response: cut the steps of nodes that may touch, re-check, commit
+    EnergyGuard,  ///< intersection-free response: a rise of the total energy taken out of the velocities
     ContactResponse,
     ContactApply,  ///< intersection-free response: a response iteration's forces into v and x1
     ImplicitSolve, ///< implicit Euler: assemble A·Δv = b, conjugate gradients, v += Δv
@@ -30,12 +31,12 @@ enum class PassId : std::uint8_t {
     FrameStep ///< a small scene's whole frame (SpringUpdate + NodeUpdate per substep) in one dispatch
 };
 
-inline constexpr std::size_t kPassCount = 17;
+inline constexpr std::size_t kPassCount = 18;
 
 inline constexpr std::array<const char*, kPassCount> kPassNames = {
-    "NodeForce",       "SpringUpdate", "NodePredict",   "BBUpdate",     "BBCollision", "BvhBuild",
-    "BvhRefit",        "BvhTraverse",  "TriTri",        "FeaturePairs", "Ccd",         "SafeStep",
-    "ContactResponse", "ContactApply", "ImplicitSolve", "NodeUpdate",   "FrameStep"};
+    "NodeForce",   "SpringUpdate",    "NodePredict",  "BBUpdate",      "BBCollision", "BvhBuild",
+    "BvhRefit",    "BvhTraverse",     "TriTri",       "FeaturePairs",  "Ccd",         "SafeStep",
+    "EnergyGuard", "ContactResponse", "ContactApply", "ImplicitSolve", "NodeUpdate",  "FrameStep"};
 
 constexpr const char* passName(PassId id) {
     return kPassNames[static_cast<std::size_t>(id)];

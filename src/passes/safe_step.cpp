@@ -89,10 +89,13 @@ SafeStepCounts SafeStepPass::dispatch(const DeviceBuffers& b, CollisionDetection
         counts.cuts = collision.readStat(GLC_STAT_SAFE_STEP_CUTS);
         counts.groundCrossings = collision.lists().stat(GLC_STAT_SAFE_STEP_GROUND);
     }
+    return counts;
+}
+
+void SafeStepPass::commit(const DeviceBuffers& b) {
     // x1 is safe: it becomes the positions (vec4 with the inverse mass, as NodePredict wrote it).
     gl::copyBufferData(b.predictedPositions, b.positions, std::size_t{b.nodeCount} * 4 * sizeof(float));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    return counts;
 }
 
 } // namespace glcollide::passes

@@ -6,10 +6,10 @@
 // objects of that pair's nodes (safe_step.comp: every node of the object to a fraction of the
 // object's earliest time of impact in the first rounds, to nothing after) and runs the CCD again over the cut
 // steps (the swept boxes of x0 and x1 still bound them, so the candidates stay valid). When no pair with a
-// moving node may touch, x1 is committed as the new positions: from an intersection-free state at x0 no face
-// pair can have started to intersect, because a new intersection of two faces needs a vertex to cross a face
-// or an edge to cross an edge, and the CCD, never late, saw none. The loop is bounded: after `maxRounds`
-// every node stays where it is (counted, never silent).
+// moving node may touch, x1 is committed (commit()) as the new positions: from an intersection-free state at
+// x0 no face pair can have started to intersect, because a new intersection of two faces needs a vertex to
+// cross a face or an edge to cross an edge, and the CCD, never late, saw none. The loop is bounded: after
+// `maxRounds` every node stays where it is (counted, never silent).
 
 #include "passes/collision_detection.hpp"
 #include "passes/device_buffers.hpp"
@@ -58,6 +58,9 @@ class SafeStepPass {
     /// `h`: the substep; `mayTouch`: pairs the detection's CCD found that may touch.
     SafeStepCounts dispatch(const DeviceBuffers& buffers, CollisionDetection& collision, double h,
                             std::uint32_t mayTouch) const;
+    /// The checked step x1 (predictedPositions) becomes the positions: the substep's last stage,
+    /// after the energy guard (PipelinePlan::safeStepStages).
+    static void commit(const DeviceBuffers& buffers);
 
     /// One round on its own (tests; dispatch() runs them): the objects' earliest times (with the
     /// ground's crossings), then every node of an object with one advances to `fraction` of it

@@ -503,7 +503,7 @@ CcdSettings parseCcd(const Ctx& c, const json& j, const Ptr& p) {
 CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p,
                 {"broad_phase", "octree_depth", "precision", "response", "thickness", "stiffness", "damping",
-                 "friction", "initial_capacity", "bvh", "detection", "ccd"});
+                 "friction", "initial_capacity", "bvh", "detection", "ccd", "energy_guard"});
     CollisionSettings s;
     if (const json* v = find(j, "broad_phase")) {
         const std::optional<BroadPhase> kind = broadPhaseFromName(string(c, *v, p / "broad_phase"));
@@ -557,6 +557,12 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
             else if (s.detection != Detection::Continuous)
                 c.fail(p / "detection", "the intersection_free response needs \"detection\": \"continuous\"");
         }
+    }
+    if (const json* v = find(j, "energy_guard")) {
+        if (!v->is_boolean()) c.fail(p / "energy_guard", "expected true or false, got " + shown(*v));
+        if (s.response != ContactResponse::IntersectionFree)
+            c.fail(p / "energy_guard", "only the \"intersection_free\" response has an energy guard");
+        s.energyGuard = v->get<bool>();
     }
     if (const json* v = find(j, "thickness")) {
         s.thickness = number(c, *v, p / "thickness", "a positive number of metres");
@@ -645,6 +651,12 @@ Scene parseRoot(const Ctx& c, const json& root) {
             c.fail(p / "collision", "given but neither 'collisions' nor 'self_collisions' is in /effects "
                                     "(remove it or add an effect)");
         scene.collision = parseCollision(c, *v, p / "collision");
+        const CollisionSettings& col = scene.collision;
+        if (col.response == ContactResponse::IntersectionFree && col.energyGuard &&
+            scene.effects.has(Effect::Wind))
+            c.fail(p / "collision" / "energy_guard",
+                   "the energy guard needs a closed scene and the wind does work on it: set "
+                   "\"energy_guard\": false (decision 0024)");
     }
 
     if (const json* v = find(root, "camera")) scene.camera = parseCamera(c, *v, p / "camera");

@@ -105,8 +105,8 @@ TEST(PipelinePlan, ContinuousDetectionPredictsBeforeItDetects) {
 }
 
 // The intersection-free response (decision 0024): the forces and the solve give v, NodePredict the
-// whole step, the response iterations move v and x1, the detection checks [x0, x1] and SafeStep
-// commits; there is no NodeUpdate.
+// whole step, the response iterations move v and x1, the detection checks [x0, x1], SafeStep cuts,
+// the energy guard takes a rise out and x1 is committed; there is no NodeUpdate.
 TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     using engine::Stage;
     Scene scene = twoNodeScene(10, 0, 1);
@@ -116,12 +116,19 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     scene.collision.response = ContactResponse::IntersectionFree;
     engine::PipelinePlan plan = engine::planPipeline(scene);
     EXPECT_TRUE(plan.safeStep);
-    EXPECT_EQ(plan.stages(),
-              (std::vector<Stage>{Stage::SpringUpdate, Stage::NodePredict, Stage::ContactIterations,
-                                  Stage::CollisionDetection, Stage::SafeStep}));
+    EXPECT_EQ(plan.stages(), (std::vector<Stage>{Stage::SpringUpdate, Stage::NodePredict,
+                                                 Stage::ContactIterations, Stage::CollisionDetection,
+                                                 Stage::SafeStep, Stage::EnergyGuard, Stage::Commit}));
     EXPECT_EQ(plan.passes(), (std::vector<std::string>{"SpringUpdate", "NodePredict", "ContactResponse",
                                                        "ContactApply", "BBUpdate", "BBCollision", "TriTri",
-                                                       "FeaturePairs", "Ccd", "SafeStep"}));
+                                                       "FeaturePairs", "Ccd", "SafeStep", "EnergyGuard"}));
+    // The guard sums what the forces derive from: gravity, springs, contacts, no ground penalty
+    // under symplectic Euler (the ground is a velocity response there).
+    EXPECT_TRUE(plan.energyGuard);
+    EXPECT_EQ(plan.energyGuardParams.gravity, scene.gravity);
+    EXPECT_TRUE(plan.energyGuardParams.springs);
+    EXPECT_TRUE(plan.energyGuardParams.contacts);
+    EXPECT_EQ(plan.energyGuardParams.groundStiffness, 0.0);
     // x1 is the whole step: forces and ground in NodePredict, contacts and ground in ContactApply.
     EXPECT_TRUE(plan.nodePredictParams.forces);
     EXPECT_FALSE(plan.nodePredictParams.contacts);
@@ -134,10 +141,21 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     EXPECT_TRUE(plan.contact.velocityResponse);
     scene.time.integrator = Integrator::ImplicitEuler;
     plan = engine::planPipeline(scene);
-    EXPECT_EQ(plan.stages(),
-              (std::vector<Stage>{Stage::ImplicitSolve, Stage::NodePredict, Stage::ContactIterations,
-                                  Stage::CollisionDetection, Stage::SafeStep}));
+    EXPECT_EQ(plan.stages(), (std::vector<Stage>{Stage::ImplicitSolve, Stage::NodePredict,
+                                                 Stage::ContactIterations, Stage::CollisionDetection,
+                                                 Stage::SafeStep, Stage::EnergyGuard, Stage::Commit}));
     EXPECT_FALSE(plan.nodePredictParams.forces); // the solve set v
+    // The solve's ground penalty has a potential: the guard counts it, from the same level.
+    EXPECT_EQ(plan.energyGuardParams.groundStiffness, plan.implicitParams.groundStiffness);
+    EXPECT_EQ(plan.energyGuardParams.groundLevel,
+              plan.implicitParams.groundHeight + plan.implicitParams.groundBand);
+    EXPECT_GT(plan.energyGuardParams.groundStiffness, 0.0);
+    // Switched off, it is not in the substep; x1 is still committed.
+    scene.collision.energyGuard = false;
+    plan = engine::planPipeline(scene);
+    EXPECT_FALSE(plan.energyGuard);
+    EXPECT_EQ(plan.stages().back(), Stage::Commit);
+    EXPECT_EQ(plan.stages()[plan.stages().size() - 2], Stage::SafeStep);
 }
 
 TEST(PipelinePlan, EmptySceneRunsNothing) {
