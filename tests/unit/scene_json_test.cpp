@@ -281,6 +281,29 @@ TEST(SceneJson, SettingsAndEffects) {
                       R"(["springs", "self_collisions"])")),
         HasSubstr(
             "/collision/detection: the intersection_free response needs \"detection\": \"continuous\""));
+    // Its energy guard: on by default, a boolean, its own response's only, and refused with wind
+    // (which does work on the scene) unless switched off.
+    EXPECT_TRUE(safe.collision.energyGuard) << "documented default";
+    EXPECT_FALSE(
+        parse(scene(kCloth, R"("collision": {"response": "intersection_free", "energy_guard": false})",
+                    R"(["springs", "self_collisions"])"))
+            .collision.energyGuard);
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"response": "intersection_free", "energy_guard": 1})",
+                              R"(["springs", "self_collisions"])")),
+                HasSubstr("/collision/energy_guard: expected true or false, got 1"));
+    EXPECT_THAT(
+        errorOf(scene(kCloth, R"("collision": {"response": "bridson", "energy_guard": true})",
+                      R"(["springs", "self_collisions"])")),
+        HasSubstr("/collision/energy_guard: only the \"intersection_free\" response has an energy guard"));
+    EXPECT_THAT(
+        errorOf(scene(kCloth,
+                      R"("wind": {"velocity": [1, 0, 0]}, "collision": {"response": "intersection_free"})",
+                      R"(["springs", "wind", "self_collisions"])")),
+        HasSubstr("/collision/energy_guard: the energy guard needs a closed scene"));
+    EXPECT_NO_THROW(parse(scene(
+        kCloth,
+        R"("wind": {"velocity": [1, 0, 0]}, "collision": {"response": "intersection_free", "energy_guard": false})",
+        R"(["springs", "wind", "self_collisions"])")));
     EXPECT_EQ(c.collision.thickness, 0.002);
     EXPECT_EQ(c.collision.stiffness, 500.0);
     EXPECT_EQ(c.collision.damping, 0.1);
