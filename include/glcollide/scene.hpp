@@ -202,6 +202,8 @@ const char* integratorName(Integrator kind);
 std::optional<Integrator> integratorFromName(std::string_view name);
 const char* broadPhaseName(BroadPhase kind);
 std::optional<BroadPhase> broadPhaseFromName(std::string_view name);
+/// The response named `name` in scenes ("penalty", "bridson", "intersection_free"); nullopt if unknown.
+std::optional<ContactResponse> responseFromName(std::string_view name);
 
 /// Replaces the scene's broad phase by the one named (the CLI's --broad-phase). Throws
 /// glcollide::Error when the name is unknown or the scene has no collision effect.

@@ -88,7 +88,8 @@ vec4 nodeTerms(uint i) {
     float gravity = -m * dot(u_gravity, x);
     float depth = max(u_groundLevel - x.y, 0.0);
     float ground = u_groundStiffness > 0.0 ? 0.5 * u_groundStiffness * depth * depth : 0.0;
-    return vec4(kinetic + gravity + ground, kinetic + abs(gravity) + ground, kinetic, 0.0);
+    float groundScale = u_groundStiffness > 0.0 ? ground + u_groundStiffness * depth * (abs(x.y) + abs(u_groundLevel)) : 0.0;
+    return vec4(kinetic + gravity + ground, kinetic + abs(gravity) + groundScale, kinetic, 0.0);
 }
 
 vec4 springTerms(uint s) {
@@ -96,14 +97,17 @@ vec4 springTerms(uint s) {
     float len = length(g_positions[spring.nodeA].xyz - g_positions[spring.nodeB].xyz);
     float stretch = len - spring.restLength;
     float e = 0.5 * spring.stiffness * stretch * stretch;
-    // The rounding of len − L is relative to len, not to the stretch: its scale is k·len·(len + L).
-    return vec4(e, e + spring.stiffness * len * (len + spring.restLength), 0.0, 0.0);
+    // The rounding of len − L is relative to len + L, not to the stretch: the energy's error is
+    // about k·|len − L|·(len + L)·ε.
+    return vec4(e, e + spring.stiffness * abs(stretch) * (len + spring.restLength), 0.0, 0.0);
 }
 
 vec4 contactTerms(ContactPair c) {
     if (!c.found) return vec4(0.0);
     float e = 0.5 * u_stiffness * c.depth * c.depth;
-    return vec4(e, e + u_stiffness * u_thickness * u_thickness, 0.0, 0.0);
+    // The depth is a difference of coordinates: its rounding is relative to their size.
+    float size = length(g_positions[c.nodes.x].xyz) + u_thickness;
+    return vec4(e, e + u_stiffness * c.depth * size, 0.0, 0.0);
 }
 
 vec4 vertexFaceTerms(uint k) {

@@ -32,6 +32,7 @@ nlohmann::json frameRecord(const Engine& engine) {
                              {"potential_energy_J", e.potential},
                              {"contact_energy_J", e.contact},
                              {"total_energy_J", e.total()},
+                             {"energy_resolution_J", e.resolution},
                              {"dispatches_per_substep", s.dispatchesPerSubstep},
                              {"gpu_ms", gpu}};
     if (s.solver.implicit)

@@ -108,9 +108,9 @@ Energy energy(const std::vector<glm::dvec3>& positions, const std::vector<glm::d
             const double length = glm::length(positions[s.b] - positions[s.a]);
             const double stretch = length - s.restLength;
             e.elastic += 0.5 * s.stiffness * stretch * stretch;
-            // A float length − L is off relative to the length, not to the stretch.
-            e.magnitude +=
-                0.5 * s.stiffness * stretch * stretch + s.stiffness * length * (length + s.restLength);
+            // A float length − L is off relative to length + L, not to the stretch.
+            e.magnitude += 0.5 * s.stiffness * stretch * stretch +
+                           s.stiffness * std::abs(stretch) * (length + s.restLength);
         }
     return e;
 }

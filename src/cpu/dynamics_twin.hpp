@@ -38,7 +38,7 @@ void nodeUpdate(const NodeUpdateParams& params, NodeState& state);
 struct Energy {
     double kinetic = 0, gravitational = 0, elastic = 0;
     /// The scale of a float sum's rounding: each term's magnitude as energy_guard.comp adds it
-    /// (kinetic, |gravitational|, a spring's energy plus k·length·(length + L)).
+    /// (kinetic, |gravitational|, a spring's energy plus k·|length − L|·(length + L)).
     double magnitude = 0;
     [[nodiscard]] double total() const { return kinetic + gravitational + elastic; }
 };

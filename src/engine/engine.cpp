@@ -5,6 +5,7 @@
 #include "cpu/dynamics_twin.hpp"
 #include "cpu/stability.hpp"
 #include "engine/pipeline_plan.hpp"
+#include "engine/response_model.hpp"
 #include "engine/robust_self_check.hpp"
 #include "gl/debug_output.hpp"
 #include "gl/gpu_timer.hpp"
@@ -24,6 +25,7 @@
 #include <glcollide/gl_info.hpp>
 
 #include <epoxy/gl.h>
+#include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
 #include <algorithm>
@@ -116,7 +118,7 @@ void Engine::Impl::chooseSubsteps() {
         // Backward Euler is stable for any step of the linear spring system it solves: the count
         // is the user's (auto: one substep per frame), never a stability requirement.
         substeps.substeps = substeps.automatic ? 1 : scene.time.substeps;
-        if (plan.collisions && !plan.contact.velocityResponse) {
+        if (plan.collisions && engine::responseModel(scene.collision.response).explicitUnderImplicitEuler()) {
             // Penalty contact forces enter the implicit step explicitly (docs/integration.md), so
             // they keep the explicit limit of a contact spring.
             const cpu::StabilityLimit contactLimit =
@@ -695,7 +697,7 @@ EnergyReport Engine::energy() const {
 /// ½·k·depth² of every penalty contact at the current positions: the contact geometry of the
 /// response's rules (cpu::contactGeometries) on the last detection's feature pairs, sides from the
 /// positions themselves (decision 0024); and the ground's penalty under implicit Euler. With the
-/// magnitude scale of those terms as energy_guard.comp adds them (k·thickness² per contact).
+/// magnitude scale of those terms as energy_guard.comp adds them.
 Engine::Impl::ContactEnergy Engine::Impl::contactEnergy() const {
     const std::vector<glm::dvec3> x = unpackNodes(buffers.positions, buffers.nodeCount);
     const std::vector<glm::dvec3> v = unpackNodes(buffers.velocities, buffers.nodeCount);
@@ -718,7 +720,7 @@ Engine::Impl::ContactEnergy Engine::Impl::contactEnergy() const {
     for (const cpu::ContactGeometry& c : cpu::contactGeometries(params, in, pairs)) {
         const double e = 0.5 * params.stiffness * c.depth * c.depth;
         out.energy += e;
-        out.magnitude += e + params.stiffness * params.thickness * params.thickness;
+        out.magnitude += e + params.stiffness * c.depth * (glm::length(x[c.nodes[0]]) + params.thickness);
     }
     // The implicit solve's ground penalty below the ground's band (decision 0024).
     const ImplicitParams& ip = plan.implicitParams;
@@ -726,8 +728,10 @@ Engine::Impl::ContactEnergy Engine::Impl::contactEnergy() const {
         for (std::size_t i = 0; i < x.size(); ++i) {
             const double depth = ip.groundHeight + ip.groundBand - x[i].y;
             if (depth > 0.0 && model.inverseMasses[i] > 0.0) {
-                out.energy += 0.5 * ip.groundStiffness * depth * depth;
-                out.magnitude += 0.5 * ip.groundStiffness * depth * depth;
+                const double e = 0.5 * ip.groundStiffness * depth * depth;
+                out.energy += e;
+                out.magnitude += e + ip.groundStiffness * depth *
+                                         (std::abs(x[i].y) + std::abs(ip.groundHeight + ip.groundBand));
             }
         }
     return out;

@@ -1,5 +1,6 @@
 #include "engine/pipeline_plan.hpp"
 
+#include "engine/response_model.hpp"
 #include "passes/broad_phase/create_broad_phase.hpp"
 
 #include <glcollide/error.hpp>
@@ -8,7 +9,12 @@ namespace glcollide::engine {
 
 std::vector<Stage> PipelinePlan::stages() const {
     if (frameStep) return {Stage::FrameStep};
-    if (safeStep) return safeStepStages();
+    if (collisions) return responseModel(collision.response).stages(*this);
+    return forceResponseStages();
+}
+
+/// Integration with (or without) a response that acts as forces or impulses on the pairs found.
+std::vector<Stage> PipelinePlan::forceResponseStages() const {
     std::vector<Stage> s;
     if (nodeForce) s.push_back(Stage::NodeForce);
     if (springUpdate) s.push_back(Stage::SpringUpdate);
@@ -132,6 +138,47 @@ std::vector<std::string> PipelinePlan::buffers() const {
     return labels;
 }
 
+/// The intersection-free response's plan (decision 0024): the safe step, contacts and the ground in
+/// the implicit solve, the energy guard.
+void planSafeStep(const Scene& scene, PipelinePlan& plan) {
+    plan.safeStep = plan.continuous;
+    if (!plan.safeStep) return; // the scene validation refuses discrete detection with it
+    plan.implicitContacts = plan.implicitSolve;
+    const NodeForceParams& nf = plan.nodeForceParams;
+    const NodeUpdateParams& nu = plan.nodeUpdateParams;
+    // x1 is the whole step with the ground (SafeStep then commits it; there is no NodeUpdate):
+    // NodePredict applies the forces, ContactApply each response iteration's contact forces.
+    NodeUpdateParams& np = plan.nodePredictParams;
+    np.ground = nu.ground;
+    np.groundHeight = nu.groundHeight;
+    np.restitution = nu.restitution;
+    np.friction = nu.friction;
+    np.groundBand = nu.ground ? plan.contact.thickness : 0.0; // SafeStep cuts ground crossings
+    if (plan.implicitSolve && nu.ground) {
+        // The ground in the solve's matrix, as stiff as a contact (decision 0024).
+        ImplicitParams& ip = plan.implicitParams;
+        ip.groundStiffness = plan.contact.stiffness;
+        ip.groundHeight = nu.groundHeight;
+        ip.groundBand = np.groundBand;
+    }
+    // The energy guard sums what the substep's forces derive from: gravity, the springs, the
+    // contacts' and the ground's penalties (a closed scene: the scene refuses it with wind).
+    plan.energyGuard = scene.collision.energyGuard && !nf.wind;
+    passes::EnergyGuardParams& eg = plan.energyGuardParams;
+    eg.gravity = nf.gravity ? scene.gravity : glm::dvec3(0.0);
+    eg.springs = plan.springs;
+    eg.contacts = true;
+    eg.thickness = plan.contact.thickness;
+    eg.stiffness = plan.contact.stiffness;
+    eg.groundStiffness = plan.implicitParams.groundStiffness;
+    eg.groundLevel = plan.implicitParams.groundHeight + plan.implicitParams.groundBand;
+    NodeUpdateParams& ca = plan.contactApplyParams;
+    ca = np;
+    ca.forces = false;
+    ca.contacts = true;
+    ca.contactForceScale = nu.contactForceScale;
+}
+
 PipelinePlan planPipeline(const Scene& scene) {
     const EffectSet& fx = scene.effects;
     PipelinePlan plan;
@@ -184,46 +231,12 @@ PipelinePlan planPipeline(const Scene& scene) {
         plan.nodePredictParams.contacts = false; // NodeUpdate adds them after the response
         nu.forces = false;
     }
-    plan.safeStep = plan.continuous && scene.collision.response == ContactResponse::IntersectionFree;
     nu.contactForceScale = plan.contact.forceScale;
     nu.ground = fx.has(Effect::Ground);
     nu.groundHeight = scene.ground.height;
     nu.restitution = scene.ground.restitution;
     nu.friction = scene.ground.friction;
-    plan.implicitContacts = plan.safeStep && plan.implicitSolve;
-    if (plan.safeStep) {
-        // x1 is the whole step with the ground (SafeStep then commits it; there is no NodeUpdate):
-        // NodePredict applies the forces, ContactApply each response iteration's contact forces.
-        NodeUpdateParams& np = plan.nodePredictParams;
-        np.ground = nu.ground;
-        np.groundHeight = nu.groundHeight;
-        np.restitution = nu.restitution;
-        np.friction = nu.friction;
-        np.groundBand = nu.ground ? plan.contact.thickness : 0.0; // SafeStep cuts ground crossings
-        if (plan.implicitSolve && nu.ground) {
-            // The ground in the solve's matrix, as stiff as a contact (decision 0024).
-            ImplicitParams& ip = plan.implicitParams;
-            ip.groundStiffness = plan.contact.stiffness;
-            ip.groundHeight = nu.groundHeight;
-            ip.groundBand = np.groundBand;
-        }
-        // The energy guard sums what the substep's forces derive from: gravity, the springs, the
-        // contacts' and the ground's penalties (a closed scene: the scene refuses it with wind).
-        plan.energyGuard = scene.collision.energyGuard && !nf.wind;
-        passes::EnergyGuardParams& eg = plan.energyGuardParams;
-        eg.gravity = nf.gravity ? scene.gravity : glm::dvec3(0.0);
-        eg.springs = plan.springs;
-        eg.contacts = true;
-        eg.thickness = plan.contact.thickness;
-        eg.stiffness = plan.contact.stiffness;
-        eg.groundStiffness = plan.implicitParams.groundStiffness;
-        eg.groundLevel = plan.implicitParams.groundHeight + plan.implicitParams.groundBand;
-        NodeUpdateParams& ca = plan.contactApplyParams;
-        ca = np;
-        ca.forces = false;
-        ca.contacts = true;
-        ca.contactForceScale = nu.contactForceScale;
-    }
+    if (plan.collisions) responseModel(scene.collision.response).plan(scene, plan);
     return plan;
 }
 

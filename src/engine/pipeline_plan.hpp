@@ -79,6 +79,8 @@ struct PipelinePlan {
     /// What a substep runs, in order: the one place that states the substep's order.
     [[nodiscard]] std::vector<Stage> stages() const;
     [[nodiscard]] std::vector<Stage> safeStepStages() const; ///< stages() of the intersection-free response
+    /// stages() without collisions, or with a response that acts as forces or impulses (penalty, bridson).
+    [[nodiscard]] std::vector<Stage> forceResponseStages() const;
     /// The passes a substep dispatches, in order (stages() with the collision detection expanded
     /// into its passes).
     [[nodiscard]] std::vector<passes::PassId> passIds() const;
@@ -93,5 +95,7 @@ struct PipelinePlan {
 };
 
 PipelinePlan planPipeline(const Scene& scene);
+/// The intersection-free response's part of the plan (its ResponseModel calls it).
+void planSafeStep(const Scene& scene, PipelinePlan& plan);
 
 } // namespace glcollide::engine

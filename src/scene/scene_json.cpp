@@ -459,6 +459,7 @@ Body parseObject(const Ctx& c, const json& j, const Ptr& p, const EffectSet& eff
 }
 
 constexpr const char* kBroadPhaseNames = "\"octree\", \"masked\", \"all_pairs\" or \"bvh\"";
+constexpr const char* kResponseNames = "\"penalty\", \"bridson\" or \"intersection_free\"";
 
 BvhSettings parseBvh(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p, {"rebuild", "visits_per_round"});
@@ -539,16 +540,9 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
             c.fail(p / "precision", "unknown precision " + shown(*v) + "; expected \"fast\" or \"robust\"");
     }
     if (const json* v = find(j, "response")) {
-        const std::string name = string(c, *v, p / "response");
-        if (name == "penalty")
-            s.response = ContactResponse::Penalty;
-        else if (name == "bridson")
-            s.response = ContactResponse::Bridson;
-        else if (name == "intersection_free")
-            s.response = ContactResponse::IntersectionFree;
-        else
-            c.fail(p / "response", "unknown response " + shown(*v) +
-                                       "; expected \"penalty\", \"bridson\" or \"intersection_free\"");
+        const std::optional<ContactResponse> kind = responseFromName(string(c, *v, p / "response"));
+        if (!kind) c.fail(p / "response", "unknown response " + shown(*v) + "; expected " + kResponseNames);
+        s.response = *kind;
         // The safe step reads the continuous detection's times of impact: it is this response's
         // default detection, and discrete detection cannot serve it.
         if (s.response == ContactResponse::IntersectionFree) {
@@ -801,6 +795,13 @@ const char* broadPhaseName(BroadPhase kind) {
         return "bvh";
     }
     return "?";
+}
+
+std::optional<ContactResponse> responseFromName(std::string_view name) {
+    if (name == "penalty") return ContactResponse::Penalty;
+    if (name == "bridson") return ContactResponse::Bridson;
+    if (name == "intersection_free") return ContactResponse::IntersectionFree;
+    return std::nullopt;
 }
 
 std::optional<BroadPhase> broadPhaseFromName(std::string_view name) {

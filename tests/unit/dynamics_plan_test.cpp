@@ -4,6 +4,7 @@
 #include "cpu/dynamics_twin.hpp"
 #include "cpu/stability.hpp"
 #include "engine/pipeline_plan.hpp"
+#include "engine/response_model.hpp"
 #include "gl/program.hpp"
 #include "model/flat_model.hpp"
 
@@ -156,6 +157,32 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     EXPECT_FALSE(plan.energyGuard);
     EXPECT_EQ(plan.stages().back(), Stage::Commit);
     EXPECT_EQ(plan.stages()[plan.stages().size() - 2], Stage::SafeStep);
+}
+
+// The responses as types (issue 23, item 6): the factory maps every setting to its class, each
+// states what it needs, and the plan's substep is the one its class gives.
+TEST(ResponseModel, TheFactoryMapsEverySettingToItsClass) {
+    using engine::Stage;
+    for (const char* name : {"penalty", "bridson", "intersection_free"}) {
+        const std::optional<ContactResponse> kind = responseFromName(name);
+        ASSERT_TRUE(kind) << name;
+        const engine::ResponseModel& model = engine::responseModel(*kind);
+        EXPECT_EQ(model.kind(), *kind) << name;
+        const bool safe = *kind == ContactResponse::IntersectionFree;
+        EXPECT_EQ(model.requiredDetection(),
+                  safe ? std::optional<Detection>(Detection::Continuous) : std::nullopt);
+        EXPECT_EQ(model.explicitUnderImplicitEuler(), *kind == ContactResponse::Penalty) << name;
+        Scene scene = twoNodeScene(10, 0, 1);
+        scene.bodies[0].faces = {{0, 1, 0}};
+        scene.effects = {Effect::Gravity, Effect::Springs, Effect::Collisions};
+        scene.collision.response = *kind;
+        scene.collision.detection = Detection::Continuous;
+        const engine::PipelinePlan plan = engine::planPipeline(scene);
+        EXPECT_EQ(plan.safeStep, safe) << name;
+        EXPECT_EQ(plan.stages(), model.stages(plan)) << name;
+        EXPECT_EQ(plan.stages(), safe ? plan.safeStepStages() : plan.forceResponseStages()) << name;
+    }
+    EXPECT_FALSE(responseFromName("impulse"));
 }
 
 TEST(PipelinePlan, EmptySceneRunsNothing) {
