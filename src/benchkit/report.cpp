@@ -129,8 +129,11 @@ std::vector<std::pair<std::string, std::string>> tableMetrics(const Experiment& 
                 {"energy_start_j", "E start (J)"},
                 {"energy_end_j", "E end (J)"},
                 {"energy_max_rise_j", "largest rise (J)"},
+                {"energy_rise_over_allowance", "rise / allowance"},
                 {"safe_step_fraction", "cut substeps"},
                 {"safe_step_froze_all", "froze all"},
+                {"energy_guard_fraction", "guard acted"},
+                {"energy_guard_pull_back_fraction", "pulled back"},
                 {"solver_iterations_per_substep", "CG it./substep"},
                 {"gpu_ms_per_substep", "GPU ms/substep"}};
     }

@@ -10,18 +10,27 @@ namespace {
 /// What a run's frames add up to beyond measureRun's timings (warm-up frames included: the
 /// simulation starts at frame 1 whatever is timed).
 struct ResponseTally {
-    std::vector<double> energy; ///< E(0), E(1), ...
+    std::vector<double> energy;     ///< E(0), E(1), ...
+    std::vector<double> resolution; ///< EnergyReport::resolution of each of them
     double substeps = 0, safeStepSubsteps = 0, safeStepCuts = 0, safeStepFrozeAll = 0;
     double safeStepMaxRounds = 0, groundCrossings = 0, substepsWithIntersections = 0;
     double solverIterations = 0, solverMaxIterations = 0, unconvergedSubsteps = 0;
-    bool safeStep = false, implicit = false;
+    double guardSubsteps = 0, guardPulledBack = 0, guardRemoved = 0;
+    int substepsPerFrame = 1;
+    bool safeStep = false, implicit = false, guard = false;
+
+    void addEnergy(const EnergyReport& e) {
+        energy.push_back(e.total());
+        resolution.push_back(e.resolution);
+    }
 };
 
 FrameHook tallyFrames(ResponseTally& t) {
     return [&t](Engine& e, int) {
         const StepStats& s = e.lastStep();
-        t.energy.push_back(e.energy().total());
+        t.addEnergy(e.energy());
         t.substeps += s.substeps;
+        t.substepsPerFrame = s.substeps;
         t.safeStep = t.safeStep || s.safeStep;
         t.implicit = s.solver.implicit;
         if (s.collisions) t.substepsWithIntersections += s.collision.substepsWithIntersections;
@@ -31,6 +40,12 @@ FrameHook tallyFrames(ResponseTally& t) {
             t.safeStepFrozeAll += s.collision.safeStepFrozeAll;
             t.groundCrossings += s.collision.safeStepGroundCrossings;
             t.safeStepMaxRounds = std::max(t.safeStepMaxRounds, double(s.collision.safeStepMaxRounds));
+        }
+        if (s.collision.energyGuard) {
+            t.guard = true;
+            t.guardSubsteps += s.collision.energyGuardSubsteps;
+            t.guardPulledBack += s.collision.energyGuardPulledBack;
+            t.guardRemoved += s.collision.energyGuardRemoved;
         }
         t.solverIterations += s.solver.totalIterations;
         t.solverMaxIterations = std::max(t.solverMaxIterations, double(s.solver.maxIterations));
@@ -54,6 +69,22 @@ void record(const ResponseTally& t, RunResult& r) {
     r.set("safe_step_max_rounds", t.safeStep ? t.safeStepMaxRounds : nan);
     r.set("safe_step_froze_all", t.safeStep ? t.safeStepFrozeAll : nan);
     r.set("safe_step_ground_crossings", t.safeStep ? t.groundCrossings : nan);
+    // The energy guard: how often it acted, and the largest frame rise against what the guard's
+    // float sums allow a frame (2·substeps·(resolution at its start + at its end), the bound
+    // tests/gl/intersection_free_gl_test.cpp checks): at most 1 when the promise holds.
+    const bool guard = t.guard && t.substeps > 0;
+    r.set("energy_guard_fraction", guard ? t.guardSubsteps / t.substeps : nan);
+    r.set("energy_guard_pull_back_fraction", guard ? t.guardPulledBack / t.substeps : nan);
+    r.set("energy_guard_removed_j", guard ? t.guardRemoved : nan);
+    double worst = 0.0;
+    for (std::size_t k = 1; k < t.energy.size(); ++k) {
+        const double allowance = 2.0 * t.substepsPerFrame * (t.resolution[k - 1] + t.resolution[k]);
+        const double rise = t.energy[k] - t.energy[k - 1];
+        if (rise > 0.0)
+            worst =
+                std::max(worst, allowance > 0.0 ? rise / allowance : std::numeric_limits<double>::infinity());
+    }
+    r.set("energy_rise_over_allowance", guard ? worst : nan);
     r.set("solver_iterations_per_substep",
           t.implicit && t.substeps > 0 ? t.solverIterations / t.substeps : nan);
     r.set("solver_max_iterations", t.implicit ? t.solverMaxIterations : nan);
@@ -89,7 +120,7 @@ void runResponseExperiment(const Experiment& x, ExperimentResult& out, const Pro
             applySubstepFactor(scene, c.substepFactor);
             Engine engine(scene);
             ResponseTally tally;
-            tally.energy.push_back(engine.energy().total());
+            tally.addEnergy(engine.energy());
             RunResult r = measureRun(engine, x, tallyFrames(tally));
             r.scene = s.name;
             r.config = c.name;
@@ -110,6 +141,11 @@ void runResponseExperiment(const Experiment& x, ExperimentResult& out, const Pro
         "node steps cut, most cut-and-check rounds in a substep, and substeps where every node was "
         "frozen (froze_all). Penalty and bridson run with discrete detection, intersection_free with "
         "continuous detection.");
+    out.notes.push_back(
+        "Energy guard (intersection_free only): the fraction of substeps in which it acted and in which "
+        "it pulled the step back; rise / allowance is the largest frame-to-frame rise over what the "
+        "guard's float sums allow the frame (2 x substeps x the resolution at both ends): at most 1 "
+        "when no energy was gained.");
 }
 
 } // namespace glcollide::benchkit
