@@ -40,7 +40,7 @@ vec3 contactProduct(uint i, float beta) {
     uint end = contactRowEnd(i);
     for (uint e = contactRowBegin(i); e < end; ++e) {
         uint entry = contactEntry(e);
-        GpuImplicitContact c = contactRecord(incidenceSlot(entry));
+        GpuImplicitContact c = contactRecord(incidenceRecord(entry));
         float ai = c.weights[incidenceCorner(entry)];
         vec3 u = c.normalForce.xyz;
         vec3 pRel = c.weights.x * newDirection(c.nodes.x, beta) + c.weights.y * newDirection(c.nodes.y, beta) +

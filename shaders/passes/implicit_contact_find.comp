@@ -3,9 +3,12 @@
 // entry of GLC_LIST_VERTEX_FACE (u_edgeEdge = 0) or GLC_LIST_EDGE_EDGE (u_edgeEdge = 1), indirect
 // dispatch from the list's count. Whether the pair is a contact, and its nodes, weights, normal and
 // depth, are the penalty response's (common/contact_pair.glsl, at the positions of the start of the
-// substep); the record of slot i (edge-edge: u_edgeEdgeBase + i) holds it, with the penalty force
-// k·depth, or 0 when the pair is no contact. Every node row the contact adds to is counted with an
-// integer atomic (order-independent). Twin: cpu::implicitContacts.
+// substep). A contact appends a record (an atomic count: exact even when the capacity is exceeded,
+// and then the host grows the records and runs this again; nothing is dropped) with the penalty
+// force k·depth and its pair's list slot (edge-edge: u_edgeEdgeBase + i); every node row the
+// contact adds to is counted with an integer atomic (order-independent). Which record a contact
+// gets depends on thread order; ImplicitContactSort orders the rows by the pair, not the record.
+// Twin: cpu::implicitContacts.
 #include "common/layout.glsl"
 #include "common/lists.glsl"
 #include "common/face_nodes.glsl"
@@ -26,7 +29,8 @@ layout(std430, binding = GLC_BIND_NODE_CONTACT_COUNTS) buffer NodeContactCountsB
 uniform float u_thickness;    // m
 uniform float u_substep;      // s: the side rule's x − dt·v, as the penalty response (0: the current side)
 uniform uint u_edgeEdge;      // 0: the vertex-face list, 1: the edge-edge list
-uniform uint u_edgeEdgeBase;  // the first record of the edge-edge list: the vertex-face capacity
+uniform uint u_edgeEdgeBase;  // the first list slot of the edge-edge list: the vertex-face capacity
+uniform uint u_recordCapacity; // records the buffer holds
 
 vec3 previousPosition(uint n) { return g_positions[n].xyz - u_substep * g_velocities[n].xyz; }
 
@@ -52,11 +56,15 @@ void main() {
     uint i = globalIndex();
     if (i >= storedCount(u_edgeEdge != 0u ? GLC_LIST_EDGE_EDGE : GLC_LIST_VERTEX_FACE)) return;
     ContactPair pair = contactOf(i);
+    if (!pair.found || !(pair.depth > 0.0)) return;
+    uint r = atomicAdd(g_contactData[u_contactCount], 1u);
+    if (r >= u_recordCapacity) return; // counted: the host grows the records and runs this again
     GpuImplicitContact c;
     c.nodes = pair.nodes;
     c.weights = pair.weights;
-    c.normalForce = pair.found ? vec4(pair.normal, u_contactStiffness * pair.depth) : vec4(0.0);
-    storeContactRecord((u_edgeEdge != 0u ? u_edgeEdgeBase : 0u) + i, c);
+    c.normalForce = vec4(pair.normal, u_contactStiffness * pair.depth);
+    storeContactRecord(r, c);
+    setRecordSlot(r, (u_edgeEdge != 0u ? u_edgeEdgeBase : 0u) + i);
     for (uint k = 0u; k < 4u; ++k)
         if (hasRow(c, k, g_positions[c.nodes[k]].w)) atomicAdd(g_nodeContactCounts[c.nodes[k]], 1u);
 }

@@ -1,8 +1,8 @@
 #version 430 core
 // ImplicitContactSort — the contact term of the implicit solve, step 4 of 4: one invocation per
 // node sorts its segment of the incidence list by a key that names the contact, not its list
-// slot: (which list, the pair as the list holds it, the corner). The feature-pair lists are filled
-// by atomic appends and the scatter by atomic cursors, so slots and positions vary from run to
+// slot or its record: (which list, the pair as the list holds it, the corner). The feature-pair lists are filled
+// by atomic appends, the records too, and the scatter by atomic cursors, so slots, records and positions vary from run to
 // run; after the sort every row sums its contacts in the same order, so the solve is bit-identical
 // on reruns. Insertion sort: rows are short (a node touches a few faces); its loops are bounded
 // by the row's length.
@@ -16,11 +16,11 @@ layout(std430, binding = GLC_BIND_VERTEX_FACE_PAIRS) readonly buffer VertexFaceP
 layout(std430, binding = GLC_BIND_EDGE_EDGE_PAIRS) readonly buffer EdgeEdgePairsBuf { uvec2 g_edgeEdge[]; };
 
 uniform uint u_nodeCount;
-uniform uint u_edgeEdgeBase; // the first record of the edge-edge list
+uniform uint u_edgeEdgeBase; // the first list slot of the edge-edge list
 
 // (0: vertex-face | 1: edge-edge, the pair's two entries, the corner).
 uvec4 incidenceKey(uint entry) {
-    uint slot = incidenceSlot(entry);
+    uint slot = recordSlot(incidenceRecord(entry));
     bool edgeEdge = slot >= u_edgeEdgeBase;
     uvec2 pair = edgeEdge ? g_edgeEdge[slot - u_edgeEdgeBase] : g_vertexFace[slot];
     return uvec4(edgeEdge ? 1u : 0u, pair, incidenceCorner(entry));

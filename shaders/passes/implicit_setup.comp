@@ -39,7 +39,7 @@ ContactRow contactRow(uint i) {
     uint end = contactRowEnd(i);
     for (uint e = contactRowBegin(i); e < end; ++e) {
         uint entry = contactEntry(e);
-        GpuImplicitContact c = contactRecord(incidenceSlot(entry));
+        GpuImplicitContact c = contactRecord(incidenceRecord(entry));
         float ai = c.weights[incidenceCorner(entry)];
         vec3 u = c.normalForce.xyz;
         vec3 vRel = c.weights.x * g_velocities[c.nodes.x].xyz + c.weights.y * g_velocities[c.nodes.y].xyz +

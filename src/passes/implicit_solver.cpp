@@ -28,7 +28,7 @@ gl::ComputeProgram contactProgram(bool contacts, const char* shader,
 }
 
 /// Incidence entries are 4·slot + corner in a uint.
-constexpr std::uint64_t kMaxContactSlots = std::uint64_t{1} << 30;
+constexpr std::uint64_t kMaxContactRecords = std::uint64_t{1} << 27;
 constexpr std::size_t kRecordWords = sizeof(gpu::GpuImplicitContact) / sizeof(std::uint32_t);
 
 constexpr std::size_t kVec4 = 4 * sizeof(float);
@@ -59,32 +59,40 @@ ImplicitSolverPass::ImplicitSolverPass(const ImplicitParams& config, std::uint32
     resetStatistics();
 }
 
-void ImplicitSolverPass::reserveContacts(const AppendLists& lists) const {
-    const std::uint32_t vertexFace = lists.capacity(GLC_LIST_VERTEX_FACE);
-    const std::uint64_t slots = std::uint64_t{vertexFace} + lists.capacity(GLC_LIST_EDGE_EDGE);
-    if (slots > kMaxContactSlots)
-        throw Error(std::string(kName) + ": the feature-pair lists hold " + std::to_string(slots) +
-                    " slots, more than the " + std::to_string(kMaxContactSlots) +
-                    " the contact term can index");
-    if (vertexFace == m_contactEdgeEdgeBase && slots == m_contactSlots) return;
-    // Records are found by list slot, so every stored entry of either list has one: none dropped.
-    m_contactEdgeEdgeBase = vertexFace;
-    m_contactSlots = static_cast<std::uint32_t>(slots);
+void ImplicitSolverPass::reserveContacts(std::uint64_t records) const {
+    // Words are indexed by 32-bit uniforms: 17 words per record and the rows must stay below 2^32.
+    if (records > kMaxContactRecords)
+        throw Error(std::string(kName) + ": " + std::to_string(records) + " contacts, more than the " +
+                    std::to_string(kMaxContactRecords) + " the contact term can index");
+    if (records <= m_recordCapacity && m_contactData) return;
+    m_recordCapacity = static_cast<std::uint32_t>(std::min<std::uint64_t>(
+        std::max<std::uint64_t>(records, 2ull * m_recordCapacity), kMaxContactRecords));
     m_contactData = gl::Buffer("solverContactData",
-                               (contactRecordsWord() + slots * kRecordWords) * sizeof(std::uint32_t));
+                               (contactRecordsWord() + std::size_t{m_recordCapacity} * kRecordWords) *
+                                   sizeof(std::uint32_t));
 }
 
 void ImplicitSolverPass::setContactWords(const gl::ComputeProgram& program) const {
+    program.set("u_contactCount", contactCountWord());
     program.set("u_contactEntries", contactEntriesWord());
+    program.set("u_contactSlots", static_cast<std::uint32_t>(contactSlotsWord()));
     program.set("u_contactRecords", static_cast<std::uint32_t>(contactRecordsWord()));
 }
 
 std::vector<gpu::GpuImplicitContact> ImplicitSolverPass::downloadContactRecords() const {
-    std::vector<gpu::GpuImplicitContact> records(m_contactSlots);
+    std::vector<gpu::GpuImplicitContact> records(m_records);
     if (!records.empty())
         m_contactData.download(contactRecordsWord() * sizeof(std::uint32_t),
                                records.size() * sizeof(gpu::GpuImplicitContact), records.data());
     return records;
+}
+
+std::vector<std::uint32_t> ImplicitSolverPass::downloadContactRecordSlots() const {
+    std::vector<std::uint32_t> slots(m_records);
+    if (!slots.empty())
+        m_contactData.download(contactSlotsWord() * sizeof(std::uint32_t),
+                               slots.size() * sizeof(std::uint32_t), slots.data());
+    return slots;
 }
 
 std::vector<std::uint32_t> ImplicitSolverPass::downloadNodeContactOffsets() const {
@@ -107,43 +115,63 @@ void ImplicitSolverPass::buildContactRows(const DeviceBuffers& b, const Implicit
         throw Error(std::string(kName) + ": collision buffers missing for the contact term");
     if (!in.lists->declared(GLC_LIST_VERTEX_FACE) || !in.lists->declared(GLC_LIST_EDGE_EDGE))
         throw Error(std::string(kName) + ": the vertex-face and edge-edge lists are not declared");
-    reserveContacts(*in.lists);
+    // The vertex-face list's capacity is where the edge-edge list's slots begin in the records' keys.
+    m_contactEdgeEdgeBase = in.lists->capacity(GLC_LIST_VERTEX_FACE);
+    if (std::uint64_t{m_contactEdgeEdgeBase} + in.lists->capacity(GLC_LIST_EDGE_EDGE) > 0xFFFFFFFFull)
+        throw Error(std::string(kName) + ": the feature-pair lists hold more slots than 32 bits index");
+    reserveContacts(std::max<std::uint64_t>(m_nodeCount, 1024));
     bindRequired(b.faces, GLC_BIND_FACES, kName, "faces");
     bindRequired(*in.faceInfo, GLC_BIND_FACE_INFO, kName, "faceInfo");
     bindRequired(*in.objects, GLC_BIND_OBJECTS, kName, "objects");
     in.lists->bind(); // the counters, the dispatch arguments and both lists
-    m_contactData.bindStorage(GLC_BIND_IMPLICIT_CONTACTS);
     m_nodeContactCounts.bindStorage(GLC_BIND_NODE_CONTACT_COUNTS);
-    m_nodeContactCounts.fill32(0u);
-    setContactWords(m_contactFind);
-    setContactWords(m_contactScan);
-    setContactWords(m_contactScatter);
-    setContactWords(m_contactSort);
 
     m_contactFind.set("u_thickness", static_cast<float>(contacts.params.thickness));
     m_contactFind.set("u_substep", static_cast<float>(contacts.params.substep));
     m_contactFind.set("u_contactStiffness", static_cast<float>(contacts.params.stiffness));
     bindTangled(m_contactFind, contacts.inputs, b.nodeCount);
-    for (const gl::ComputeProgram* p : {&m_contactFind, &m_contactScatter, &m_contactSort})
+    for (const gl::ComputeProgram* p : {&m_contactFind, &m_contactSort})
         p->set("u_edgeEdgeBase", m_contactEdgeEdgeBase);
-    // Find and scatter run over each list (indirect: the counts stay on the GPU); every count is
-    // complete (both finds) before the scan, every entry written (both scatters) before the sort.
-    const auto overBothLists = [&](const gl::ComputeProgram& program) {
-        for (const std::uint32_t list : {GLC_LIST_VERTEX_FACE, GLC_LIST_EDGE_EDGE}) {
-            program.set("u_edgeEdge", list == GLC_LIST_EDGE_EDGE ? 1u : 0u);
-            in.lists->dispatchOver(program, list, GLC_WORKGROUP_SIZE);
-        }
-    };
-    overBothLists(m_contactFind);
+    // Every count is complete (both finds) before the scan, every entry written (the scatter)
+    // before the sort. A find that counted more contacts than the records hold runs again on
+    // grown records (one read-back of the count per substep).
+    std::uint32_t found = findContacts(*in.lists);
+    if (found > m_recordCapacity) {
+        reserveContacts(found);
+        found = findContacts(*in.lists);
+    }
+    m_records = found;
+    for (const gl::ComputeProgram* p : {&m_contactScan, &m_contactScatter, &m_contactSort})
+        setContactWords(*p);
     m_contactScan.use();
     m_contactScan.set("u_nodeCount", m_nodeCount);
     gl::ComputeProgram::dispatch(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    overBothLists(m_contactScatter);
+    m_contactScatter.use();
+    m_contactScatter.set("u_records", m_records);
+    m_contactScatter.dispatch1D(m_records, GLC_WORKGROUP_SIZE);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     m_contactSort.use();
     m_contactSort.set("u_nodeCount", m_nodeCount);
     m_contactSort.dispatch1D(m_nodeCount, GLC_WORKGROUP_SIZE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+std::uint32_t ImplicitSolverPass::findContacts(const AppendLists& lists) const {
+    m_contactData.bindStorage(GLC_BIND_IMPLICIT_CONTACTS);
+    m_nodeContactCounts.fill32(0u);
+    const std::uint32_t zero = 0;
+    m_contactData.upload(std::size_t{contactCountWord()} * sizeof(std::uint32_t), sizeof zero, &zero);
+    setContactWords(m_contactFind);
+    m_contactFind.set("u_recordCapacity", m_recordCapacity);
+    for (const std::uint32_t list : {GLC_LIST_VERTEX_FACE, GLC_LIST_EDGE_EDGE}) {
+        m_contactFind.set("u_edgeEdge", list == GLC_LIST_EDGE_EDGE ? 1u : 0u);
+        lists.dispatchOver(m_contactFind, list, GLC_WORKGROUP_SIZE);
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::uint32_t found = 0;
+    m_contactData.download(std::size_t{contactCountWord()} * sizeof(std::uint32_t), sizeof found, &found);
+    return found;
 }
 
 void ImplicitSolverPass::bindLayout(const gl::ComputeProgram& program, const DeviceBuffers& b) const {

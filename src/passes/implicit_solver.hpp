@@ -23,10 +23,12 @@
 // the force cap of the penalty response are not in the system. Deterministic: the contacts reach
 // each row through a node → contact incidence list built per substep on the GPU (count with
 // integer atomics, prefix sum, scatter, sort each row by the pair's key), summed in row order.
-// Cost: kContactDispatches per substep to build the list (4 indirect over the lists, 4 writing
-// their arguments, the scan, the sort), and
-// per CG iteration 4 velocity-sized reads per incidence in ImplicitCgDirection; 48 bytes per
-// list slot (records), 16 per slot (the list), 8 per node.
+// Cost: kContactDispatches per substep to build the list (the find, indirect over both lists with
+// their arguments, the scan, the scatter over the records, the sort) and one read-back of the
+// contact count; per CG iteration 4 velocity-sized reads per incidence in ImplicitCgDirection.
+// Memory: 68 bytes per contact (record 48, its list slot 4, its incidences 16) for the contacts
+// found (at least one per node; grown, never dropped), 8 per node — not per feature pair: layered
+// cloth has ~10³ times more swept feature pairs than contacts.
 
 #include "core/contact_params.hpp"
 #include "core/dynamics_params.hpp"
@@ -95,29 +97,34 @@ class ImplicitSolverPass {
     }
 
     /// The contact term after the last dispatch with contacts (tests compare them with the twin;
-    /// each a download): GpuImplicitContact per list slot (vertex-face slots first, then
-    /// contactEdgeEdgeBase() + the edge-edge slot), and the node → contact incidence list (row
-    /// offsets: nodes + 1; entries 4·slot + corner).
+    /// each a download): the records, one per contact in the order the GPU appended them, each
+    /// record's list slot (vertex-face slots first, then contactEdgeEdgeBase() + the edge-edge
+    /// slot), and the node → contact incidence list (row offsets: nodes + 1; entries 4·record +
+    /// corner).
     [[nodiscard]] std::vector<gpu::GpuImplicitContact> downloadContactRecords() const;
+    [[nodiscard]] std::vector<std::uint32_t> downloadContactRecordSlots() const;
     [[nodiscard]] std::vector<std::uint32_t> downloadNodeContactOffsets() const;
     [[nodiscard]] std::vector<std::uint32_t> downloadNodeContactList() const;
     [[nodiscard]] std::uint32_t contactEdgeEdgeBase() const { return m_contactEdgeEdgeBase; }
 
     /// Dispatches of one velocity update: 1 + 2·maxIterations + 1.
     [[nodiscard]] std::uint32_t dispatchesPerSubstep() const;
-    /// Dispatches a velocity update with contacts adds: find, scatter (each over both lists, with
-    /// their indirect-argument dispatches: 8), scan and sort.
-    static constexpr std::uint32_t kContactDispatches = 10;
+    /// Dispatches a velocity update with contacts adds: find (over both lists, with their
+    /// indirect-argument dispatches: 4), scan, scatter and sort; a find that outgrows the records
+    /// runs again once the records have grown.
+    static constexpr std::uint32_t kContactDispatches = 7;
 
   private:
     /// The row layout's bindings and uniforms plus the partial sums and the state.
     void bindLayout(const gl::ComputeProgram& program, const DeviceBuffers& b) const;
     /// Builds the records and the sorted node → contact incidence list of this substep.
     void buildContactRows(const DeviceBuffers& b, const ImplicitContacts& contacts) const;
-    /// Sizes the records and the incidence list for the lists' capacities (they only grow).
-    void reserveContacts(const AppendLists& lists) const;
-    /// Sets the word offsets of m_contactData's parts (u_contactEntries, u_contactRecords).
+    /// Sizes the records and the incidence list for `records` contacts (they only grow).
+    void reserveContacts(std::uint64_t records) const;
+    /// Sets the word offsets of m_contactData's parts (u_contactCount, u_contactEntries, …).
     void setContactWords(const gl::ComputeProgram& program) const;
+    /// Find over both lists: the contacts' records and the rows' counts; returns the contacts.
+    [[nodiscard]] std::uint32_t findContacts(const AppendLists& lists) const;
 
     ImplicitParams m_config;
     std::uint32_t m_nodeCount = 0;
@@ -133,16 +140,18 @@ class ImplicitSolverPass {
     gl::ComputeProgram m_setupContacts, m_directionContacts;
     gl::ComputeProgram m_contactFind, m_contactScan, m_contactScatter, m_contactSort;
     mutable gl::Buffer m_nodeContactCounts; // cleared by every dispatch with contacts
-    // Row offsets, incidence entries and records (layout.glsl, GLC_BIND_IMPLICIT_CONTACTS), sized
-    // from the feature-pair lists' capacities at dispatch, which AppendLists::grow raises between
-    // substeps: reallocated there, hence mutable.
+    // Row offsets, the record count, incidence entries, the records' list slots and the records
+    // (common/implicit_contact.glsl, GLC_BIND_IMPLICIT_CONTACTS), sized for the contacts found:
+    // grown when a find counts more than it holds, hence mutable.
     mutable gl::Buffer m_contactData;
-    mutable std::uint32_t m_contactEdgeEdgeBase = 0, m_contactSlots = 0;
-    /// Word offsets of the entries and of the records in m_contactData.
-    [[nodiscard]] std::uint32_t contactEntriesWord() const { return m_nodeCount + 1; }
-    [[nodiscard]] std::size_t contactRecordsWord() const {
-        return contactEntriesWord() + std::size_t{4} * m_contactSlots;
+    mutable std::uint32_t m_contactEdgeEdgeBase = 0, m_recordCapacity = 0, m_records = 0;
+    /// Word offsets of the parts of m_contactData.
+    [[nodiscard]] std::uint32_t contactCountWord() const { return m_nodeCount + 1; }
+    [[nodiscard]] std::uint32_t contactEntriesWord() const { return m_nodeCount + 2; }
+    [[nodiscard]] std::size_t contactSlotsWord() const {
+        return contactEntriesWord() + std::size_t{4} * m_recordCapacity;
     }
+    [[nodiscard]] std::size_t contactRecordsWord() const { return contactSlotsWord() + m_recordCapacity; }
 };
 
 } // namespace glcollide::passes

@@ -191,9 +191,23 @@ GpuRun runGpu(const ContactScene& s, const ImplicitParams& p, const ContactParam
     b.velocities.download(0, r.velocities.size() * sizeof(glm::vec4), r.velocities.data());
     if (!contacts) return r;
     r.edgeEdgeBase = pass.contactEdgeEdgeBase();
-    r.records = pass.downloadContactRecords();
+    // The GPU appends a record per contact in thread order and keeps its pair's list slot: put
+    // them in list-slot order (the twin's; an empty record for a pair that is no contact) and
+    // name the incidence entries by slot, so the checks below compare with the twin slot by slot.
+    const std::vector<gpu::GpuImplicitContact> appended = pass.downloadContactRecords();
+    const std::vector<std::uint32_t> slots = pass.downloadContactRecordSlots();
+    r.records.assign(std::size_t{r.edgeEdgeBase} + lists.capacity(GLC_LIST_EDGE_EDGE),
+                     gpu::GpuImplicitContact{});
+    std::vector<std::uint8_t> seen(r.records.size(), 0);
+    for (std::size_t k = 0; k < appended.size(); ++k) {
+        EXPECT_LT(slots[k], r.records.size());
+        if (slots[k] >= r.records.size()) continue;
+        EXPECT_EQ(seen[slots[k]]++, 0) << "slot " << slots[k] << " has two records";
+        r.records[slots[k]] = appended[k];
+    }
     r.offsets = pass.downloadNodeContactOffsets();
     r.list = pass.downloadNodeContactList();
+    for (std::uint32_t& entry : r.list) entry = 4 * slots.at(entry / 4) + entry % 4;
     return r;
 }
 
