@@ -109,6 +109,9 @@ for b in resp:
         assert key in b, b["name"] + " lacks " + key
     if b["config"] == "intersection_free":
         assert b["max_intersecting_pairs"] == 0 and 0 <= b["safe_step_fraction"] <= 1, b["name"]
+        # The energy guard: how often it acted, and no frame rose beyond the float allowance.
+        assert 0 <= b["energy_guard_fraction"] <= 1 and 0 <= b["energy_guard_pull_back_fraction"] <= 1, b["name"]
+        assert 0 <= b["energy_rise_over_allowance"] <= 1, b["name"]
 svgs = [f for f in os.listdir(out) if f.endswith(".svg")]
 assert len(svgs) >= 6, svgs
 for f in svgs:
