@@ -246,11 +246,11 @@ struct GpuSolverState {
 // sum per terms group: (energy, magnitude scale, kinetic energy, 0).
 #define GLC_ENERGY_GROUPS 256 // groups of the terms dispatch; the decide group sums their partials
 struct GpuEnergyGuard {
-    float startTotal;     // J: the total energy at the start of the substep
+    float startTotal;     // J: the reference: the lowest total accepted (the start of the substep at most)
     float startMagnitude; // J: the magnitude scale of its terms (the resolution's base)
     uint hasStart;        // 0 until a total was recorded
     float scale;          // the velocity scale the last decide chose (1: none)
-    float lastTotal;      // J: the last total summed (before the scale)
+    float lastTotal;      // J: the last state's total (after the guard's scale when it accepted one)
     float firstTotal;     // J: the substep's first total (before any pull-back)
     uint outcome;         // the last decide: 0 accepted (maybe with a scale), 1 pull the step back
     uint acted;           // frame: substeps whose energy rose beyond the resolution

@@ -18,7 +18,9 @@
 // a clamp. A node within u_groundBand above the ground gets the ground's velocity response; x1 is
 // not clamped (a per-node clamp crushes a body that lands fast: it put energy into its springs),
 // SafeStep cuts the step of an object whose node would cross the ground instead. A node that
-// starts below the ground (input) is still lifted onto it.
+// starts below the ground (input) is still lifted onto it. An approach slower than u_restingSpeed
+// (what gravity adds in two substeps) is resting contact: no restitution, or a resting node would
+// be bounced up every substep (energy into resting piles, decision 0024).
 // Twin: cpu::nodeUpdate.
 #include "common/layout.glsl"
 
@@ -45,6 +47,7 @@ layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) writeonly buffer Predicte
 #endif
 #if defined(GLC_GROUND_BAND) && defined(GLC_GROUND)
 uniform float u_groundBand; // m: nodes this close above the ground are in contact with it
+uniform float u_restingSpeed; // m/s: slower approaches are resting contact: no restitution
 #endif
 
 uniform uint u_nodeCount;
@@ -60,7 +63,7 @@ void predictNode(uint i, vec3 f, uint substep) {
     }
     vec3 v = advancedVelocity(g_velocities[i].xyz, p.w, f);
 #if defined(GLC_GROUND_BAND) && defined(GLC_GROUND)
-    if (p.y <= u_groundHeight + u_groundBand) groundResponse(v);
+    if (p.y <= u_groundHeight + u_groundBand) groundResponse(v, -v.y > u_restingSpeed ? u_restitution : 0.0);
     vec3 x = advancedPosition(p.xyz, v);
     if (p.y < u_groundHeight) x.y = max(x.y, u_groundHeight);
 #else

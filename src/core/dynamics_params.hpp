@@ -38,6 +38,10 @@ struct NodeUpdateParams {
     /// m, > 0 (the intersection-free response's NodePredict): the ground is a contact, not a clamp;
     /// nodes this close above it get its velocity response and SafeStep cuts crossings (GLC_GROUND_BAND).
     double groundBand = 0.0;
+    /// m/s, with groundBand: an approach slower than this is resting contact, not an impact, and
+    /// gets no restitution (a node resting in the band approaches by what gravity adds in a
+    /// substep; bouncing that back every substep put energy into resting piles: decision 0024).
+    double restingSpeed = 0.0;
     bool checkFinite = false; ///< record the first non-finite node in the health buffer (GPU only)
 };
 

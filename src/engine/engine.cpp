@@ -154,6 +154,12 @@ void Engine::Impl::chooseSubsteps() {
     plan.nodeUpdateParams.h = substeps.substepLength;
     plan.nodePredictParams.h = substeps.substepLength;
     plan.contactApplyParams.h = substeps.substepLength;
+    // The intersection-free response's ground: an approach slower than what gravity adds in two
+    // substeps is resting contact (no restitution; NodeUpdateParams::restingSpeed).
+    const double restingSpeed =
+        scene.effects.has(Effect::Gravity) ? 2.0 * glm::length(scene.gravity) * substeps.substepLength : 0.0;
+    plan.nodePredictParams.restingSpeed = restingSpeed;
+    plan.contactApplyParams.restingSpeed = restingSpeed;
     plan.implicitParams.h = substeps.substepLength;
     plan.contact.substep = substeps.substepLength;
 }

@@ -96,7 +96,10 @@ void bindNodeUpdate(const gl::ComputeProgram& program, const DeviceBuffers& b, c
         program.set("u_groundHeight", static_cast<float>(params.groundHeight));
         program.set("u_restitution", static_cast<float>(params.restitution));
         program.set("u_friction", static_cast<float>(params.friction));
-        if (config.groundBand > 0.0) program.set("u_groundBand", static_cast<float>(params.groundBand));
+        if (config.groundBand > 0.0) {
+            program.set("u_groundBand", static_cast<float>(params.groundBand));
+            program.set("u_restingSpeed", static_cast<float>(params.restingSpeed));
+        }
     }
 }
 
