@@ -17,6 +17,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <numeric>
 #include <set>
 #include <string>
@@ -144,7 +145,7 @@ detail::SurfaceMesh tube(std::uint32_t ring, std::uint32_t rings, double radius,
     detail::SurfaceMesh m;
     for (std::uint32_t j = 0; j < rings; ++j)
         for (std::uint32_t i = 0; i < ring; ++i) {
-            const double angle = 2.0 * M_PI * i / ring;
+            const double angle = 2.0 * std::numbers::pi * i / ring;
             m.positions.emplace_back(radius * std::cos(angle), radius * std::sin(angle),
                                      length * j / (rings - 1));
         }
@@ -286,7 +287,7 @@ TEST(GhostTriangles, TubeIsClosedAndOrientedAfterFilling) {
     // area factor; 2 (F + 16) eps covers both.
     const auto all = withGhostFaces(m.faces, g);
     const auto [volume, magnitude] = signedVolume(all, withGhostNodes(m.positions, g));
-    const double prism = ring / 2.0 * radius * radius * std::sin(2.0 * M_PI / ring) * length;
+    const double prism = ring / 2.0 * radius * radius * std::sin(2.0 * std::numbers::pi / ring) * length;
     EXPECT_GT(volume, 0.0);
     EXPECT_NEAR(volume, prism,
                 2.0 * static_cast<double>(all.size() + 16) * kEps * magnitude + tolCentre * radius * length);
@@ -303,7 +304,7 @@ TEST(GhostTriangles, InwardTubeEnclosesNegativeVolume) {
     const auto all = withGhostFaces(m.faces, g);
     EXPECT_TRUE(closedAndConsistent(all));
     const auto [volume, magnitude] = signedVolume(all, withGhostNodes(m.positions, g));
-    const double prism = ring / 2.0 * 0.25 * std::sin(2.0 * M_PI / ring) * 0.7;
+    const double prism = ring / 2.0 * 0.25 * std::sin(2.0 * std::numbers::pi / ring) * 0.7;
     // Tolerance: as in TubeIsClosedAndOrientedAfterFilling.
     EXPECT_NEAR(volume, -prism,
                 2.0 * static_cast<double>(all.size() + 16) * kEps * magnitude +
@@ -430,7 +431,7 @@ TEST(GhostLoops, TwoClothsTouchingAtACornerSplitAtTheirWedges) {
         EXPECT_EQ(loops[l].pinchNodes, std::vector<std::uint32_t>{pinch});
         expectRunAsTheirFaces(faces, loops[l]);
         const auto offPinch = std::find_if(loops[l].nodes.begin(), loops[l].nodes.end(),
-                                           [pinch](std::uint32_t v) { return v != pinch; });
+                                           [&](std::uint32_t v) { return v != pinch; });
         ASSERT_NE(offPinch, loops[l].nodes.end());
         const bool first = onFirst[*offPinch];
         for (const std::uint32_t v : loops[l].nodes)
