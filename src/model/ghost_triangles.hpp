@@ -26,8 +26,9 @@ using Triangle = std::array<std::uint32_t, 3>;
 /// One chain of boundary edges. Edge k runs nodes[k] -> nodes[k + 1] (and, when closed, the last
 /// edge nodes.back() -> nodes.front()), each in the direction of the one real face that has it.
 struct BoundaryLoop {
-    /// The chain's nodes. It starts at its lowest node index (for a closed loop: its lowest node;
-    /// ties at a pinch node broken by the lowest next node), so the order is reproducible.
+    /// The chain's nodes. A closed loop starts at its lowest node (by its lowest-target outgoing
+    /// edge when that node is a pinch node); an open chain at the lowest node that still had an
+    /// unused outgoing boundary edge. So the order is reproducible.
     std::vector<std::uint32_t> nodes;
     /// False when the chain ran into a node with no unused outgoing boundary edge before coming
     /// back to its first edge: faces oriented inconsistently, or an edge with three or more faces
