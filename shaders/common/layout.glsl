@@ -246,7 +246,7 @@ struct GpuSolverState {
 // sum per terms group: (energy, magnitude scale, kinetic energy, 0).
 #define GLC_ENERGY_GROUPS 256 // groups of the terms dispatch; the decide group sums their partials
 struct GpuEnergyGuard {
-    float startTotal;     // J: the reference: the lowest total accepted (the start of the substep at most)
+    float startTotal;     // J: the total energy at the start of the substep (the last accepted state's)
     float startMagnitude; // J: the magnitude scale of its terms (the resolution's base)
     uint hasStart;        // 0 until a total was recorded
     float scale;          // the velocity scale the last decide chose (1: none)
