@@ -88,6 +88,7 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"NodeToiBuf", GLC_BIND_NODE_TOI},
     {"ObjectToiBuf", GLC_BIND_OBJECT_TOI},
     {"TangledBuf", GLC_BIND_TANGLED},
+    {"EnergyGuardBuf", GLC_BIND_ENERGY_GUARD},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {
