@@ -79,34 +79,31 @@ void ImplicitSolverPass::setContactWords(const gl::ComputeProgram& program) cons
     program.set("u_contactRecords", static_cast<std::uint32_t>(contactRecordsWord()));
 }
 
+namespace {
+/// `count` items of type T from word `word` of the contact data.
+template <typename T>
+std::vector<T> downloadItems(const gl::Buffer& data, std::size_t word, std::size_t count) {
+    std::vector<T> items(count);
+    if (!items.empty()) data.download(word * sizeof(std::uint32_t), items.size() * sizeof(T), items.data());
+    return items;
+}
+} // namespace
+
 std::vector<gpu::GpuImplicitContact> ImplicitSolverPass::downloadContactRecords() const {
-    std::vector<gpu::GpuImplicitContact> records(m_records);
-    if (!records.empty())
-        m_contactData.download(contactRecordsWord() * sizeof(std::uint32_t),
-                               records.size() * sizeof(gpu::GpuImplicitContact), records.data());
-    return records;
+    return downloadItems<gpu::GpuImplicitContact>(m_contactData, contactRecordsWord(), m_records);
 }
 
 std::vector<std::uint32_t> ImplicitSolverPass::downloadContactRecordSlots() const {
-    std::vector<std::uint32_t> slots(m_records);
-    if (!slots.empty())
-        m_contactData.download(contactSlotsWord() * sizeof(std::uint32_t),
-                               slots.size() * sizeof(std::uint32_t), slots.data());
-    return slots;
+    return downloadItems<std::uint32_t>(m_contactData, contactSlotsWord(), m_records);
 }
 
 std::vector<std::uint32_t> ImplicitSolverPass::downloadNodeContactOffsets() const {
-    std::vector<std::uint32_t> offsets(std::size_t{m_nodeCount} + 1);
-    m_contactData.download(0, offsets.size() * sizeof(std::uint32_t), offsets.data());
-    return offsets;
+    return downloadItems<std::uint32_t>(m_contactData, 0, std::size_t{m_nodeCount} + 1);
 }
 
 std::vector<std::uint32_t> ImplicitSolverPass::downloadNodeContactList() const {
-    std::vector<std::uint32_t> entries(downloadNodeContactOffsets().back());
-    if (!entries.empty())
-        m_contactData.download(std::size_t{contactEntriesWord()} * sizeof(std::uint32_t),
-                               entries.size() * sizeof(std::uint32_t), entries.data());
-    return entries;
+    return downloadItems<std::uint32_t>(m_contactData, contactEntriesWord(),
+                                        downloadNodeContactOffsets().back());
 }
 
 void ImplicitSolverPass::buildContactRows(const DeviceBuffers& b, const ImplicitContacts& contacts) const {
