@@ -18,6 +18,8 @@
 #include "passes/collision_detection.hpp"
 #include "support/collision_buffers.hpp"
 
+#include <glcollide/gl_info.hpp>
+
 #include <gtest/gtest.h>
 
 #include <glm/common.hpp>
@@ -216,18 +218,27 @@ TEST_P(ContinuousDetectionGl, SweptCandidatesAndTimesOfImpactMatchTheTwinAndMiss
     EXPECT_EQ(coverage.vertexFaceMissing, 0u) << "of " << coverage.vertexFaceNeeded;
     EXPECT_EQ(coverage.edgeEdgeMissing, 0u) << "of " << coverage.edgeEdgeNeeded;
 
-    const cpu::FeatureCcdResult twin =
-        cpu::featureCcd(m.model.faceIndices, m.x0, m.x1, features, kBudget, 0.0f);
     const std::vector<float> toi = readNodeToi(detection, m.x0.size());
-    EXPECT_EQ(toi, twin.nodeToi) << "per-node times of impact: the GPU's and the same GLSL as C++";
-    EXPECT_EQ(counts.ccdVertexFaceHits, twin.vertexFaceHits);
-    EXPECT_EQ(counts.ccdEdgeEdgeHits, twin.edgeEdgeHits);
-    EXPECT_EQ(counts.ccdCapped, twin.capped);
-    EXPECT_EQ(counts.ccdBoxes, twin.boxes);
-    EXPECT_EQ(counts.ccdEarliestToi, twin.earliestToi);
+    // Equal to the same GLSL compiled as C++ where the GPU evaluates it as written: llvmpipe does
+    // (no contraction, no reordering). Another compiler may contract or reorder the float search,
+    // which changes how many boxes it needs and may move a time of impact, never its soundness
+    // (decision 0021): on an H200 at bd8506c every answer matched but the box count (61,201
+    // against 61,028). There only what holds on any device is checked: the oracle below.
+    if (queryGlInfo().renderer.find("llvmpipe") != std::string::npos) {
+        const cpu::FeatureCcdResult twin =
+            cpu::featureCcd(m.model.faceIndices, m.x0, m.x1, features, kBudget, 0.0f);
+        EXPECT_EQ(toi, twin.nodeToi) << "per-node times of impact: the GPU's and the same GLSL as C++";
+        EXPECT_EQ(counts.ccdVertexFaceHits, twin.vertexFaceHits);
+        EXPECT_EQ(counts.ccdEdgeEdgeHits, twin.edgeEdgeHits);
+        EXPECT_EQ(counts.ccdCapped, twin.capped);
+        EXPECT_EQ(counts.ccdBoxes, twin.boxes);
+        EXPECT_EQ(counts.ccdEarliestToi, twin.earliestToi);
+    }
 
     const OracleTally oracle = checkAgainstOracle(m, features, toi);
     EXPECT_EQ(oracle.missed, 0) << oracle.touching << " feature pairs touch during the substep";
+    // No false negatives: every pair that touches is among the "may touch" answers.
+    EXPECT_GE(counts.ccdVertexFaceHits + counts.ccdEdgeEdgeHits, static_cast<std::uint32_t>(oracle.touching));
     if (family == Family::PassThrough || family == Family::Grid) {
         EXPECT_GT(oracle.touching, 0);
     }

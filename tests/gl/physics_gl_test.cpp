@@ -265,10 +265,13 @@ TEST(PhysicsGl, ImplicitHangingClothWithStiffness1e5IsStableAtOneSubstepPerFrame
     // tolerance, 10⁻⁴ relative); a step that amplifies leaves it within frames.
     EXPECT_LT(highest, 1.5 * e0);
     // Independent of that number, it is not growing: below the start at the end (measured 3.04 J
-    // against 4.41 J), and never again above the energy it had after 0.5 s in the second half
-    // (measured: 4.40 J after 0.5 s, 3.04 J after 1 s, falling but for rises of a few mJ).
+    // against 4.41 J on llvmpipe, 3.05 J on an H200), and the second half never reaches the first
+    // half's peak (an amplifying step would). Not "never above the energy after 0.5 s": that
+    // depends on the swing's phase, which rounding moves (H200 at bd8506c: 4.27 J after 0.5 s,
+    // 4.50 J later, against llvmpipe's 4.40 J falling).
     EXPECT_LT(energy[kFrames], e0);
-    EXPECT_LT(*std::max_element(energy.begin() + kFrames / 2 + 1, energy.end()), energy[kFrames / 2]);
+    const double firstHalfPeak = *std::max_element(energy.begin(), energy.begin() + kFrames / 2 + 1);
+    EXPECT_LT(*std::max_element(energy.begin() + kFrames / 2 + 1, energy.end()), firstHalfPeak);
     double lowest = 10.0;
     for (const glm::dvec3& x : engine.readPositions()) lowest = std::min(lowest, x.y);
     // Stiff structural springs: the 1 m cloth hangs from y = 1.5 m and stretches little (measured
