@@ -46,7 +46,9 @@ struct EngineOptions {
     /// Detect non-finite states on the device: NodeUpdate tests every new position and velocity
     /// and records the first offending node; step() reads that 16-byte record once per frame (a
     /// wait for the GPU at the frame's end, which gpuTiming waits for anyway) until it is set, and
-    /// reports it in StepStats::nonFinite. Off: no test, no read.
+    /// reports it in StepStats::nonFinite. Also checks that the GPU completed the frame (a word
+    /// written after it reads back), or step() throws: a lost context runs nothing
+    /// (docs/integration.md). Off: no test, no read.
     bool checkFinite = true;
     /// The on-device self-check of robust precision, run at construction when the scene's
     /// collisions use robust precision and no pass on this device, driver and shader is remembered

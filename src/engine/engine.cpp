@@ -523,7 +523,9 @@ void Engine::Impl::checkFrameCompleted() {
     // A lost context (a device reset, a memory fault) executes nothing and reads back nothing, so
     // its frames would look simulated: on an H200 at bd8506c a 473K-face run went on with every
     // pass timed at 0 ms and the state frozen, and `run` printed success. The GPU writes the
-    // frame's number after the frame's commands; a word never written fails the frame.
+    // frame's number after the frame's commands; a word never written fails the frame. Part of
+    // EngineOptions::checkFinite, whose read waits for the frame anyway: without it, no sync.
+    if (!options.checkFinite) return;
     constexpr std::uint32_t kNeverWritten = 0xffffffffu;
     const std::uint32_t expected = static_cast<std::uint32_t>(stats.frame % kNeverWritten);
     if (!frameStamp) frameStamp = gl::Buffer("frameStamp", sizeof expected);
