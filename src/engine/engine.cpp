@@ -87,7 +87,7 @@ struct Engine::Impl {
     StepStats stats;
     SetupStats setup;
     std::vector<std::uint32_t> heavyNodes; ///< nodes with more than kHeavyRow springs
-    gl::Buffer frameStamp; ///< checkFrameCompleted's word (made on first use)
+    gl::Buffer frameStamp;                 ///< checkFrameCompleted's word (made on first use)
 
     void chooseSubsteps();
     gl::Buffer makeBuffer(passes::BufferId id);

@@ -5,6 +5,7 @@
 
 #include "benchkit/bvh_experiment.hpp"
 #include "benchkit/ccd_experiment.hpp"
+#include "benchkit/experiments.hpp"
 #include "benchkit/folded_cloth.hpp"
 #include "benchkit/oscillator.hpp"
 #include "benchkit/report.hpp"
@@ -20,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <numbers>
 #include <set>
@@ -48,6 +50,26 @@ std::string suiteWith(const std::string& experimentFields) {
 
 std::string sceneList() {
     return std::string(R"("scenes": [{"name": "s", "scene": )") + kScene + "}]";
+}
+
+// Every suite shipped in bench/suites loads, and every configuration of every scene it names
+// parses (the scene reader's own checks, mesh files included): a suite edited or a scene moved
+// fails here, not in a long benchmark run.
+TEST(BenchSuites, EveryShippedSuiteLoadsAndEveryConfigOfItsScenesParses) {
+    int suites = 0;
+    for (const auto& file : std::filesystem::directory_iterator(GLCOLLIDE_SOURCE_DIR "/bench/suites")) {
+        if (file.path().extension() != ".json") continue;
+        ++suites;
+        SCOPED_TRACE(file.path().filename().string());
+        const Suite suite = loadSuite(file.path());
+        EXPECT_FALSE(suite.experiments.empty());
+        for (const Experiment& e : suite.experiments)
+            for (const SceneEntry& scene : e.scenes)
+                for (const ConfigEntry& config : e.configs)
+                    EXPECT_NO_THROW(buildScene(scene, config)) << scene.source;
+    }
+    EXPECT_GE(suites, 8)
+        << "bench/suites: bvh, default, dynamics, full, ogc_layers, response, response_shipped, smoke";
 }
 
 TEST(BenchkitSuite, BuiltInAndShippedSuitesParse) {
