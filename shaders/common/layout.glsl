@@ -83,12 +83,18 @@
 #define GLC_BIND_ENERGY_GUARD 55          // GpuEnergyGuard: the energy guard's sums and counts (decision 0024)
 #define GLC_BIND_FEATURE_OWNERS 53        // uint[6*faces]: owner face of corners 0..2, then of edges 0..2 (FeaturePairs, continuous)
                                           // (SafeStep, decision 0024), bits as GLC_BIND_NODE_TOI
+// Radial view-based culling's classification (RadialClassify, docs/culling.md).
+#define GLC_BIND_RADIAL_OBSERVERS 56      // vec4[2 * observers]: each observer's position at t = 0, then at t = 1
+#define GLC_BIND_RADIAL_FACE_OBSERVER 57  // uint[faces]: the face's observer, or GLC_RADIAL_NO_OBSERVER
+#define GLC_BIND_RADIAL_POSITIVE 58       // uint[(faces + 31) / 32]: bit f % 32 of word f / 32 set when face f
+                                          // is proven positive for its observer over the substep
+#define GLC_RADIAL_NO_OBSERVER 0xffffffffu
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 56
+#define GLC_BINDING_COUNT 59
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a

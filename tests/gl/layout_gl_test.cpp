@@ -89,6 +89,10 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"ObjectToiBuf", GLC_BIND_OBJECT_TOI},
     {"TangledBuf", GLC_BIND_TANGLED},
     {"EnergyGuardBuf", GLC_BIND_ENERGY_GUARD},
+    // radial view-based culling (src/passes/radial_classify.cpp)
+    {"RadialObserversBuf", GLC_BIND_RADIAL_OBSERVERS},
+    {"RadialFaceObserverBuf", GLC_BIND_RADIAL_FACE_OBSERVER},
+    {"RadialPositiveBuf", GLC_BIND_RADIAL_POSITIVE},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {

@@ -1,0 +1,153 @@
+// RadialClassify (radial view-based culling's classification, docs/culling.md) on the device:
+// the GPU's mask against the same GLSL compiled as C++ (cpu::radialPositiveMask: bit-identical
+// where the GPU evaluates the GLSL as written, llvmpipe), and on every device against exact
+// rational arithmetic (a face the GPU proves positive has four exactly positive Bernstein
+// coefficients, so phi > 0 over the whole substep). Surfaces: the sphere generator's closed
+// surface with its observer at the centre, at rest (every face positive), jittered, crumpled so
+// that some faces turn their back on the observer, and with an observer outside.
+
+#include "cpu/radial_twin.hpp"
+#include "passes/radial_classify.hpp"
+#include "support/collision_buffers.hpp"
+
+#include <glcollide/error.hpp>
+#include <glcollide/gl_info.hpp>
+#include <glcollide/scene.hpp>
+
+#include <gmpxx.h>
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <random>
+#include <string>
+
+namespace glcollide {
+namespace {
+
+struct Surface {
+    std::vector<glm::vec3> x0;
+    std::vector<std::uint32_t> faces;
+};
+
+/// The sphere generator's surface (radius 0.5 m around the origin, faces outward).
+Surface sphereSurface(int subdivisions) {
+    const std::string json = R"({"format_version": 1, "effects": ["gravity"], "time": {"dt": 0.01, "frames": 1},
+      "objects": [{"name": "ball", "generator": {"type": "sphere", "radius": 0.5, "subdivisions": )" +
+                             std::to_string(subdivisions) + R"(}, "mass": 1}]})";
+    const Scene scene = parseScene(json, ".", "sphere");
+    Surface s;
+    for (const glm::dvec3& p : scene.bodies.at(0).positions) s.x0.emplace_back(p);
+    for (const auto& f : scene.bodies.at(0).faces) s.faces.insert(s.faces.end(), f.begin(), f.end());
+    return s;
+}
+
+mpq_class q(float v) {
+    return mpq_class(static_cast<double>(v));
+}
+
+/// The four exact Bernstein coefficients of phi for one face and observer are all > 0.
+bool exactlyPositive(const std::array<glm::vec3, 4>& s, const std::array<glm::vec3, 4>& e) {
+    const auto diff = [](const glm::vec3& a, const glm::vec3& b) {
+        return std::array<mpq_class, 3>{q(a.x) - q(b.x), q(a.y) - q(b.y), q(a.z) - q(b.z)};
+    };
+    const auto triple = [](const std::array<mpq_class, 3>& a, const std::array<mpq_class, 3>& b,
+                           const std::array<mpq_class, 3>& c) -> mpq_class {
+        return (a[1] * b[2] - a[2] * b[1]) * c[0] + (a[2] * b[0] - a[0] * b[2]) * c[1] +
+               (a[0] * b[1] - a[1] * b[0]) * c[2];
+    };
+    const auto a0 = diff(s[1], s[0]), b0 = diff(s[2], s[0]), c0 = diff(s[0], s[3]);
+    const auto a1 = diff(e[1], e[0]), b1 = diff(e[2], e[0]), c1 = diff(e[0], e[3]);
+    return sgn(triple(a0, b0, c0)) > 0 && sgn(triple(a1, b1, c1)) > 0 &&
+           sgn(triple(a1, b0, c0) + triple(a0, b1, c0) + triple(a0, b0, c1)) > 0 &&
+           sgn(triple(a1, b1, c0) + triple(a1, b0, c1) + triple(a0, b1, c1)) > 0;
+}
+
+struct Outcome {
+    std::uint32_t positive = 0, faces = 0;
+};
+
+/// Classifies on the GPU and checks it against the twin (llvmpipe) and the exact coefficients.
+Outcome classify(const Surface& s, const std::vector<glm::vec3>& x1, const std::vector<std::uint32_t>& faceObserver,
+                 const std::vector<passes::RadialObserver>& observers) {
+    passes::DeviceBuffers b = test::collisionBuffers(s.x0, s.faces);
+    b.predictedPositions = gl::makeBuffer("predictedPositions", test::positionsWithUnitW(x1));
+    passes::RadialClassifyPass pass(faceObserver, static_cast<std::uint32_t>(observers.size()));
+    pass.setObservers(observers);
+    pass.dispatch(b);
+    const std::vector<std::uint32_t> mask = pass.readMask();
+
+    std::vector<glm::vec3> ends;
+    for (const passes::RadialObserver& o : observers) ends.insert(ends.end(), {o.start, o.end});
+    // llvmpipe evaluates the GLSL as written: there the mask is the twin's bit for bit. Another
+    // compiler may round differently (and prove a few more or fewer faces); the exact check below
+    // holds everywhere.
+    if (queryGlInfo().renderer.find("llvmpipe") != std::string::npos) {
+        EXPECT_EQ(mask, cpu::radialPositiveMask(s.faces, s.x0, x1, faceObserver, ends));
+    }
+    Outcome out;
+    out.faces = static_cast<std::uint32_t>(faceObserver.size());
+    for (std::uint32_t f = 0; f < out.faces; ++f) {
+        if ((mask[f / 32] >> (f % 32) & 1u) == 0u) continue;
+        ++out.positive;
+        const std::uint32_t o = faceObserver[f];
+        EXPECT_NE(o, passes::kNoRadialObserver) << "face " << f << " has no observer but is positive";
+        if (o == passes::kNoRadialObserver) continue;
+        const std::uint32_t* n = &s.faces[3 * std::size_t{f}];
+        EXPECT_TRUE(exactlyPositive({s.x0[n[0]], s.x0[n[1]], s.x0[n[2]], observers[o].start},
+                                    {x1[n[0]], x1[n[1]], x1[n[2]], observers[o].end}))
+            << "face " << f << ": proven positive on the GPU, not exactly positive";
+    }
+    for (std::size_t w = out.faces / 32; w < mask.size(); ++w) // bits past the last face stay clear
+        EXPECT_EQ(mask[w] >> (out.faces % 32), 0u);
+    return out;
+}
+
+TEST(RadialClassifyGl, AClosedSurfaceAroundItsObserver) {
+    const Surface s = sphereSurface(3); // 1,280 faces
+    const std::uint32_t faces = static_cast<std::uint32_t>(s.faces.size() / 3);
+    const std::vector<std::uint32_t> all(faces, 0u);
+    const std::vector<passes::RadialObserver> centre = {{glm::vec3(0.0f), glm::vec3(0.0f)}};
+
+    // At rest: every face of a convex closed surface is positive for its centre.
+    EXPECT_EQ(classify(s, s.x0, all, centre).positive, faces);
+
+    // Jittered by up to 2 mm (the faces are ~7 cm) and the observer moving 1 cm: still all.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    std::vector<glm::vec3> x1 = s.x0;
+    for (glm::vec3& x : x1) x += 0.002f * glm::vec3(u(rng), u(rng), u(rng));
+    EXPECT_EQ(classify(s, x1, all, {{glm::vec3(0.0f), glm::vec3(0.01f, 0.0f, 0.0f)}}).positive, faces);
+
+    // Crumpled: nodes of one cap pushed through the centre to the far side during the substep.
+    // The faces around them turn their back on the observer: not positive, the rest still are.
+    std::vector<glm::vec3> crumpled = s.x0;
+    std::uint32_t moved = 0;
+    for (glm::vec3& x : crumpled)
+        if (x.y > 0.4f) x.y = -0.2f, ++moved;
+    ASSERT_GT(moved, 10u);
+    const Outcome c = classify(s, crumpled, all, centre);
+    EXPECT_LT(c.positive, faces);
+    EXPECT_GT(c.positive, faces / 2);
+
+    // Faces without an observer are never positive. An observer outside the ball, 4 radii from
+    // its centre, is behind exactly the faces it cannot see: all but the visible cap, which covers
+    // (1 - 1/4) / 2 = 37.5 % of the sphere, so about 62.5 % of the faces are positive.
+    std::vector<std::uint32_t> half(faces, passes::kNoRadialObserver);
+    for (std::uint32_t f = 0; f < faces; f += 2) half[f] = 0u;
+    EXPECT_EQ(classify(s, s.x0, half, centre).positive, (faces + 1) / 2);
+    const Outcome outside = classify(s, s.x0, all, {{glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(0.0f, 2.0f, 0.0f)}});
+    RecordProperty("crumpled_positive", static_cast<int>(c.positive));
+    RecordProperty("outside_positive", static_cast<int>(outside.positive));
+    EXPECT_GT(outside.positive, faces / 2);
+    EXPECT_LT(outside.positive, faces * 3 / 4);
+}
+
+TEST(RadialClassifyGl, BadObserverIndicesAreRefused) {
+    const std::vector<std::uint32_t> outOfRange = {0u, 3u};
+    EXPECT_THROW(passes::RadialClassifyPass(outOfRange, 2u), Error);
+    passes::RadialClassifyPass pass(std::vector<std::uint32_t>{0u, passes::kNoRadialObserver}, 1u);
+    EXPECT_THROW(pass.setObservers({}), Error);
+}
+
+} // namespace
+} // namespace glcollide
