@@ -5,7 +5,8 @@
 namespace glcollide::cpu {
 
 std::vector<std::uint32_t> radialPositiveMask(const std::vector<std::uint32_t>& faceIndices,
-                                              const std::vector<glm::vec3>& x0, const std::vector<glm::vec3>& x1,
+                                              const std::vector<glm::vec3>& x0,
+                                              const std::vector<glm::vec3>& x1,
                                               const std::vector<std::uint32_t>& faceObserver,
                                               const std::vector<glm::vec3>& observers) {
     const std::size_t faces = faceObserver.size();

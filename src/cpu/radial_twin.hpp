@@ -14,7 +14,8 @@ namespace glcollide::cpu {
 /// positive for its observer over x0 → x1; observers[2k], observers[2k + 1]: observer k at t = 0
 /// and t = 1; faceObserver[f] = 0xffffffff: no observer, never positive.
 std::vector<std::uint32_t> radialPositiveMask(const std::vector<std::uint32_t>& faceIndices,
-                                              const std::vector<glm::vec3>& x0, const std::vector<glm::vec3>& x1,
+                                              const std::vector<glm::vec3>& x0,
+                                              const std::vector<glm::vec3>& x1,
                                               const std::vector<std::uint32_t>& faceObserver,
                                               const std::vector<glm::vec3>& observers);
 

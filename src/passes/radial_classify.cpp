@@ -11,11 +11,13 @@
 
 namespace glcollide::passes {
 
-RadialClassifyPass::RadialClassifyPass(const std::vector<std::uint32_t>& faceObserver, std::uint32_t observerCount)
+RadialClassifyPass::RadialClassifyPass(const std::vector<std::uint32_t>& faceObserver,
+                                       std::uint32_t observerCount)
     : m_faceCount(static_cast<std::uint32_t>(faceObserver.size())), m_observerCount(observerCount),
       m_faceObserver(gl::makeBuffer("radialFaceObserver", faceObserver)),
       m_observers("radialObservers", std::size_t{2} * observerCount * sizeof(glm::vec4)),
-      m_mask("radialPositive", ((m_faceCount + 31u) / 32u) * sizeof(std::uint32_t)), m_program("radial_classify") {
+      m_mask("radialPositive", ((m_faceCount + 31u) / 32u) * sizeof(std::uint32_t)),
+      m_program("radial_classify") {
     for (std::size_t f = 0; f < faceObserver.size(); ++f)
         if (faceObserver[f] != kNoRadialObserver && faceObserver[f] >= observerCount)
             throw Error(std::string(kName) + ": face " + std::to_string(f) + " names observer " +

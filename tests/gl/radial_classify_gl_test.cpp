@@ -31,9 +31,10 @@ struct Surface {
 
 /// The sphere generator's surface (radius 0.5 m around the origin, faces outward).
 Surface sphereSurface(int subdivisions) {
-    const std::string json = R"({"format_version": 1, "effects": ["gravity"], "time": {"dt": 0.01, "frames": 1},
+    const std::string json =
+        R"({"format_version": 1, "effects": ["gravity"], "time": {"dt": 0.01, "frames": 1},
       "objects": [{"name": "ball", "generator": {"type": "sphere", "radius": 0.5, "subdivisions": )" +
-                             std::to_string(subdivisions) + R"(}, "mass": 1}]})";
+        std::to_string(subdivisions) + R"(}, "mass": 1}]})";
     const Scene scene = parseScene(json, ".", "sphere");
     Surface s;
     for (const glm::dvec3& p : scene.bodies.at(0).positions) s.x0.emplace_back(p);
@@ -67,7 +68,8 @@ struct Outcome {
 };
 
 /// Classifies on the GPU and checks it against the twin (llvmpipe) and the exact coefficients.
-Outcome classify(const Surface& s, const std::vector<glm::vec3>& x1, const std::vector<std::uint32_t>& faceObserver,
+Outcome classify(const Surface& s, const std::vector<glm::vec3>& x1,
+                 const std::vector<std::uint32_t>& faceObserver,
                  const std::vector<passes::RadialObserver>& observers) {
     passes::DeviceBuffers b = test::collisionBuffers(s.x0, s.faces);
     b.predictedPositions = gl::makeBuffer("predictedPositions", test::positionsWithUnitW(x1));
@@ -135,7 +137,8 @@ TEST(RadialClassifyGl, AClosedSurfaceAroundItsObserver) {
     std::vector<std::uint32_t> half(faces, passes::kNoRadialObserver);
     for (std::uint32_t f = 0; f < faces; f += 2) half[f] = 0u;
     EXPECT_EQ(classify(s, s.x0, half, centre).positive, (faces + 1) / 2);
-    const Outcome outside = classify(s, s.x0, all, {{glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(0.0f, 2.0f, 0.0f)}});
+    const Outcome outside =
+        classify(s, s.x0, all, {{glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(0.0f, 2.0f, 0.0f)}});
     RecordProperty("crumpled_positive", static_cast<int>(c.positive));
     RecordProperty("outside_positive", static_cast<int>(outside.positive));
     EXPECT_GT(outside.positive, faces / 2);

@@ -89,8 +89,8 @@ mpq_class exactPhi(const Case& c, const mpq_class& t) {
 }
 
 bool proven(const Case& c) {
-    return shader::glcRadialPositive(c.start[0], c.start[1], c.start[2], c.start[3], c.end[0], c.end[1], c.end[2],
-                                     c.end[3]);
+    return shader::glcRadialPositive(c.start[0], c.start[1], c.start[2], c.start[3], c.end[0], c.end[1],
+                                     c.end[2], c.end[3]);
 }
 
 bool exactlyPositive(const Case& c) {
@@ -121,7 +121,8 @@ TEST(RadialSign, BernsteinCoefficientsReproduceTheCubicExactly) {
         const std::array<mpq_class, 4> b = exactCoefficients(c); // B0, 3 B1, 3 B2, B3
         for (int k = 0; k <= 7; ++k) {
             const mpq_class t = fraction(k, 7), s = 1 - t;
-            const mpq_class bernstein = b[0] * s * s * s + b[1] * t * s * s + b[2] * t * t * s + b[3] * t * t * t;
+            const mpq_class bernstein =
+                b[0] * s * s * s + b[1] * t * s * s + b[2] * t * t * s + b[3] * t * t * t;
             EXPECT_EQ(bernstein, exactPhi(c, t)) << "case " << n << ", t = " << k << "/7";
         }
     }
@@ -132,7 +133,8 @@ TEST(RadialSign, BernsteinCoefficientsReproduceTheCubicExactly) {
 int expectSound(const Case& c, const char* family, int index) {
     const bool p = proven(c);
     if (p) {
-        EXPECT_TRUE(exactlyPositive(c)) << family << " " << index << ": proven positive but a coefficient is <= 0";
+        EXPECT_TRUE(exactlyPositive(c))
+            << family << " " << index << ": proven positive but a coefficient is <= 0";
         for (int k = 0; k <= 8; ++k) EXPECT_GT(sgn(exactPhi(c, fraction(k, 8))), 0) << family << " " << index;
     }
     return p ? 1 : 0;
@@ -176,8 +178,10 @@ TEST(RadialSign, ProvenPositiveIsExactlyPositiveOnHardFamilies) {
     // Every magnitude float allows, subnormal and overflowing ones included: 2^k for k = -140 ... 120.
     for (int k = -140; k <= 120; k += 4) {
         for (int n = 0; n < 40; ++n, ++cases) {
-            Case c = randomCase(rng, glm::vec3(u(rng), u(rng), u(rng)), 0.05f, 0.01f * static_cast<float>(1 + n % 3), 0.02f);
-            for (int i = 0; i < 4; ++i) c.start[i] = std::ldexp(1.0f, k) * c.start[i], c.end[i] = std::ldexp(1.0f, k) * c.end[i];
+            Case c = randomCase(rng, glm::vec3(u(rng), u(rng), u(rng)), 0.05f,
+                                0.01f * static_cast<float>(1 + n % 3), 0.02f);
+            for (int i = 0; i < 4; ++i)
+                c.start[i] = std::ldexp(1.0f, k) * c.start[i], c.end[i] = std::ldexp(1.0f, k) * c.end[i];
             provenCount += expectSound(c, "scaled", k * 100 + n);
         }
     }
