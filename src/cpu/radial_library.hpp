@@ -1,19 +1,30 @@
 #pragma once
-// C++ view of radial view-based culling's classification (shaders/common/radial_sign.glsl),
-// compiled as C++ like the float CCD (cpu/ccd_library.hpp). Header-only on purpose: each
+// C++ view of radial view-based culling's classification and footprints
+// (shaders/common/radial_sign.glsl, radial_footprint.glsl), compiled as C++ like the float CCD
+// (cpu/ccd_library.hpp). Header-only on purpose: each
 // translation unit compiles it with its own flags, which is how the relaxed-float test build runs
 // it under fast-math, FMA contraction and FTZ/DAZ.
 
 #include "cpu/shader_library.hpp"
 
+#include <glm/exponential.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+
 namespace glcollide::shader {
 namespace {
+
+using glm::dot;
+using glm::length;
+using glm::sqrt;
+using vec4 = glm::vec4;
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
 #pragma GCC diagnostic ignored "-Wunused-variable"
 #define GLC_PRECISE // C++ compilers evaluate the differences as written (no GLSL `precise` needed)
 #include "common/radial_sign.glsl"
+#include "common/radial_footprint.glsl"
 #undef GLC_PRECISE
 #pragma GCC diagnostic pop
 

@@ -1,0 +1,82 @@
+// Radial view-based culling's footprints (decision 0025, "Decision" 3): a cone of directions, seen
+// from the observer, that holds every direction in which a triangle can lie during the substep.
+// Compiled as GLSL and as C++ (src/cpu/radial_library.hpp); tested against sampled motions
+// (tests/unit/radial_footprint_test.cpp).
+//
+//   vec4 glcRadialFootprint(p0, p1, p2, q, p0End, p1End, p2End, qEnd)
+//        (unit axis, cosine of the half-angle). Every direction (x - q(t)) / |x - q(t)| with x in
+//        the triangle at t and t in [0, 1] is within the half-angle of the axis. A cosine of -1
+//        means "every direction" (the observer may be in the swept triangle's hull, or the
+//        directions span a half-space or more).
+//   bool glcRadialFootprintsMeet(vec4 a, vec4 b)
+//        False only when no direction is in both cones (conservative: true when in doubt).
+//
+// Why the cone holds the footprint: x(t) is a convex combination of the six vertex positions and
+// q(t) of the observer's two, so x(t) - q(t) lies in the convex hull H of the 12 differences
+// (vertex position minus observer position). When the 12 differences are all within an angle
+// below 90 degrees of an axis, so is every point of H (a circular cone of half-angle < 90 degrees
+// is convex), and so are their directions. Rounding: the differences are computed in float
+// (relative error below 2^-23 per coordinate, a direction error below 2^-21 rad), the cosines of
+// their angles to the axis too (a few ulps); GLC_FOOTPRINT_SLACK, subtracted from the cosine,
+// covers both with a wide margin (it widens the cone by about 10^-2 degrees at most).
+//
+// GLSL subset shared with C++: no swizzles, no out/inout parameters, float literals with `f`.
+
+#ifndef GLC_RADIAL_FOOTPRINT_GLSL
+#define GLC_RADIAL_FOOTPRINT_GLSL
+
+// Cosine slack: a cone's cosine is lowered by this much, and cones meet when their axes' cosine is
+// within this much of the limit. Range > 2^-18 (the rounding above); suggested 2^-14 (a cone of
+// half-angle theta widens by at most 2^-14 / sin(theta) rad, and never for theta near 0 by more
+// than sqrt(2 * 2^-14) ~ 0.011 rad).
+const float GLC_FOOTPRINT_SLACK = 6.103515625e-5f; // 2^-14
+
+vec4 glcRadialEverywhere() {
+    return vec4(0.0f, 0.0f, 1.0f, -1.0f);
+}
+
+// The cosine of the angle between the unit axis and v (v != 0).
+float glcRadialCosine(vec3 axis, vec3 v) {
+    return dot(axis, v) / length(v);
+}
+
+vec4 glcRadialFootprint(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, vec3 p1End, vec3 p2End, vec3 qEnd) {
+    // The 12 differences: each of the 6 vertex positions minus each of the 2 observer positions.
+    vec3 d0 = p0 - q, d1 = p1 - q, d2 = p2 - q, d3 = p0End - q, d4 = p1End - q, d5 = p2End - q;
+    vec3 e0 = p0 - qEnd, e1 = p1 - qEnd, e2 = p2 - qEnd, e3 = p0End - qEnd, e4 = p1End - qEnd, e5 = p2End - qEnd;
+    float shortest = min(min(min(length(d0), length(d1)), min(length(d2), length(d3))),
+                         min(min(length(d4), length(d5)), min(min(length(e0), length(e1)),
+                                                               min(min(length(e2), length(e3)), min(length(e4), length(e5))))));
+    if (!(shortest > 0.0f)) return glcRadialEverywhere(); // also NaN
+    vec3 sum = d0 / length(d0) + d1 / length(d1) + d2 / length(d2) + d3 / length(d3) + d4 / length(d4) +
+               d5 / length(d5) + e0 / length(e0) + e1 / length(e1) + e2 / length(e2) + e3 / length(e3) +
+               e4 / length(e4) + e5 / length(e5);
+    float size = length(sum);
+    if (!(size > 1.0e-3f)) return glcRadialEverywhere();
+    vec3 axis = sum / size;
+    float c = min(min(min(glcRadialCosine(axis, d0), glcRadialCosine(axis, d1)),
+                      min(glcRadialCosine(axis, d2), glcRadialCosine(axis, d3))),
+                  min(min(glcRadialCosine(axis, d4), glcRadialCosine(axis, d5)),
+                      min(min(glcRadialCosine(axis, e0), glcRadialCosine(axis, e1)),
+                          min(min(glcRadialCosine(axis, e2), glcRadialCosine(axis, e3)),
+                              min(glcRadialCosine(axis, e4), glcRadialCosine(axis, e5))))));
+    c -= GLC_FOOTPRINT_SLACK;
+    // Half-angles of 90 degrees or more: the hull may hold directions beyond the 12 (the cone is
+    // then not convex), or the observer itself.
+    if (!(c > GLC_FOOTPRINT_SLACK)) return glcRadialEverywhere();
+    // The axis is not exactly unit after rounding: the cosines above were computed with it as it
+    // is, and the meeting test below uses it as it is, with the same slack.
+    return vec4(axis, c);
+}
+
+bool glcRadialFootprintsMeet(vec4 a, vec4 b) {
+    float ca = a.w, cb = b.w;
+    if (ca <= -1.0f || cb <= -1.0f) return true;
+    // Half-angles theta_a, theta_b in (0, 90 degrees): the cones meet when the axes' angle is at
+    // most theta_a + theta_b, i.e. cos(angle) >= cos(theta_a + theta_b) = ca cb - sa sb.
+    float sa = sqrt(max(1.0f - ca * ca, 0.0f)), sb = sqrt(max(1.0f - cb * cb, 0.0f));
+    float axes = dot(vec3(a.x, a.y, a.z), vec3(b.x, b.y, b.z));
+    return axes >= ca * cb - sa * sb - GLC_FOOTPRINT_SLACK;
+}
+
+#endif
