@@ -11,14 +11,15 @@
 //   bool glcRadialFootprintsMeet(vec4 a, vec4 b)
 //        False only when no direction is in both cones (conservative: true when in doubt).
 //
-// Why the cone holds the footprint: x(t) is a convex combination of the six vertex positions and
-// q(t) of the observer's two, so x(t) - q(t) lies in the convex hull H of the 12 differences
-// (vertex position minus observer position). When the 12 differences are all within an angle
-// below 90 degrees of an axis, so is every point of H (a circular cone of half-angle < 90 degrees
-// is convex), and so are their directions. Rounding: the differences are computed in float
-// (relative error below 2^-23 per coordinate, a direction error below 2^-21 rad), the cosines of
-// their angles to the axis too (a few ulps); GLC_FOOTPRINT_SLACK, subtracted from the cosine,
-// covers both with a wide margin (it widens the cone by about 10^-2 degrees at most).
+// Why the cone holds the footprint: a point of the triangle is a material point with fixed
+// barycentric weights w, so x(t) - q(t) = (1 - t) (sum w_i p_i - q) + t (sum w_i p_iEnd - qEnd)
+// lies in the convex hull H of the 6 differences p_i - q and p_iEnd - qEnd. When those 6 are all
+// within an angle below 90 degrees of an axis, so is every point of H (a circular cone of
+// half-angle < 90 degrees is convex), and so are their directions. Rounding: the differences are
+// computed in float (relative error below 2^-23 per coordinate, a direction error below 2^-21
+// rad), the cosines of their angles to the axis too (a few ulps); GLC_FOOTPRINT_SLACK, subtracted
+// from the cosine, covers both with a wide margin (it widens the cone by about 10^-2 degrees at
+// most).
 //
 // GLSL subset shared with C++: no swizzles, no out/inout parameters, float literals with `f`.
 
@@ -41,27 +42,19 @@ float glcRadialCosine(vec3 axis, vec3 v) {
 }
 
 vec4 glcRadialFootprint(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, vec3 p1End, vec3 p2End, vec3 qEnd) {
-    // The 12 differences: each of the 6 vertex positions minus each of the 2 observer positions.
-    vec3 d0 = p0 - q, d1 = p1 - q, d2 = p2 - q, d3 = p0End - q, d4 = p1End - q, d5 = p2End - q;
-    vec3 e0 = p0 - qEnd, e1 = p1 - qEnd, e2 = p2 - qEnd, e3 = p0End - qEnd, e4 = p1End - qEnd, e5 = p2End - qEnd;
-    float shortest = min(min(min(length(d0), length(d1)), min(length(d2), length(d3))),
-                         min(min(length(d4), length(d5)), min(min(length(e0), length(e1)),
-                                                               min(min(length(e2), length(e3)), min(length(e4), length(e5))))));
+    // The 6 differences: each vertex minus the observer, at the start and at the end.
+    vec3 d0 = p0 - q, d1 = p1 - q, d2 = p2 - q, e0 = p0End - qEnd, e1 = p1End - qEnd, e2 = p2End - qEnd;
+    float shortest = min(min(min(length(d0), length(d1)), length(d2)), min(min(length(e0), length(e1)), length(e2)));
     if (!(shortest > 0.0f)) return glcRadialEverywhere(); // also NaN
-    vec3 sum = d0 / length(d0) + d1 / length(d1) + d2 / length(d2) + d3 / length(d3) + d4 / length(d4) +
-               d5 / length(d5) + e0 / length(e0) + e1 / length(e1) + e2 / length(e2) + e3 / length(e3) +
-               e4 / length(e4) + e5 / length(e5);
+    vec3 sum = d0 / length(d0) + d1 / length(d1) + d2 / length(d2) + e0 / length(e0) + e1 / length(e1) +
+               e2 / length(e2);
     float size = length(sum);
     if (!(size > 1.0e-3f)) return glcRadialEverywhere();
     vec3 axis = sum / size;
-    float c = min(min(min(glcRadialCosine(axis, d0), glcRadialCosine(axis, d1)),
-                      min(glcRadialCosine(axis, d2), glcRadialCosine(axis, d3))),
-                  min(min(glcRadialCosine(axis, d4), glcRadialCosine(axis, d5)),
-                      min(min(glcRadialCosine(axis, e0), glcRadialCosine(axis, e1)),
-                          min(min(glcRadialCosine(axis, e2), glcRadialCosine(axis, e3)),
-                              min(glcRadialCosine(axis, e4), glcRadialCosine(axis, e5))))));
+    float c = min(min(min(glcRadialCosine(axis, d0), glcRadialCosine(axis, d1)), glcRadialCosine(axis, d2)),
+                  min(min(glcRadialCosine(axis, e0), glcRadialCosine(axis, e1)), glcRadialCosine(axis, e2)));
     c -= GLC_FOOTPRINT_SLACK;
-    // Half-angles of 90 degrees or more: the hull may hold directions beyond the 12 (the cone is
+    // Half-angles of 90 degrees or more: the hull may hold directions beyond the 6 (the cone is
     // then not convex), or the observer itself.
     if (!(c > GLC_FOOTPRINT_SLACK)) return glcRadialEverywhere();
     // The axis is not exactly unit after rounding: the cosines above were computed with it as it
