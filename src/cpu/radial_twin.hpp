@@ -19,4 +19,14 @@ std::vector<std::uint32_t> radialPositiveMask(const std::vector<std::uint32_t>& 
                                               const std::vector<std::uint32_t>& faceObserver,
                                               const std::vector<glm::vec3>& observers);
 
+/// Decision 0025's free faces, by brute force: face f is free when it is proven positive for its
+/// observer and its footprint cone meets the cone of no face of the same observer that is not
+/// positive. A free face cannot intersect another face of its observer's closed surface during the
+/// substep (the theorem of decision 0025, under its conditions (a) and (b)); faces of other
+/// observers and faces without one are not covered. 1 per free face.
+std::vector<std::uint8_t> radialFreeFaces(const std::vector<std::uint32_t>& faceIndices,
+                                          const std::vector<glm::vec3>& x0, const std::vector<glm::vec3>& x1,
+                                          const std::vector<std::uint32_t>& faceObserver,
+                                          const std::vector<glm::vec3>& observers);
+
 } // namespace glcollide::cpu
