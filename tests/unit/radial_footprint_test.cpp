@@ -23,8 +23,8 @@ struct Motion {
 };
 
 glm::vec4 footprint(const Motion& m) {
-    return shader::glcRadialFootprint(m.start[0], m.start[1], m.start[2], m.start[3], m.end[0], m.end[1], m.end[2],
-                                      m.end[3]);
+    return shader::glcRadialFootprint(m.start[0], m.start[1], m.start[2], m.start[3], m.end[0], m.end[1],
+                                      m.end[2], m.end[3]);
 }
 
 Motion randomMotion(std::mt19937& rng, float distance, float size, float motion) {
@@ -72,8 +72,8 @@ TEST(RadialFootprint, HoldsEveryDirectionOfTheMovingTriangle) {
                     const Motion m = randomMotion(rng, distance, size, motion);
                     const glm::vec4 cone = footprint(m);
                     everywhere += cone.w <= -1.0f ? 1 : 0;
-                    EXPECT_LE(worstOutside(m, cone, rng), 0.0)
-                        << "distance " << distance << " size " << size << " motion " << motion << " case " << n;
+                    EXPECT_LE(worstOutside(m, cone, rng), 0.0) << "distance " << distance << " size " << size
+                                                               << " motion " << motion << " case " << n;
                 }
     RecordProperty("everywhere", everywhere);
     // A small triangle far away has a narrow cone; only near or large ones span everything.
@@ -109,8 +109,10 @@ TEST(RadialFootprint, ConesSaidNotToMeetAreDisjoint) {
         ASSERT_GT(a.w, -1.0f);
         ASSERT_GT(b.w, -1.0f);
         const glm::dvec3 axisA(a.x, a.y, a.z), axisB(b.x, b.y, b.z);
-        const double axes = std::acos(std::clamp(glm::dot(axisA, axisB) / (glm::length(axisA) * glm::length(axisB)), -1.0, 1.0));
-        EXPECT_GT(axes, std::acos(static_cast<double>(a.w)) + std::acos(static_cast<double>(b.w))) << "case " << n;
+        const double axes = std::acos(
+            std::clamp(glm::dot(axisA, axisB) / (glm::length(axisA) * glm::length(axisB)), -1.0, 1.0));
+        EXPECT_GT(axes, std::acos(static_cast<double>(a.w)) + std::acos(static_cast<double>(b.w)))
+            << "case " << n;
     }
     // Random cones of about 15 degrees all over the sphere: both answers occur (measured: 786 of
     // 20,000 pairs meet).
