@@ -27,9 +27,10 @@ struct Surface {
 };
 
 Surface sphereSurface() {
-    const Scene scene = parseScene(R"({"format_version": 1, "effects": ["gravity"], "time": {"dt": 0.01, "frames": 1},
+    const Scene scene =
+        parseScene(R"({"format_version": 1, "effects": ["gravity"], "time": {"dt": 0.01, "frames": 1},
       "objects": [{"name": "ball", "generator": {"type": "sphere", "radius": 0.5, "subdivisions": 3}, "mass": 1}]})",
-                                   ".", "sphere");
+                   ".", "sphere");
     Surface s;
     // Surface nodes come first (docs/scene-format.md): the faces use only those.
     for (const glm::dvec3& p : scene.bodies.at(0).positions) s.x0.emplace_back(p);
