@@ -36,23 +36,18 @@ vec4 glcRadialEverywhere() {
     return vec4(0.0f, 0.0f, 1.0f, -1.0f);
 }
 
-// The cosine of the angle between the unit axis and v (v != 0).
-float glcRadialCosine(vec3 axis, vec3 v) {
-    return dot(axis, v) / length(v);
-}
-
 vec4 glcRadialFootprint(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, vec3 p1End, vec3 p2End, vec3 qEnd) {
     // The 6 differences: each vertex minus the observer, at the start and at the end.
     vec3 d0 = p0 - q, d1 = p1 - q, d2 = p2 - q, e0 = p0End - qEnd, e1 = p1End - qEnd, e2 = p2End - qEnd;
-    float shortest = min(min(min(length(d0), length(d1)), length(d2)), min(min(length(e0), length(e1)), length(e2)));
-    if (!(shortest > 0.0f)) return glcRadialEverywhere(); // also NaN
-    vec3 sum = d0 / length(d0) + d1 / length(d1) + d2 / length(d2) + e0 / length(e0) + e1 / length(e1) +
-               e2 / length(e2);
+    float l0 = length(d0), l1 = length(d1), l2 = length(d2), m0 = length(e0), m1 = length(e1), m2 = length(e2);
+    if (!(min(min(min(l0, l1), l2), min(min(m0, m1), m2)) > 0.0f)) return glcRadialEverywhere(); // also NaN
+    vec3 sum = d0 / l0 + d1 / l1 + d2 / l2 + e0 / m0 + e1 / m1 + e2 / m2;
     float size = length(sum);
     if (!(size > 1.0e-3f)) return glcRadialEverywhere();
     vec3 axis = sum / size;
-    float c = min(min(min(glcRadialCosine(axis, d0), glcRadialCosine(axis, d1)), glcRadialCosine(axis, d2)),
-                  min(min(glcRadialCosine(axis, e0), glcRadialCosine(axis, e1)), glcRadialCosine(axis, e2)));
+    // The cosine of each difference's angle to the axis; the smallest bounds them all.
+    float c = min(min(min(dot(axis, d0) / l0, dot(axis, d1) / l1), dot(axis, d2) / l2),
+                  min(min(dot(axis, e0) / m0, dot(axis, e1) / m1), dot(axis, e2) / m2));
     c -= GLC_FOOTPRINT_SLACK;
     // Half-angles of 90 degrees or more: the hull may hold directions beyond the 6 (the cone is
     // then not convex), or the observer itself.

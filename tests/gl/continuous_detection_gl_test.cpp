@@ -17,8 +17,7 @@
 #include "model/octree_layout.hpp"
 #include "passes/collision_detection.hpp"
 #include "support/collision_buffers.hpp"
-
-#include <glcollide/gl_info.hpp>
+#include "support/glsl_as_written.hpp"
 
 #include <gtest/gtest.h>
 
@@ -224,7 +223,7 @@ TEST_P(ContinuousDetectionGl, SweptCandidatesAndTimesOfImpactMatchTheTwinAndMiss
     // which changes how many boxes it needs and may move a time of impact, never its soundness
     // (decision 0021): on an H200 at bd8506c every answer matched but the box count (61,201
     // against 61,028). There only what holds on any device is checked: the oracle below.
-    if (queryGlInfo().renderer.find("llvmpipe") != std::string::npos) {
+    if (test::deviceEvaluatesGlslAsWritten()) {
         const cpu::FeatureCcdResult twin =
             cpu::featureCcd(m.model.faceIndices, m.x0, m.x1, features, kBudget, 0.0f);
         EXPECT_EQ(toi, twin.nodeToi) << "per-node times of impact: the GPU's and the same GLSL as C++";

@@ -6,15 +6,15 @@
 // surface with its observer at the centre, at rest (every face positive), jittered, crumpled so
 // that some faces turn their back on the observer, and with an observer outside.
 
+#include "cpu/oracle/exact_radial.hpp"
 #include "cpu/radial_twin.hpp"
 #include "passes/radial_classify.hpp"
 #include "support/collision_buffers.hpp"
+#include "support/glsl_as_written.hpp"
 
 #include <glcollide/error.hpp>
-#include <glcollide/gl_info.hpp>
 #include <glcollide/scene.hpp>
 
-#include <gmpxx.h>
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -42,27 +42,6 @@ Surface sphereSurface(int subdivisions) {
     return s;
 }
 
-mpq_class q(float v) {
-    return mpq_class(static_cast<double>(v));
-}
-
-/// The four exact Bernstein coefficients of phi for one face and observer are all > 0.
-bool exactlyPositive(const std::array<glm::vec3, 4>& s, const std::array<glm::vec3, 4>& e) {
-    const auto diff = [](const glm::vec3& a, const glm::vec3& b) {
-        return std::array<mpq_class, 3>{q(a.x) - q(b.x), q(a.y) - q(b.y), q(a.z) - q(b.z)};
-    };
-    const auto triple = [](const std::array<mpq_class, 3>& a, const std::array<mpq_class, 3>& b,
-                           const std::array<mpq_class, 3>& c) -> mpq_class {
-        return (a[1] * b[2] - a[2] * b[1]) * c[0] + (a[2] * b[0] - a[0] * b[2]) * c[1] +
-               (a[0] * b[1] - a[1] * b[0]) * c[2];
-    };
-    const auto a0 = diff(s[1], s[0]), b0 = diff(s[2], s[0]), c0 = diff(s[0], s[3]);
-    const auto a1 = diff(e[1], e[0]), b1 = diff(e[2], e[0]), c1 = diff(e[0], e[3]);
-    return sgn(triple(a0, b0, c0)) > 0 && sgn(triple(a1, b1, c1)) > 0 &&
-           sgn(triple(a1, b0, c0) + triple(a0, b1, c0) + triple(a0, b0, c1)) > 0 &&
-           sgn(triple(a1, b1, c0) + triple(a1, b0, c1) + triple(a0, b1, c1)) > 0;
-}
-
 struct Outcome {
     std::uint32_t positive = 0, faces = 0;
 };
@@ -83,7 +62,7 @@ Outcome classify(const Surface& s, const std::vector<glm::vec3>& x1,
     // llvmpipe evaluates the GLSL as written: there the mask is the twin's bit for bit. Another
     // compiler may round differently (and prove a few more or fewer faces); the exact check below
     // holds everywhere.
-    if (queryGlInfo().renderer.find("llvmpipe") != std::string::npos) {
+    if (test::deviceEvaluatesGlslAsWritten()) {
         EXPECT_EQ(mask, cpu::radialPositiveMask(s.faces, s.x0, x1, faceObserver, ends));
     }
     Outcome out;
@@ -95,8 +74,8 @@ Outcome classify(const Surface& s, const std::vector<glm::vec3>& x1,
         EXPECT_NE(o, passes::kNoRadialObserver) << "face " << f << " has no observer but is positive";
         if (o == passes::kNoRadialObserver) continue;
         const std::uint32_t* n = &s.faces[3 * std::size_t{f}];
-        EXPECT_TRUE(exactlyPositive({s.x0[n[0]], s.x0[n[1]], s.x0[n[2]], observers[o].start},
-                                    {x1[n[0]], x1[n[1]], x1[n[2]], observers[o].end}))
+        EXPECT_TRUE(cpu::exactlyRadialPositive({s.x0[n[0]], s.x0[n[1]], s.x0[n[2]], observers[o].start},
+                                               {x1[n[0]], x1[n[1]], x1[n[2]], observers[o].end}))
             << "face " << f << ": proven positive on the GPU, not exactly positive";
     }
     for (std::size_t w = out.faces / 32; w < mask.size(); ++w) // bits past the last face stay clear

@@ -6,6 +6,7 @@
 // (the filter is not vacuous). The same tests run in glcollide_relaxed_float_tests (fast-math, FMA
 // contraction, FTZ/DAZ), where the proof must hold too.
 
+#include "cpu/oracle/exact_radial.hpp"
 #include "cpu/radial_library.hpp"
 
 #include <gmpxx.h>
@@ -30,12 +31,6 @@ Q3 exact(const glm::vec3& v) {
 Q3 operator-(const Q3& a, const Q3& b) {
     return {a.x - b.x, a.y - b.y, a.z - b.z};
 }
-Q3 lerp(const Q3& a, const Q3& b, const mpq_class& t) {
-    return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
-}
-mpq_class triple(const Q3& a, const Q3& b, const Q3& c) {
-    return (a.y * b.z - a.z * b.y) * c.x + (a.z * b.x - a.x * b.z) * c.y + (a.x * b.y - a.y * b.x) * c.z;
-}
 mpq_class tripleMagnitude(const Q3& a, const Q3& b, const Q3& c) {
     const auto m = [](const mpq_class& v) { return mpq_class(abs(v)); };
     return (m(a.y) * m(b.z) + m(a.z) * m(b.y)) * m(c.x) + (m(a.z) * m(b.x) + m(a.x) * m(b.z)) * m(c.y) +
@@ -49,12 +44,7 @@ struct Case {
 
 /// The four exact Bernstein coefficients (times 1, 3, 3, 1).
 std::array<mpq_class, 4> exactCoefficients(const Case& c) {
-    std::array<Q3, 4> s, e;
-    for (int i = 0; i < 4; ++i) s[i] = exact(c.start[i]), e[i] = exact(c.end[i]);
-    const Q3 a0 = s[1] - s[0], b0 = s[2] - s[0], c0 = s[0] - s[3];
-    const Q3 a1 = e[1] - e[0], b1 = e[2] - e[0], c1 = e[0] - e[3];
-    return {triple(a0, b0, c0), triple(a1, b0, c0) + triple(a0, b1, c0) + triple(a0, b0, c1),
-            triple(a1, b1, c0) + triple(a1, b0, c1) + triple(a0, b1, c1), triple(a1, b1, c1)};
+    return cpu::exactRadialCoefficients(c.start, c.end);
 }
 
 /// True when every exact coefficient exceeds `ratio` times its products' magnitude sum.
@@ -83,9 +73,7 @@ mpq_class fraction(int k, int n) {
 
 /// phi(t) evaluated exactly from the interpolated points.
 mpq_class exactPhi(const Case& c, const mpq_class& t) {
-    std::array<Q3, 4> x;
-    for (int i = 0; i < 4; ++i) x[i] = lerp(exact(c.start[i]), exact(c.end[i]), t);
-    return triple(x[1] - x[0], x[2] - x[0], x[0] - x[3]);
+    return cpu::exactRadialPhi(c.start, c.end, t);
 }
 
 bool proven(const Case& c) {
@@ -94,9 +82,7 @@ bool proven(const Case& c) {
 }
 
 bool exactlyPositive(const Case& c) {
-    for (const mpq_class& b : exactCoefficients(c))
-        if (sgn(b) <= 0) return false;
-    return true;
+    return cpu::exactlyRadialPositive(c.start, c.end);
 }
 
 /// A triangle of size ~`size` around `centre`, the observer `distance` below its plane's normal
