@@ -4,7 +4,7 @@
 // over the centroid bounds: every axis is scaled by the largest extent, so a thin axis (a folded
 // cloth's layers) does not get as many top-level splits as the wide ones. Scaling each axis to
 // its own extent made the tree split layers that overlap near the root: 2.9x the traversal's node
-// visits on a 3-layer folded cloth of 1M faces (CPU twin, docs/design/decisions/0017). Equal codes
+// visits on a 3-layer folded cloth of 1M faces (CPU twin, decision 0017). Equal codes
 // keep their index order (the sort is stable) and the hierarchy breaks their ties by index
 // (Karras 2012). CPU twin: cpu::mortonCode.
 #include "common/layout.glsl"

@@ -4,7 +4,7 @@
 // work group counts the digits (GLC_SORT_DIGIT_BITS at u_shift) of its block of GLC_SORT_BLOCK
 // keys and writes the counts digit-major, g_blockCounts[digit * u_blocks + block], so that one
 // exclusive scan over the whole array (radix_scan.comp) gives every (digit, block) its first
-// output position. CPU reference: std::stable_sort (tests/gl/radix_sort_gl_test.cpp).
+// output position. CPU reference: std::stable_sort (tests/gl/bvh_gl_test.cpp).
 #include "common/layout.glsl"
 
 layout(local_size_x = GLC_SORT_BLOCK) in;

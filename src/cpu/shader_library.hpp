@@ -5,7 +5,7 @@
 // defined here as the GLSL specification defines them (glm 0.9.9's usubBorrow returns y - x, the
 // negation of GLSL's x - y; the tests below caught it). Header-only on purpose: every translation
 // unit that includes it compiles the library with its own flags, which is how
-// tests/relaxed_float builds it with fast-math and FMA contraction to mimic a relaxed GPU compiler.
+// tests/CMakeLists.txt builds it with fast-math and FMA contraction to mimic a relaxed GPU compiler.
 //
 // Everything sits in an unnamed namespace (internal linkage: one private copy per translation
 // unit, no clash between a strict and a relaxed build) inside glcollide::shader. The GLSL

@@ -3,7 +3,7 @@
 // digit first, GLC_SORT_DIGIT_BITS bits per pass, each pass reduce-then-scan in three dispatches
 // (radix_count, radix_scan, radix_scatter; docs/design/decisions/0017-gpu-linear-bvh.md). No
 // subgroup operations, no decoupled look-back: nothing assumes that work groups run together.
-// Tested against std::stable_sort (tests/gl/radix_sort_gl_test.cpp).
+// Tested against std::stable_sort (tests/gl/bvh_gl_test.cpp).
 
 #include "gl/handles.hpp"
 #include "gl/program.hpp"
