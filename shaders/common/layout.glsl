@@ -249,7 +249,7 @@ struct GpuSolverState {
 
 // The energy guard (energy_guard.comp, decision 0024): the start of the substep's total energy,
 // what the guard did this frame (the host clears the counts when a frame starts) and one partial
-// sum per terms group: (energy, magnitude scale, kinetic energy, 0).
+// sum per terms group: (energy, magnitude scale, kinetic energy, contact energy).
 #define GLC_ENERGY_GROUPS 256 // groups of the terms dispatch; the decide group sums their partials
 struct GpuEnergyGuard {
     float startTotal;     // J: the total energy at the start of the substep (the last accepted state's)
@@ -263,7 +263,11 @@ struct GpuEnergyGuard {
     float removed;        // J, frame: energy taken out (velocity scales and pull-backs)
     float unremoved;      // J, frame: rises left in the state (only rounding at x0 can leave any)
     float largestExcess;  // J, frame: the largest rise found
+    float lastKinetic;    // J: the kinetic part of lastTotal
+    float lastContact;    // J: the contacts' and the ground's penalty part of lastTotal
     uint pad0;
+    uint pad1;
+    uint pad2;
     vec4 partials[GLC_ENERGY_GROUPS];
 };
 

@@ -78,7 +78,7 @@ vec4 groupTotal(vec4 v) {
     return total;
 }
 
-// (energy, its magnitude scale, kinetic energy, 0) of one node.
+// (energy, its magnitude scale, kinetic energy, penalty energy) of one node.
 vec4 nodeTerms(uint i) {
     float w = g_positions[i].w;
     if (!(w > 0.0)) return vec4(0.0); // pinned: at rest, a constant potential
@@ -89,7 +89,7 @@ vec4 nodeTerms(uint i) {
     float depth = max(u_groundLevel - x.y, 0.0);
     float ground = u_groundStiffness > 0.0 ? 0.5 * u_groundStiffness * depth * depth : 0.0;
     float groundScale = u_groundStiffness > 0.0 ? ground + u_groundStiffness * depth * (abs(x.y) + abs(u_groundLevel)) : 0.0;
-    return vec4(kinetic + gravity + ground, kinetic + abs(gravity) + groundScale, kinetic, 0.0);
+    return vec4(kinetic + gravity + ground, kinetic + abs(gravity) + groundScale, kinetic, ground);
 }
 
 vec4 springTerms(uint s) {
@@ -107,7 +107,7 @@ vec4 contactTerms(ContactPair c) {
     float e = 0.5 * u_stiffness * c.depth * c.depth;
     // The depth is a difference of coordinates: its rounding is relative to their size.
     float size = length(g_positions[c.nodes.x].xyz) + u_thickness;
-    return vec4(e, e + u_stiffness * c.depth * size, 0.0, 0.0);
+    return vec4(e, e + u_stiffness * c.depth * size, 0.0, e);
 }
 
 vec4 vertexFaceTerms(uint k) {
@@ -146,6 +146,8 @@ void decide() {
     vec4 total = groupTotal(acc);
     if (gl_LocalInvocationID.x != 0u) return;
     float energy = total.x, magnitude = total.y, kinetic = total.z;
+    g_guard.lastKinetic = kinetic;
+    g_guard.lastContact = total.w;
     g_guard.scale = 1.0;
     g_guard.lastTotal = energy;
     g_guard.outcome = 0u;
@@ -160,6 +162,7 @@ void decide() {
             if (excess <= kinetic) {
                 g_guard.scale = sqrt(max(kinetic - excess, 0.0) / kinetic);
                 energy -= excess; // what the scaled state holds
+                g_guard.lastKinetic = kinetic - excess;
             } else if (u_last == 0u) {
                 g_guard.outcome = 1u; // pull back; the start stays
                 return;

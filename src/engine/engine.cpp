@@ -491,6 +491,8 @@ void Engine::Impl::readEnergyGuard() {
     c.energyGuardUnremoved = g.unremoved;
     c.energyGuardLargestRise = g.largestExcess;
     c.energyGuardTotal = g.total;
+    c.energyGuardKinetic = g.kinetic;
+    c.energyGuardContact = g.contact;
 }
 
 /// The collision detection's buffers that the contact passes read.

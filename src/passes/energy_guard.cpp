@@ -133,7 +133,7 @@ EnergyGuardCounts EnergyGuardPass::frameCounts() const {
     gpu::GpuEnergyGuard s{};
     m_state.download(0, offsetof(gpu::GpuEnergyGuard, partials), &s);
     return EnergyGuardCounts{s.acted,     m_pulledBack,    m_backToStart, s.removed,
-                             s.unremoved, s.largestExcess, s.lastTotal};
+                             s.unremoved, s.largestExcess, s.lastTotal, s.lastKinetic, s.lastContact};
 }
 
 void EnergyGuardPass::clearFrameCounts() const {

@@ -40,6 +40,8 @@ struct EnergyGuardCounts {
     double unremoved = 0.0;        ///< J of rises left in the state (rounding at x0 only)
     double largestExcess = 0.0;    ///< J: the largest rise found
     double total = 0.0;            ///< J: the float sum of the energy the last substep ended with
+    double kinetic = 0.0;          ///< J: its kinetic part
+    double contact = 0.0;          ///< J: its penalty part (the contacts' and the ground's)
 };
 
 class EnergyGuardPass {

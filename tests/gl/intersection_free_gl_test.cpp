@@ -64,7 +64,12 @@ EnergyReport expectNoEnergyGain(const Engine& engine, const EnergyReport& start,
         << "frame " << frame << ": kinetic " << end.kinetic << " potential " << end.potential << " contact "
         << end.contact << " (start " << start.total() << "); guard acted in " << c.energyGuardSubsteps
         << " substeps, pulled back " << c.energyGuardPulledBack << ", unremoved " << c.energyGuardUnremoved;
-    EXPECT_NEAR(c.energyGuardTotal, end.total(), 2.0 * end.resolution) << "frame " << frame;
+    EXPECT_NEAR(c.energyGuardTotal, end.total(), 2.0 * end.resolution)
+        << "frame " << frame << ": the guard's kinetic " << c.energyGuardKinetic << " penalty "
+        << c.energyGuardContact << ", the CPU's kinetic " << end.kinetic << " penalty " << end.contact;
+    // Each part's terms are among the total's, so each part is within the same resolution.
+    EXPECT_NEAR(c.energyGuardKinetic, end.kinetic, 2.0 * end.resolution) << "frame " << frame;
+    EXPECT_NEAR(c.energyGuardContact, end.contact, 2.0 * end.resolution) << "frame " << frame;
     EXPECT_EQ(c.energyGuardUnremoved, 0.0) << "frame " << frame;
     return end;
 }
