@@ -39,7 +39,7 @@ int infoCommand(const InfoOptions& options) {
           {"shader_storage_buffer_offset_alignment", l.shaderStorageBufferOffsetAlignment},
           {"timestamp_bits", l.timestampBits}}}};
     for (const EglDeviceInfo& d : devices) j["egl_devices"].push_back(d.description());
-    // The program binary cache (README, docs/integration.md): where it is, and whether this
+    // The program binary cache (docs/cli.md, docs/integration.md): where it is, and whether this
     // driver can fill it (no binary format: every program is compiled, every time).
     const gl::CacheLocation cache = gl::cacheLocationFromEnvironment();
     const std::size_t binaryFormats = gl::programBinaryFormats().size();

@@ -118,7 +118,7 @@ std::string hex64(std::uint64_t v) {
     return text;
 }
 
-// The "setup" object of --stats: what building the compute programs cost (README, --stats).
+// The "setup" object of --stats: what building the compute programs cost (docs/cli.md, --stats).
 nlohmann::json setupRecord(const SetupStats& s) {
     nlohmann::json programs = nlohmann::json::array();
     for (const ProgramSetup& p : s.programs)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The program binary cache end to end (README, GLCOLLIDE_CACHE_DIR): a colliding scene run twice
+# The program binary cache end to end (docs/cli.md, GLCOLLIDE_CACHE_DIR): a colliding scene run twice
 # into a fresh cache folder compiles every program in the first run and none in the second
 # (--stats "setup"), and the robust self-check it needs runs once and is then remembered; two
 # processes filling one cold folder at once both succeed and leave it usable; `off` writes

@@ -477,7 +477,7 @@ TEST(HostContextGl, GuardCost) {
     std::printf("HostStateGuard: compute %.2f us (24 buffers bound), %.2f us (none bound), transfer %.2f us; "
                 "smallest step of a %u-node cloth: %.3f ms\n",
                 compute, unbound, transfer, engine.nodeCount(), stepMs);
-    // The claim (README, GL state contract) is that the guard is negligible next to a step: a
+    // The claim (docs/embedding.md, GL state contract) is that the guard is negligible next to a step: a
     // few dozen glGet and bind calls. Measured: 0.3-1.5 us on llvmpipe against a 0.3-0.9 ms step,
     // 6.6 us against 0.24 ms on an NVIDIA H100 (bench/results/nvidia-h100/fabad4e/gltests.log).
     // Both are timed here on the same device, so the bound is relative: under 10 % of the
