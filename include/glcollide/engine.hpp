@@ -216,7 +216,7 @@ struct EnergyReport {
 /// Simulates a scene on the current GL ≥ 4.3 context: a HeadlessContext or the caller's own.
 /// Not thread-safe; every call needs the construction context (or a sharing one) current.
 ///
-/// GL state contract (README "GL state contract"): every call that issues GL commands (the
+/// GL state contract (docs/embedding.md, "GL state contract"): every call that issues GL commands (the
 /// constructor, step(), detectCollisions(), the read*() functions, energy(), the destructor and
 /// move assignment) leaves the host's state as it found it: the current program, the generic and
 /// indexed (0..37, with start and size) GL_SHADER_STORAGE_BUFFER bindings, GL_DISPATCH_INDIRECT_BUFFER,
@@ -254,7 +254,7 @@ class Engine {
     void step();
     [[nodiscard]] const StepStats& lastStep() const;
     /// What construction spent building compute programs: per program the wall time and whether
-    /// it came from the program binary cache (GLCOLLIDE_CACHE_DIR; README, docs/integration.md).
+    /// it came from the program binary cache (GLCOLLIDE_CACHE_DIR; docs/cli.md, docs/integration.md).
     [[nodiscard]] const SetupStats& setupStats() const;
 
     /// The passes dispatched each substep, in order ("NodeForce", "SpringUpdate", "BBUpdate",
