@@ -145,6 +145,14 @@ struct CollisionStats {
     std::uint64_t substepsUntilIntersectionFree = 0;
     bool reachedIntersectionFree = false;
     std::uint32_t ccdTangledPairs = 0;
+    /// Radial culling (collision.culling "radial", decision 0025): substeps of the frame that culled
+    /// (their start was known intersection-free); of the last substep that culled, the faces with an
+    /// observer, those not proven positive, the free ones, and the candidate pairs TriTri and the
+    /// feature pairs the CCD left out; over the frame, the pairs left out.
+    std::uint32_t radialSubsteps = 0;
+    std::uint32_t radialObservedFaces = 0, radialNonPositiveFaces = 0, radialFreeFaces = 0;
+    std::uint32_t radialCulledTriTri = 0, radialCulledCcd = 0;
+    std::uint64_t radialCulledTriTriInFrame = 0, radialCulledCcdInFrame = 0;
 };
 
 /// The first non-finite state NodeUpdate produced (EngineOptions::checkFinite).

@@ -112,6 +112,18 @@ enum class ContactResponse : std::uint8_t {
     IntersectionFree,
 };
 
+/// Which exact tests are skipped for pairs that provably cannot intersect (`collision.culling`;
+/// docs/culling.md, decision 0025). Culling changes the work, never the answers.
+enum class Culling : std::uint8_t {
+    None,
+    /// Radial view-based culling: each closed object gets an observer (the centroid of its nodes);
+    /// its faces proven to stay in front of it, whose directions meet no other face's that is not
+    /// proven so, intersect nothing of the object during the substep: TriTri and the zero-separation
+    /// CCD leave out their self-collision pairs. Needs self_collisions and the intersection_free
+    /// response (whose intersection-free substeps are the theorem's premise).
+    Radial,
+};
+
 enum class TriTriPrecision : std::uint8_t {
     Fast,   ///< float with epsilons: may disagree with the exact answer near degenerate configurations
     Robust, ///< float filter with a certified error bound, exact fallback: always the exact answer
@@ -137,6 +149,7 @@ struct CollisionSettings {
     BvhSettings bvh;                      ///< used by BroadPhase::Bvh
     Detection detection = Detection::Discrete;
     CcdSettings ccd; ///< used by Detection::Continuous
+    Culling culling = Culling::None;
 };
 
 /// How a substep advances the nodes (docs/integration.md).

@@ -88,13 +88,22 @@
 #define GLC_BIND_RADIAL_FACE_OBSERVER 57  // uint[faces]: the face's observer, or GLC_RADIAL_NO_OBSERVER
 #define GLC_BIND_RADIAL_POSITIVE 58       // uint[(faces + 31) / 32]: bit f % 32 of word f / 32 set when face f
                                           // is proven positive for its observer over the substep
+#define GLC_BIND_RADIAL_OBSERVER_NODES 59 // uvec2[observers]: the first node and node count whose centroid is the
+                                          // observer (RadialObservers)
+#define GLC_BIND_RADIAL_CONES 60          // vec4[faces]: each observed face's footprint cone (unit axis, cosine)
+#define GLC_BIND_RADIAL_NONPOSITIVE 61    // uint[1 + faces]: a count, then the observed faces not proven positive
+#define GLC_BIND_RADIAL_FREE 62           // uint[1 + (faces + 31) / 32]: word 0 is 1 when the mask holds for this
+                                          // substep; bit f % 32 of word 1 + f / 32 set when face f is free
+                                          // (intersects nothing of its observer's surface during the substep)
+#define GLC_BIND_RADIAL_MOVED 63          // uint: set to 1 when a node's position differs from the last substep's
+                                          // committed end (the host moved it between frames; RadialHostCheck)
 #define GLC_RADIAL_NO_OBSERVER 0xffffffffu
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 59
+#define GLC_BINDING_COUNT 64
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -219,7 +228,11 @@ struct GpuListCounter {
 #define GLC_STAT_SAFE_STEP_CUTS 10u      // SafeStep: node steps cut (summed over the substep's rounds)
 #define GLC_STAT_SAFE_STEP_GROUND 11u    // SafeStep: nodes whose predicted step crossed the ground
 #define GLC_STAT_CCD_TANGLED 12u         // CCD (safe step): feature pairs left out because their faces intersect at x0
-#define GLC_STAT_COUNT 13
+#define GLC_STAT_RADIAL_CULLED_TRI_TRI 13 // radial culling: candidate face pairs TriTri left out (a face is free)
+#define GLC_STAT_RADIAL_CULLED_CCD 14     // radial culling: feature pairs the CCD left out (a face is free)
+#define GLC_STAT_RADIAL_NON_POSITIVE 15  // radial culling: observed faces not proven positive over the substep
+#define GLC_STAT_RADIAL_FREE 16          // radial culling: free faces (positive, footprint meets no non-positive one)
+#define GLC_STAT_COUNT 17
 
 struct GpuCollisionCounters {
     GpuListCounter lists[GLC_LIST_COUNT]; // indexed by GLC_LIST_*

@@ -18,6 +18,7 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
 #include "common/ccd.glsl"
 #include "common/contact_geometry.glsl"
+#include "common/radial_cull.glsl"
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
 layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) readonly buffer PredictedPositionsBuf { vec4 g_predicted[]; };
@@ -67,6 +68,16 @@ uvec4 pairNodes(uint i) {
     uvec3 a = faceNodes(item.x / 3u), b = faceNodes(item.y / 3u);
     uint e = item.x % 3u, g = item.y % 3u;
     return uvec4(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]);
+}
+
+// Whether radial culling leaves pair i out (common/radial_cull.glsl).
+bool radialCulled(uint i) {
+    if (u_edgeEdge == 0u) {
+        uvec2 item = g_vertexFace[i]; // (node, face)
+        return glcRadialCulledVertexFace(item.x, item.y & ~GLC_PAIR_CCD_ONLY);
+    }
+    uvec2 item = g_edgeEdge[i]; // (3*fa+e, 3*fb+g)
+    return glcRadialCulled(item.x / 3u, (item.y & ~GLC_PAIR_CCD_ONLY) / 3u);
 }
 
 // Whether pair i has a marked node or face (vertex-face) or a marked face (edge-edge): to come
@@ -119,6 +130,13 @@ void main() {
     if (u_gapRelative != 0u) {
         float halfGap = 0.5 * startDistance(s0, s1, s2, s3);
         separation = halfGap < u_minSeparation ? halfGap : 0.0;
+    }
+    // Radial culling: a pair tested for true contact (zero separation) with a free face cannot
+    // touch (the face intersects nothing of its surface during the substep). Proximity tests
+    // (separation > 0) are not culled: the theorem says nothing about distances.
+    if (separation == 0.0 && radialCulled(i)) {
+        atomicAdd(g_counters.stats[GLC_STAT_RADIAL_CULLED_CCD], 1u);
+        return;
     }
     bool hit = glcCcdInclusion(u_edgeEdge != 0u, s0, s1, s2, s3, e0, e1, e2, e3, separation, int(u_budget));
     atomicAdd(g_counters.stats[GLC_STAT_CCD_BOXES], uint(glcCcdBoxes));

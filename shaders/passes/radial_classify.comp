@@ -7,18 +7,24 @@
 // "may collide", never "negative". Output: bit f % 32 of word f / 32 of GLC_BIND_RADIAL_POSITIVE,
 // set by atomicOr (the host clears the mask first): the result does not depend on the order.
 // A face without an observer (GLC_RADIAL_NO_OBSERVER) is never positive.
+// Also, for RadialFree, every observed face's footprint cone (common/radial_footprint.glsl) and
+// the list of observed faces not proven positive (appended in any order: RadialFree only asks
+// whether some listed cone meets a face's, which does not depend on the order).
 #include "common/layout.glsl"
 #include "common/face_nodes.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
 #include "common/radial_sign.glsl"
+#include "common/radial_footprint.glsl"
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_start[]; };
 layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) readonly buffer PredictedPositionsBuf { vec4 g_end[]; };
 layout(std430, binding = GLC_BIND_RADIAL_OBSERVERS) readonly buffer RadialObserversBuf { vec4 g_observers[]; };
 layout(std430, binding = GLC_BIND_RADIAL_FACE_OBSERVER) readonly buffer RadialFaceObserverBuf { uint g_faceObserver[]; };
 layout(std430, binding = GLC_BIND_RADIAL_POSITIVE) buffer RadialPositiveBuf { uint g_positive[]; };
+layout(std430, binding = GLC_BIND_RADIAL_CONES) writeonly buffer RadialConesBuf { vec4 g_cones[]; };
+layout(std430, binding = GLC_BIND_RADIAL_NONPOSITIVE) buffer RadialNonPositiveBuf { uint g_nonPositive[]; };
 
 uniform uint u_faceCount;
 
@@ -28,7 +34,12 @@ void main() {
     uint observer = g_faceObserver[face];
     if (observer == GLC_RADIAL_NO_OBSERVER) return;
     uvec3 n = faceNodes(face);
-    if (glcRadialPositive(g_start[n.x].xyz, g_start[n.y].xyz, g_start[n.z].xyz, g_observers[2u * observer].xyz,
-                          g_end[n.x].xyz, g_end[n.y].xyz, g_end[n.z].xyz, g_observers[2u * observer + 1u].xyz))
+    vec3 p0 = g_start[n.x].xyz, p1 = g_start[n.y].xyz, p2 = g_start[n.z].xyz;
+    vec3 p0End = g_end[n.x].xyz, p1End = g_end[n.y].xyz, p2End = g_end[n.z].xyz;
+    vec3 q = g_observers[2u * observer].xyz, qEnd = g_observers[2u * observer + 1u].xyz;
+    g_cones[face] = glcRadialFootprint(p0, p1, p2, q, p0End, p1End, p2End, qEnd);
+    if (glcRadialPositive(p0, p1, p2, q, p0End, p1End, p2End, qEnd))
         atomicOr(g_positive[face / 32u], 1u << (face % 32u));
+    else
+        g_nonPositive[1u + atomicAdd(g_nonPositive[0], 1u)] = face;
 }

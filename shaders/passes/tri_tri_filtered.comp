@@ -11,6 +11,7 @@
 #include "common/lists.glsl"
 #include "common/face_nodes.glsl"
 #include "common/tri_tri_robust.glsl"
+#include "common/radial_cull.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
@@ -24,6 +25,10 @@ void main() {
     uint i = globalIndex();
     if (i >= storedCount(GLC_LIST_CANDIDATES)) return;
     uvec2 pair = g_facePairs[i];
+    if (glcRadialCulled(pair.x, pair.y)) { // a free face intersects nothing of its surface
+        atomicAdd(g_counters.stats[GLC_STAT_RADIAL_CULLED_TRI_TRI], 1u);
+        return;
+    }
     uvec3 a = faceNodes(pair.x), b = faceNodes(pair.y);
     int answer = glcTriTriFiltered(g_positions[a.x].xyz, g_positions[a.y].xyz, g_positions[a.z].xyz,
                                    g_positions[b.x].xyz, g_positions[b.y].xyz, g_positions[b.z].xyz);

@@ -83,6 +83,15 @@ nlohmann::json frameRecord(const Engine& engine) {
             c.reachedIntersectionFree ? nlohmann::json(c.substepsUntilIntersectionFree)
                                       : nlohmann::json(nullptr);
         if (s.safeStep) record["safe_step"]["ccd_pairs_left_out_intersecting"] = c.ccdTangledPairs;
+        if (c.radialObservedFaces > 0)
+            record["radial_culling"] = {{"substeps_culled", c.radialSubsteps},
+                                        {"observed_faces", c.radialObservedFaces},
+                                        {"non_positive_faces", c.radialNonPositiveFaces},
+                                        {"free_faces", c.radialFreeFaces},
+                                        {"tri_tri_pairs_left_out", c.radialCulledTriTri},
+                                        {"ccd_pairs_left_out", c.radialCulledCcd},
+                                        {"tri_tri_pairs_left_out_in_frame", c.radialCulledTriTriInFrame},
+                                        {"ccd_pairs_left_out_in_frame", c.radialCulledCcdInFrame}};
         if (c.energyGuard)
             record["energy_guard"] = {{"substeps_acted", c.energyGuardSubsteps},
                                       {"substeps_pulled_back", c.energyGuardPulledBack},

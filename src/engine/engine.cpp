@@ -13,6 +13,7 @@
 #include "gl/program.hpp"
 #include "gl/setup_stats_sink.hpp"
 #include "model/flat_model.hpp"
+#include "model/radial_surfaces.hpp"
 #include "passes/collision_detection.hpp"
 #include "passes/contact_response.hpp"
 #include "passes/dynamics_passes.hpp"
@@ -53,6 +54,19 @@ std::vector<glm::dvec3> unpackNodes(const gl::Buffer& buffer, std::uint32_t coun
     return out;
 }
 
+/// Radial culling's observers (decision 0025): one per object whose surface is closed, consistently
+/// oriented and connected (the theorem's premise); the other objects' faces are never culled.
+passes::RadialCullingConfig radialCullingConfig(const model::FlatModel& model) {
+    passes::RadialCullingConfig config;
+    config.faceObserver.assign(model.faceCount(), passes::kNoRadialObserver);
+    for (const model::ObjectRange& r : model.objects) {
+        if (!model::isClosedOrientedConnected(model.faceIndices, r.firstFace, r.faceCount)) continue;
+        const auto observer = static_cast<std::uint32_t>(config.surfaces.size());
+        config.surfaces.push_back({r.firstNode, r.nodeCount});
+        for (std::uint32_t f = 0; f < r.faceCount; ++f) config.faceObserver[r.firstFace + f] = observer;
+    }
+    return config;
+}
 } // namespace
 
 struct Engine::Impl {
@@ -74,6 +88,7 @@ struct Engine::Impl {
     std::optional<passes::EnergyGuardPass> energyGuard;
     std::uint64_t tangledSubsteps = 0;    ///< CollisionStats::substepsUntilIntersectionFree
     bool reachedIntersectionFree = false; ///< CollisionStats::reachedIntersectionFree
+    bool radialPremise = false; ///< radial culling: this substep starts intersection-free (decision 0025)
     std::optional<passes::ContactApplyPass> contactApply;
     std::optional<passes::ImplicitSolverPass> implicitSolve;
     std::optional<passes::FrameStepPass> frameStep;
@@ -329,6 +344,7 @@ void Engine::Impl::makePass(engine::Stage stage) {
         config.selfCollisions = plan.selfCollisions;
         config.settings = plan.collision;
         config.substepsPerFrame = static_cast<std::uint32_t>(substeps.substeps);
+        if (plan.collision.culling == Culling::Radial) config.radial = radialCullingConfig(model);
         collision.emplace(config, model);
         // Robust precision promises the oracle's answers; check that this device delivers them
         // before relying on it (once per device, driver and shader; docs/narrow-phase.md).
@@ -387,6 +403,16 @@ void addSubstepCounts(const passes::CollisionCounts& counts, CollisionStats& c) 
     c.ccdCappedInFrame += counts.ccdCapped;
     c.substepsWithIntersections += counts.intersections > 0 ? 1u : 0u;
     c.ccdTangledPairs = counts.ccdTangled;
+    c.radialObservedFaces = counts.radialObserved;
+    if (counts.radialOn) {
+        c.radialSubsteps += 1;
+        c.radialNonPositiveFaces = counts.radialNonPositive;
+        c.radialFreeFaces = counts.radialFree;
+        c.radialCulledTriTri = counts.radialCulledTriTri;
+        c.radialCulledCcd = counts.radialCulledCcd;
+        c.radialCulledTriTriInFrame += counts.radialCulledTriTri;
+        c.radialCulledCcdInFrame += counts.radialCulledCcd;
+    }
 }
 
 /// Recovery from intersecting input: counts the substeps that began with intersecting pairs until
@@ -421,8 +447,14 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             run(*springUpdate, plan.springUpdateParams);
             break;
         case Stage::CollisionDetection: {
+            // Radial culling's premise: this substep starts intersection-free. Known when the
+            // last detection found no intersecting pair at its start (its answers are exact,
+            // culled or not) and the intersection-free response, which keeps a free start free,
+            // made this start — not the host (checked at the frame's start, Engine::step).
+            collision->setRadialCulling(radialPremise);
             const passes::CollisionCounts counts =
                 collision->detect(buffers, options.gpuTiming ? &timer : nullptr);
+            radialPremise = counts.intersections == 0;
             addSubstepCounts(counts, stats.collision);
             addRecoveryCounts(counts, tangledSubsteps, reachedIntersectionFree);
             stats.collision.substepsUntilIntersectionFree = tangledSubsteps;
@@ -582,6 +614,9 @@ void Engine::step() {
             d.energyGuard->clearFrameCounts();
             d.energyGuard->record(d.buffers, &inputs);
         }
+        if (d.collision && d.collision->radialCulling() && d.radialPremise &&
+            d.collision->radialCulling()->hostMovedNodes(d.buffers))
+            d.radialPremise = false; // the host moved nodes: the start is not known to be free
         const int calls = d.frameStep ? 1 : d.substeps.substeps;
         for (int s = 0; s < calls; ++s) d.substep(s, s + 1 == calls);
     }

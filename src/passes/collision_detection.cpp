@@ -66,6 +66,17 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const mode
                                            initial(config.candidateCapacity)});
     m_lists->declare(GLC_LIST_INTERSECTIONS, {"intersections", "pairs", kPairBytes, GLC_BIND_INTERSECTIONS,
                                               initial(config.intersectionCapacity)});
+    if (config.radial) {
+        if (s.detection != Detection::Continuous)
+            throw Error("collision: radial culling needs continuous detection");
+        m_radial.emplace(*config.radial);
+        m_chain.add({PassId::RadialCulling, {}, [this] {
+                         if (m_radialOn) m_radial->run(*m_lists);
+                         else m_radial->switchOff();
+                     }});
+    }
+    // Without culling the consumers read a mask whose word 0 is 0 (and a face table of "none").
+    m_radialNone = gl::makeBuffer("radialNone", std::vector<std::uint32_t>{0u, GLC_RADIAL_NO_OBSERVER, 0u, 0u});
     BroadPhaseContext context{model, m_layout, s};
     context.pairRules = pairRules(config);
     context.halfThickness = model::halfThicknessFloat(s.thickness);
@@ -100,6 +111,12 @@ std::uint32_t CollisionDetection::recheckCcd(const DeviceBuffers& buffers) {
     bindRequired(buffers.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, "Ccd", "predictedPositions");
     m_ccd->bind();
     m_lists->bind();
+    // The free mask holds for the motion it was computed on, x0 -> the predicted x1; a cut step
+    // need not be a prefix of it for every surface, so the recheck culls nothing.
+    if (m_radial) {
+        m_radial->bindForConsumers();
+        m_radial->switchOff();
+    }
     m_ccd->run(*m_lists, false); // x0 and the intersections are the detection's: the marks stand
     m_lists->readCounters();
     return m_lists->stat(GLC_STAT_CCD_VERTEX_FACE_HITS) + m_lists->stat(GLC_STAT_CCD_EDGE_EDGE_HITS);
@@ -138,6 +155,13 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
         m_ccd->bind();
     }
     m_tables.bind();
+    if (m_radial) {
+        m_radial->bindForConsumers();
+    } else {
+        m_radialNone.bindStorage(GLC_BIND_RADIAL_FREE);
+        m_radialNone.bindStorage(GLC_BIND_RADIAL_FACE_OBSERVER);
+        m_radialNone.bindStorage(GLC_BIND_RADIAL_OBSERVER_NODES);
+    }
     m_broadPhase->bind();
     m_broadPhase->prepare();
     // Also clears the contact response's counter: a new substep counts its contacts from zero.
@@ -170,6 +194,14 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
     m_counts.ccdBoxes = l.stat(GLC_STAT_CCD_BOXES);
     m_counts.ccdEarliestToi = std::bit_cast<float>(l.stat(GLC_STAT_CCD_EARLIEST_TOI));
     m_counts.ccdTangled = l.stat(GLC_STAT_CCD_TANGLED);
+    m_counts.radialOn = m_radialOn;
+    if (m_radial) m_counts.radialObserved = m_radial->observedFaces();
+    if (m_radialOn) {
+        m_counts.radialNonPositive = l.stat(GLC_STAT_RADIAL_NON_POSITIVE);
+        m_counts.radialFree = l.stat(GLC_STAT_RADIAL_FREE);
+        m_counts.radialCulledTriTri = l.stat(GLC_STAT_RADIAL_CULLED_TRI_TRI);
+        m_counts.radialCulledCcd = l.stat(GLC_STAT_RADIAL_CULLED_CCD);
+    }
     return m_counts;
 }
 

@@ -21,6 +21,7 @@
 #include "passes/collision/narrow_phase.hpp"
 #include "passes/collision/stage_chain.hpp"
 #include "passes/device_buffers.hpp"
+#include "passes/radial_culling.hpp"
 
 #include <glcollide/scene.hpp>
 
@@ -45,6 +46,9 @@ struct CollisionConfig {
     std::uint64_t listByteLimit = 0;
     /// Substeps per frame, for the BVH's rebuild cadence in frames.
     std::uint32_t substepsPerFrame = 1;
+    /// Radial view-based culling (decision 0025): which faces have which observer. Continuous
+    /// detection only; it culls only while setRadialCulling(true).
+    std::optional<RadialCullingConfig> radial;
 };
 
 /// Exact sizes found by the last detect() (after any reruns).
@@ -75,6 +79,11 @@ struct CollisionCounts {
     std::uint32_t ccdVertexFaceHits = 0, ccdEdgeEdgeHits = 0, ccdCapped = 0, ccdBoxes = 0;
     float ccdEarliestToi = 0.0f;
     std::uint32_t ccdTangled = 0; ///< safe step: feature pairs left out, their faces intersect at x0
+    /// Radial culling (decision 0025): whether it culled in this call; observed faces, those not
+    /// proven positive and the free ones; candidate pairs TriTri and feature pairs the CCD left out.
+    bool radialOn = false;
+    std::uint32_t radialObserved = 0, radialNonPositive = 0, radialFree = 0;
+    std::uint32_t radialCulledTriTri = 0, radialCulledCcd = 0;
 };
 
 /// The per-face and per-object tables of the collision kernels and the contact response.
@@ -117,6 +126,13 @@ class CollisionDetection {
     /// buffers.positions and the (since changed) buffers.predictedPositions. Returns the pairs that
     /// may touch (vertex-face and edge-edge); one read-back. The safe step's check (decision 0024).
     std::uint32_t recheckCcd(const DeviceBuffers& buffers);
+    /// Radial culling: whether the next detect() culls (the caller vouches that the positions it
+    /// starts from are intersection-free: the theorem's premise). Ignored without
+    /// CollisionConfig::radial.
+    void setRadialCulling(bool on) { m_radialOn = on && m_radial.has_value(); }
+    [[nodiscard]] bool radialCullingConfigured() const { return m_radial.has_value(); }
+    /// The radial culling pass (tests read its free mask); null without CollisionConfig::radial.
+    [[nodiscard]] const RadialCullingPass* radialCulling() const { return m_radial ? &*m_radial : nullptr; }
     /// The counter block's statistic `id` (GLC_STAT_*), read back now.
     std::uint32_t readStat(std::uint32_t id);
     /// The safe step's marks of the faces (and nodes) that intersect at the start of the last
@@ -168,6 +184,9 @@ class CollisionDetection {
     NarrowPhase m_narrowPhase;
     FeaturePairs m_featurePairs;
     std::optional<FeatureCcd> m_ccd; ///< continuous detection only
+    std::optional<RadialCullingPass> m_radial; ///< CollisionConfig::radial only
+    bool m_radialOn = false;
+    gl::Buffer m_radialNone; ///< bound for the consumers without culling: word 0 = 0, no observer
     StageChain m_chain;
     CollisionCounts m_counts;
 };

@@ -14,6 +14,7 @@ enum class PassId : std::uint8_t {
     NodeForce,
     SpringUpdate,
     NodePredict, ///< continuous detection: v += h·M⁻¹f and the predicted end positions x1 = x + h·v
+    RadialCulling, ///< radial view-based culling: observers, classification, free faces (decision 0025)
     BBUpdate,
     BBCollision,
     BvhBuild,    ///< linear BVH: Morton codes, radix sort, hierarchy (when the cadence rebuilds)
@@ -31,10 +32,10 @@ enum class PassId : std::uint8_t {
     FrameStep ///< a small scene's whole frame (SpringUpdate + NodeUpdate per substep) in one dispatch
 };
 
-inline constexpr std::size_t kPassCount = 18;
+inline constexpr std::size_t kPassCount = 19;
 
 inline constexpr std::array<const char*, kPassCount> kPassNames = {
-    "NodeForce",   "SpringUpdate",    "NodePredict",  "BBUpdate",      "BBCollision", "BvhBuild",
+    "NodeForce",   "SpringUpdate",    "NodePredict",  "RadialCulling", "BBUpdate",      "BBCollision", "BvhBuild",
     "BvhRefit",    "BvhTraverse",     "TriTri",       "FeaturePairs",  "Ccd",         "SafeStep",
     "EnergyGuard", "ContactResponse", "ContactApply", "ImplicitSolve", "NodeUpdate",  "FrameStep"};
 

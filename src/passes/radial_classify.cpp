@@ -17,6 +17,8 @@ RadialClassifyPass::RadialClassifyPass(const std::vector<std::uint32_t>& faceObs
       m_faceObserver(gl::makeBuffer("radialFaceObserver", faceObserver)),
       m_observers("radialObservers", std::size_t{2} * observerCount * sizeof(glm::vec4)),
       m_mask("radialPositive", ((m_faceCount + 31u) / 32u) * sizeof(std::uint32_t)),
+      m_cones("radialCones", std::size_t{m_faceCount} * sizeof(glm::vec4)),
+      m_nonPositive("radialNonPositive", (std::size_t{m_faceCount} + 1) * sizeof(std::uint32_t)),
       m_program("radial_classify") {
     for (std::size_t f = 0; f < faceObserver.size(); ++f)
         if (faceObserver[f] != kNoRadialObserver && faceObserver[f] >= observerCount)
@@ -44,11 +46,19 @@ void RadialClassifyPass::dispatch(const DeviceBuffers& b) {
     bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, kName, "predictedPositions");
     bindRequired(b.faces, GLC_BIND_FACES, kName, "faces");
+    dispatchOnBoundPositions();
+}
+
+void RadialClassifyPass::dispatchOnBoundPositions() {
     m_faceObserver.bindStorage(GLC_BIND_RADIAL_FACE_OBSERVER);
     m_observers.bindStorage(GLC_BIND_RADIAL_OBSERVERS);
     m_mask.fill32(0u);
+    const std::uint32_t zero = 0;
+    m_nonPositive.upload(0, sizeof zero, &zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     m_mask.bindStorage(GLC_BIND_RADIAL_POSITIVE);
+    m_cones.bindStorage(GLC_BIND_RADIAL_CONES);
+    m_nonPositive.bindStorage(GLC_BIND_RADIAL_NONPOSITIVE);
     m_program.use();
     m_program.dispatch1D(m_faceCount, GLC_WORKGROUP_SIZE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -504,7 +504,7 @@ CcdSettings parseCcd(const Ctx& c, const json& j, const Ptr& p) {
 CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p,
                 {"broad_phase", "octree_depth", "precision", "response", "thickness", "stiffness", "damping",
-                 "friction", "initial_capacity", "bvh", "detection", "ccd", "energy_guard"});
+                 "friction", "initial_capacity", "bvh", "detection", "ccd", "energy_guard", "culling"});
     CollisionSettings s;
     if (const json* v = find(j, "broad_phase")) {
         const std::optional<BroadPhase> kind = broadPhaseFromName(string(c, *v, p / "broad_phase"));
@@ -551,6 +551,18 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
             else if (s.detection != Detection::Continuous)
                 c.fail(p / "detection", "the intersection_free response needs \"detection\": \"continuous\"");
         }
+    }
+    if (const json* v = find(j, "culling")) {
+        const std::string name = string(c, *v, p / "culling");
+        if (name == "none")
+            s.culling = Culling::None;
+        else if (name == "radial")
+            s.culling = Culling::Radial;
+        else
+            c.fail(p / "culling", "unknown culling " + shown(*v) + "; expected \"none\" or \"radial\"");
+        if (s.culling == Culling::Radial && s.response != ContactResponse::IntersectionFree)
+            c.fail(p / "culling", "radial culling needs \"response\": \"intersection_free\" (its premise is a "
+                                  "substep that starts intersection-free, which only that response keeps; decision 0025)");
     }
     if (const json* v = find(j, "energy_guard")) {
         if (!v->is_boolean()) c.fail(p / "energy_guard", "expected true or false, got " + shown(*v));
@@ -651,6 +663,9 @@ Scene parseRoot(const Ctx& c, const json& root) {
             c.fail(p / "collision" / "energy_guard",
                    "the energy guard needs a closed scene and the wind does work on it: set "
                    "\"energy_guard\": false (decision 0024)");
+        if (col.culling == Culling::Radial && !scene.effects.has(Effect::SelfCollisions))
+            c.fail(p / "collision" / "culling",
+                   "radial culling leaves out self-collision pairs: add \"self_collisions\" to /effects");
     }
 
     if (const json* v = find(root, "camera")) scene.camera = parseCamera(c, *v, p / "camera");

@@ -93,6 +93,11 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"RadialObserversBuf", GLC_BIND_RADIAL_OBSERVERS},
     {"RadialFaceObserverBuf", GLC_BIND_RADIAL_FACE_OBSERVER},
     {"RadialPositiveBuf", GLC_BIND_RADIAL_POSITIVE},
+    {"RadialObserverNodesBuf", GLC_BIND_RADIAL_OBSERVER_NODES},
+    {"RadialConesBuf", GLC_BIND_RADIAL_CONES},
+    {"RadialNonPositiveBuf", GLC_BIND_RADIAL_NONPOSITIVE},
+    {"RadialFreeBuf", GLC_BIND_RADIAL_FREE},
+    {"RadialMovedBuf", GLC_BIND_RADIAL_MOVED},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {

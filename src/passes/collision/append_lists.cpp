@@ -29,6 +29,10 @@ constexpr std::array<CollisionStatSpec, GLC_STAT_COUNT> kCollisionStats = {{
     {"safe_step_cuts", 0u, false},
     {"safe_step_ground_crossings", 0u, false},
     {"ccd_tangled", 0u, true},
+    {"radial_culled_tri_tri", 0u, true},
+    {"radial_culled_ccd", 0u, true},
+    {"radial_non_positive", 0u, true},
+    {"radial_free", 0u, true},
 }};
 constexpr std::size_t kArgsPerList = 3 * sizeof(std::uint32_t); // glDispatchComputeIndirect's x, y, z
 } // namespace

@@ -51,7 +51,8 @@ void FeatureCcd::addStages(StageChain& chain, AppendLists& lists) {
 
 void FeatureCcd::run(AppendLists& lists, bool mark) {
     lists.resetStats({GLC_STAT_CCD_VERTEX_FACE_HITS, GLC_STAT_CCD_EDGE_EDGE_HITS, GLC_STAT_CCD_CAPPED,
-                      GLC_STAT_CCD_BOXES, GLC_STAT_CCD_EARLIEST_TOI, GLC_STAT_CCD_TANGLED});
+                      GLC_STAT_CCD_BOXES, GLC_STAT_CCD_EARLIEST_TOI, GLC_STAT_CCD_TANGLED,
+                      GLC_STAT_RADIAL_CULLED_CCD});
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after the last substep's reads of the times
     m_nodeToi.fill32(kNoImpact);
     if (m_skipTangled && mark) {

@@ -42,6 +42,7 @@ void NarrowPhase::addStages(StageChain& chain, AppendLists& lists) {
     lists.declare(GLC_LIST_UNDECIDED, {"undecided", "indices", sizeof(std::uint32_t), GLC_BIND_UNDECIDED, 1,
                                        static_cast<int>(GLC_LIST_CANDIDATES)});
     chain.add({PassId::TriTri, {GLC_LIST_UNDECIDED, GLC_LIST_INTERSECTIONS}, [this, &lists] {
+                   lists.resetStats({GLC_STAT_RADIAL_CULLED_TRI_TRI}); // a rerun counts again
                    lists.dispatchOver(m_test, GLC_LIST_CANDIDATES, GLC_WORKGROUP_SIZE);
                }});
     chain.add({PassId::TriTri, {GLC_LIST_INTERSECTIONS}, [this, &lists] {
