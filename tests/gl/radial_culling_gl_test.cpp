@@ -1,0 +1,122 @@
+// Radial view-based culling changes nothing but time (issue 24, item 4; decision 0025): with
+// "culling": "radial" every frame is bit-identical to "culling": "none", and the exact tests find
+// the same things — the CCD's pairs that may touch and TriTri's intersecting pairs, substep by
+// substep. The scenes are built to fold and to defeat the observer: a soft ball of cloth that
+// crumples on the ground (faces turn their backs on the centroid, the centroid leaves the
+// squashed surface), a fast one, and a host that moves nodes between frames (the premise is then
+// unknown, and the first substep must not cull). Each case also checks that culling acted, so the
+// comparison is not vacuous.
+
+#include <glcollide/engine.hpp>
+#include <glcollide/error.hpp>
+#include <glcollide/scene.hpp>
+
+#include <epoxy/gl.h>
+#include <gtest/gtest.h>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace glcollide {
+namespace {
+
+std::string ballScene(const std::string& culling, double speed, double springStiffness, int substeps) {
+    return R"({"format_version": 1, "name": "cloth ball", "effects": ["gravity", "springs", "ground", "self_collisions"],
+      "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": )" +
+           std::to_string(substeps) + R"(},
+      "ground": {"height": 0.0},
+      "collision": {"broad_phase": "bvh", "thickness": 0.005, "stiffness": 500, "response": "intersection_free",
+                    "culling": ")" +
+           culling + R"("},
+      "objects": [
+        {"name": "ball", "generator": {"type": "sphere", "radius": 0.15, "subdivisions": 3},
+         "transform": {"translate": [0, 0.2, 0]}, "mass": 0.1, "springs": {"stiffness": )" +
+           std::to_string(springStiffness) + R"(}, "velocity": [0.5, )" + std::to_string(-speed) + R"(, 0]}]})";
+}
+
+struct Totals {
+    std::uint64_t culledTriTri = 0, culledCcd = 0, culledSubsteps = 0, substepsWithNonPositive = 0;
+};
+
+/// Steps both engines `frames` frames; every frame: bit-identical positions and the same exact
+/// answers. `hostMove`: before that frame, both hosts move node 0 by 1 mm through the position
+/// buffer (0: never).
+Totals expectIdentical(const std::string& none, const std::string& radial, int frames, int hostMove = 0) {
+    Engine a(parseScene(none, ".", "none")), b(parseScene(radial, ".", "radial"));
+    Totals t;
+    for (int frame = 1; frame <= frames; ++frame) {
+        if (frame == hostMove) {
+            for (Engine* e : {&a, &b}) {
+                glm::vec4 p;
+                glGetNamedBufferSubData(e->positionBuffer(), 0, sizeof p, &p);
+                p.x += 0.001f;
+                glNamedBufferSubData(e->positionBuffer(), 0, sizeof p, &p);
+            }
+        }
+        a.step();
+        b.step();
+        const CollisionStats &ca = a.lastStep().collision, &cb = b.lastStep().collision;
+        EXPECT_EQ(ca.radialSubsteps, 0u);
+        EXPECT_EQ(ca.maxIntersectingPairs, cb.maxIntersectingPairs) << "frame " << frame;
+        EXPECT_EQ(ca.intersectingPairs, cb.intersectingPairs) << "frame " << frame;
+        EXPECT_EQ(ca.ccdVertexFaceHits, cb.ccdVertexFaceHits) << "frame " << frame;
+        EXPECT_EQ(ca.ccdEdgeEdgeHits, cb.ccdEdgeEdgeHits) << "frame " << frame;
+        EXPECT_EQ(ca.ccdEarliestToi, cb.ccdEarliestToi) << "frame " << frame;
+        EXPECT_EQ(ca.safeStepCuts, cb.safeStepCuts) << "frame " << frame;
+        const std::vector<glm::dvec3> xa = a.readPositions(), xb = b.readPositions();
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < xa.size(); ++i) differing += xa[i] != xb[i] ? 1u : 0u;
+        EXPECT_EQ(differing, 0u) << "frame " << frame << ": nodes whose positions differ";
+        if (frame == hostMove) {
+            EXPECT_FALSE(cb.radialSubsteps == static_cast<std::uint32_t>(b.substepInfo().substeps))
+                << "frame " << frame << ": the host moved a node, yet the first substep culled";
+        }
+        t.culledTriTri += cb.radialCulledTriTriInFrame;
+        t.culledCcd += cb.radialCulledCcdInFrame;
+        t.culledSubsteps += cb.radialSubsteps;
+        t.substepsWithNonPositive += cb.radialSubsteps > 0 && cb.radialNonPositiveFaces > 0 ? 1u : 0u;
+        if (::testing::Test::HasFailure()) break; // the first frame that differs says enough
+    }
+    return t;
+}
+
+// A soft ball of cloth (1,280 faces) thrown onto the ground: it squashes and folds; faces turn
+// their backs on the centroid, which is an observer in a poor place by the end.
+TEST(RadialCullingGl, ACrumplingBallIsBitIdenticalWithAndWithoutCulling) {
+    const Totals t = expectIdentical(ballScene("none", 6.0, 1.0, 1), ballScene("radial", 6.0, 1.0, 1), 45);
+    EXPECT_GT(t.culledSubsteps, 30u);
+    EXPECT_GT(t.culledCcd, 0u);
+    EXPECT_GT(t.culledTriTri, 0u);
+    EXPECT_GT(t.substepsWithNonPositive, 0u) << "the ball must fold: some faces not positive";
+}
+
+// Fast: 12 m/s into the ground, two substeps per frame.
+TEST(RadialCullingGl, AFastBallIsBitIdenticalWithAndWithoutCulling) {
+    const Totals t = expectIdentical(ballScene("none", 12.0, 40.0, 2), ballScene("radial", 12.0, 40.0, 2), 20);
+    EXPECT_GT(t.culledSubsteps, 10u);
+    EXPECT_GT(t.culledCcd, 0u);
+}
+
+// The host moves a node between frames through the position buffer (as an embedding may): the
+// start is not known to be intersection-free, so the next first substep does not cull.
+TEST(RadialCullingGl, AHostWriteSwitchesCullingOffForTheNextSubstep) {
+    const Totals t = expectIdentical(ballScene("none", 2.0, 40.0, 1), ballScene("radial", 2.0, 40.0, 1), 12, 6);
+    EXPECT_EQ(t.culledSubsteps, 12u - 2u) << "all but the first frame and the frame after the host's write";
+}
+
+TEST(RadialCullingGl, TheSceneRefusesRadialCullingWithoutItsPremise) {
+    std::string s = ballScene("radial", 1.0, 40.0, 1);
+    const std::string response = R"("response": "intersection_free")";
+    s.replace(s.find(response), response.size(), R"("response": "bridson")");
+    try {
+        (void)parseScene(s, ".", "bridson");
+        ADD_FAILURE() << "radial culling with the bridson response was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("/collision/culling"), std::string::npos) << e.what();
+    }
+}
+
+} // namespace
+} // namespace glcollide
