@@ -133,7 +133,7 @@ struct CollisionStats {
     double energyGuardRemoved = 0.0;
     double energyGuardUnremoved = 0.0;
     double energyGuardLargestRise = 0.0;
-    double energyGuardTotal = 0.0; ///< J: the guard's float sum of the energy the frame ended with
+    double energyGuardTotal = 0.0;   ///< J: the guard's float sum of the energy the frame ended with
     double energyGuardKinetic = 0.0; ///< J: its kinetic part
     double energyGuardContact = 0.0; ///< J: its penalty part (the contacts' and the ground's)
     /// Substeps of the frame whose start had intersecting face pairs (intersectingPairs > 0).

@@ -68,7 +68,9 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
             break;
         case Stage::CollisionDetection:
             // The broad phase's passes come from its factory entry; TriTri tests its candidates;
-            // FeaturePairs expands them into the feature pairs ContactResponse reads.
+            // FeaturePairs expands them into the feature pairs ContactResponse reads. Radial
+            // culling, when the scene asks for it, runs first (decision 0025).
+            if (collision.culling == Culling::Radial) p.push_back(PassId::RadialCulling);
             for (PassId id : passes::broadPhasePasses(collision.broadPhase)) p.push_back(id);
             p.push_back(PassId::TriTri);
             p.push_back(PassId::FeaturePairs);

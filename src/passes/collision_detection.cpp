@@ -71,12 +71,15 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const mode
             throw Error("collision: radial culling needs continuous detection");
         m_radial.emplace(*config.radial);
         m_chain.add({PassId::RadialCulling, {}, [this] {
-                         if (m_radialOn) m_radial->run(*m_lists);
-                         else m_radial->switchOff();
+                         if (m_radialOn)
+                             m_radial->run(*m_lists);
+                         else
+                             m_radial->switchOff();
                      }});
     }
     // Without culling the consumers read a mask whose word 0 is 0 (and a face table of "none").
-    m_radialNone = gl::makeBuffer("radialNone", std::vector<std::uint32_t>{0u, GLC_RADIAL_NO_OBSERVER, 0u, 0u});
+    m_radialNone =
+        gl::makeBuffer("radialNone", std::vector<std::uint32_t>{0u, GLC_RADIAL_NO_OBSERVER, 0u, 0u});
     BroadPhaseContext context{model, m_layout, s};
     context.pairRules = pairRules(config);
     context.halfThickness = model::halfThicknessFloat(s.thickness);

@@ -183,7 +183,7 @@ class CollisionDetection {
     std::unique_ptr<BroadPhase> m_broadPhase;
     NarrowPhase m_narrowPhase;
     FeaturePairs m_featurePairs;
-    std::optional<FeatureCcd> m_ccd; ///< continuous detection only
+    std::optional<FeatureCcd> m_ccd;           ///< continuous detection only
     std::optional<RadialCullingPass> m_radial; ///< CollisionConfig::radial only
     bool m_radialOn = false;
     gl::Buffer m_radialNone; ///< bound for the consumers without culling: word 0 = 0, no observer

@@ -132,8 +132,8 @@ EnergyGuardCounts EnergyGuardPass::frameCounts() const {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gpu::GpuEnergyGuard s{};
     m_state.download(0, offsetof(gpu::GpuEnergyGuard, partials), &s);
-    return EnergyGuardCounts{s.acted,     m_pulledBack,    m_backToStart, s.removed,
-                             s.unremoved, s.largestExcess, s.lastTotal, s.lastKinetic, s.lastContact};
+    return EnergyGuardCounts{s.acted,         m_pulledBack, m_backToStart, s.removed,    s.unremoved,
+                             s.largestExcess, s.lastTotal,  s.lastKinetic, s.lastContact};
 }
 
 void EnergyGuardPass::clearFrameCounts() const {

@@ -13,7 +13,7 @@ namespace glcollide::passes {
 enum class PassId : std::uint8_t {
     NodeForce,
     SpringUpdate,
-    NodePredict, ///< continuous detection: v += h·M⁻¹f and the predicted end positions x1 = x + h·v
+    NodePredict,   ///< continuous detection: v += h·M⁻¹f and the predicted end positions x1 = x + h·v
     RadialCulling, ///< radial view-based culling: observers, classification, free faces (decision 0025)
     BBUpdate,
     BBCollision,
@@ -35,9 +35,10 @@ enum class PassId : std::uint8_t {
 inline constexpr std::size_t kPassCount = 19;
 
 inline constexpr std::array<const char*, kPassCount> kPassNames = {
-    "NodeForce",   "SpringUpdate",    "NodePredict",  "RadialCulling", "BBUpdate",      "BBCollision", "BvhBuild",
-    "BvhRefit",    "BvhTraverse",     "TriTri",       "FeaturePairs",  "Ccd",         "SafeStep",
-    "EnergyGuard", "ContactResponse", "ContactApply", "ImplicitSolve", "NodeUpdate",  "FrameStep"};
+    "NodeForce",    "SpringUpdate",  "NodePredict", "RadialCulling", "BBUpdate",
+    "BBCollision",  "BvhBuild",      "BvhRefit",    "BvhTraverse",   "TriTri",
+    "FeaturePairs", "Ccd",           "SafeStep",    "EnergyGuard",   "ContactResponse",
+    "ContactApply", "ImplicitSolve", "NodeUpdate",  "FrameStep"};
 
 constexpr const char* passName(PassId id) {
     return kPassNames[static_cast<std::size_t>(id)];

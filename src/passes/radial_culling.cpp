@@ -31,8 +31,8 @@ RadialCullingPass::RadialCullingPass(const RadialCullingConfig& config)
       m_classify(config.faceObserver, m_observerCount),
       m_surfaces(gl::makeBuffer("radialSurfaces", surfaceRanges(config.surfaces))),
       m_free("radialFree", (1u + (m_faceCount + 31u) / 32u) * sizeof(std::uint32_t)),
-      m_moved("radialMoved", sizeof(std::uint32_t)), m_observers("radial_observers"), m_freeProgram("radial_free"),
-      m_hostCheck("radial_host_check") {
+      m_moved("radialMoved", sizeof(std::uint32_t)), m_observers("radial_observers"),
+      m_freeProgram("radial_free"), m_hostCheck("radial_host_check") {
     for (std::uint32_t o : config.faceObserver) m_observedFaces += o != kNoRadialObserver ? 1u : 0u;
     m_freeProgram.set("u_faceCount", m_faceCount);
     m_free.fill32(0u);
@@ -84,7 +84,8 @@ bool RadialCullingPass::hostMovedNodes(const DeviceBuffers& b) const {
 std::vector<std::uint32_t> RadialCullingPass::readFreeMask() const {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<std::uint32_t> words((m_faceCount + 31u) / 32u);
-    if (!words.empty()) m_free.download(sizeof(std::uint32_t), words.size() * sizeof(std::uint32_t), words.data());
+    if (!words.empty())
+        m_free.download(sizeof(std::uint32_t), words.size() * sizeof(std::uint32_t), words.data());
     return words;
 }
 

@@ -65,7 +65,7 @@ class RadialCullingPass {
     std::uint32_t m_faceCount = 0, m_observerCount = 0, m_observedFaces = 0;
     mutable RadialClassifyPass m_classify;
     gl::Buffer m_surfaces;
-    mutable gl::Buffer m_free; ///< word 0: the mask holds for this substep; then one bit per face
+    mutable gl::Buffer m_free;  ///< word 0: the mask holds for this substep; then one bit per face
     mutable gl::Buffer m_moved; ///< uint: RadialHostCheck's flag
     gl::ComputeProgram m_observers, m_freeProgram, m_hostCheck;
 };

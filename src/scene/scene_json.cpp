@@ -561,8 +561,9 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
         else
             c.fail(p / "culling", "unknown culling " + shown(*v) + "; expected \"none\" or \"radial\"");
         if (s.culling == Culling::Radial && s.response != ContactResponse::IntersectionFree)
-            c.fail(p / "culling", "radial culling needs \"response\": \"intersection_free\" (its premise is a "
-                                  "substep that starts intersection-free, which only that response keeps; decision 0025)");
+            c.fail(p / "culling",
+                   "radial culling needs \"response\": \"intersection_free\" (its premise is a "
+                   "substep that starts intersection-free, which only that response keeps; decision 0025)");
     }
     if (const json* v = find(j, "energy_guard")) {
         if (!v->is_boolean()) c.fail(p / "energy_guard", "expected true or false, got " + shown(*v));

@@ -33,7 +33,8 @@ std::string ballScene(const std::string& culling, double speed, double springSti
       "objects": [
         {"name": "ball", "generator": {"type": "sphere", "radius": 0.15, "subdivisions": 3},
          "transform": {"translate": [0, 0.2, 0]}, "mass": 0.1, "springs": {"stiffness": )" +
-           std::to_string(springStiffness) + R"(}, "velocity": [0.5, )" + std::to_string(-speed) + R"(, 0]}]})";
+           std::to_string(springStiffness) + R"(}, "velocity": [0.5, )" + std::to_string(-speed) +
+           R"(, 0]}]})";
 }
 
 struct Totals {
@@ -94,7 +95,8 @@ TEST(RadialCullingGl, ACrumplingBallIsBitIdenticalWithAndWithoutCulling) {
 
 // Fast: 12 m/s into the ground, two substeps per frame.
 TEST(RadialCullingGl, AFastBallIsBitIdenticalWithAndWithoutCulling) {
-    const Totals t = expectIdentical(ballScene("none", 12.0, 40.0, 2), ballScene("radial", 12.0, 40.0, 2), 20);
+    const Totals t =
+        expectIdentical(ballScene("none", 12.0, 40.0, 2), ballScene("radial", 12.0, 40.0, 2), 20);
     EXPECT_GT(t.culledSubsteps, 10u);
     EXPECT_GT(t.culledCcd, 0u);
 }
@@ -102,7 +104,8 @@ TEST(RadialCullingGl, AFastBallIsBitIdenticalWithAndWithoutCulling) {
 // The host moves a node between frames through the position buffer (as an embedding may): the
 // start is not known to be intersection-free, so the next first substep does not cull.
 TEST(RadialCullingGl, AHostWriteSwitchesCullingOffForTheNextSubstep) {
-    const Totals t = expectIdentical(ballScene("none", 2.0, 40.0, 1), ballScene("radial", 2.0, 40.0, 1), 12, 6);
+    const Totals t =
+        expectIdentical(ballScene("none", 2.0, 40.0, 1), ballScene("radial", 2.0, 40.0, 1), 12, 6);
     EXPECT_EQ(t.culledSubsteps, 12u - 2u) << "all but the first frame and the frame after the host's write";
 }
 
