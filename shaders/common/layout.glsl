@@ -97,13 +97,15 @@
                                           // (intersects nothing of its observer's surface during the substep)
 #define GLC_BIND_RADIAL_MOVED 63          // uint: set to 1 when a node's position differs from the last substep's
                                           // committed end (the host moved it between frames; RadialHostCheck)
+#define GLC_BIND_CCD_VERTEX_FACE_TESTS 64 // uint[]: GLC_LIST_CCD_VERTEX_FACE_TESTS
+#define GLC_BIND_CCD_EDGE_EDGE_TESTS 65   // uint[]: GLC_LIST_CCD_EDGE_EDGE_TESTS
 #define GLC_RADIAL_NO_OBSERVER 0xffffffffu
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 64
+#define GLC_BINDING_COUNT 66
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -153,7 +155,9 @@
 // tests them; every kernel that computes forces skips them, since the owner rule already finds or
 // excludes their contacts and a second copy would double the force.
 #define GLC_PAIR_CCD_ONLY 0x80000000u
-#define GLC_LIST_COUNT 6
+#define GLC_LIST_CCD_VERTEX_FACE_TESTS 6u // uint indices into GLC_LIST_VERTEX_FACE the CCD tests (CcdFilter, radial culling)
+#define GLC_LIST_CCD_EDGE_EDGE_TESTS 7u   // uint indices into GLC_LIST_EDGE_EDGE the CCD tests (CcdFilter, radial culling)
+#define GLC_LIST_COUNT 8
 
 // A spring between two nodes (global node indices).
 struct GpuSpring {

@@ -97,6 +97,7 @@ CollisionDetection::CollisionDetection(const CollisionConfig& config, const mode
         m_ccd.emplace(static_cast<std::uint32_t>(model.nodeCount()),
                       static_cast<std::uint32_t>(model.faceCount()), s.ccd.budget,
                       static_cast<float>(s.ccd.minSeparation));
+        m_ccd->compactPairs(m_radial.has_value());
         m_ccd->addStages(m_chain, *m_lists);
         // The safe step cuts moving nodes only: a still pair must not keep its rounds going.
         if (s.response == ContactResponse::IntersectionFree) {

@@ -98,6 +98,8 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"RadialNonPositiveBuf", GLC_BIND_RADIAL_NONPOSITIVE},
     {"RadialFreeBuf", GLC_BIND_RADIAL_FREE},
     {"RadialMovedBuf", GLC_BIND_RADIAL_MOVED},
+    {"CcdVertexFaceTestsBuf", GLC_BIND_CCD_VERTEX_FACE_TESTS},
+    {"CcdEdgeEdgeTestsBuf", GLC_BIND_CCD_EDGE_EDGE_TESTS},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {

@@ -105,6 +105,17 @@ void AppendLists::resetCounts(const std::vector<std::uint32_t>& lists) {
     writeCounters();
 }
 
+void AppendLists::zeroCounts(std::initializer_list<std::uint32_t> lists) {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after earlier shader writes to the counters
+    const std::uint32_t zero = 0;
+    for (std::uint32_t list : lists) {
+        m_lists.at(list).count = 0;
+        m_counters.upload(offsetof(gpu::GpuCollisionCounters, lists) + list * sizeof(gpu::GpuListCounter) +
+                              offsetof(gpu::GpuListCounter, count),
+                          sizeof zero, &zero);
+    }
+}
+
 void AppendLists::resetGrowths() {
     for (List& l : m_lists) l.growths = 0;
 }

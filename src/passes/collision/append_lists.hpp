@@ -72,6 +72,9 @@ class AppendLists {
     /// Zeroes the counts of `lists` and resets the statistics no stage owns (collisionStat),
     /// keeping the other counts, in one upload of the counter block.
     void resetCounts(const std::vector<std::uint32_t>& lists);
+    /// Zeroes the counts of `lists` on the GPU and here, and nothing else (a stage that runs
+    /// outside the chain and rewrites its own lists).
+    void zeroCounts(std::initializer_list<std::uint32_t> lists);
     void resetGrowths();
     /// Resets the statistics `ids` on the GPU to their reset values: the stage that owns them,
     /// each time it runs.

@@ -27,13 +27,16 @@ class FeatureCcd {
     /// uint per node: the bits of its earliest time of impact in [0, 1], +inf bits when none.
     [[nodiscard]] const gl::Buffer& nodeToi() const { return m_nodeToi; }
     /// Pairs whose four nodes do not move are not tested (the safe step, decision 0024).
-    void skipStillPairs(bool skip) { m_program.set("u_skipStill", skip ? 1u : 0u); }
+    void skipStillPairs(bool skip) { setSelection("u_skipStill", skip ? 1u : 0u); }
     /// A pair touches when it comes within min(minSeparation, half its distance at x0) (the safe
     /// step, decision 0024) instead of within minSeparation.
     void relativeSeparation(bool relative, float minSeparation) {
-        m_program.set("u_gapRelative", relative ? 1u : 0u);
-        m_program.set("u_minSeparation", minSeparation);
+        setSelection("u_gapRelative", relative ? 1u : 0u);
+        setSelection("u_minSeparation", minSeparation);
     }
+    /// Radial culling leaves most pairs out: a filter kernel first compacts the pairs to test
+    /// (feature_ccd_filter.comp), so the CCD kernel runs only on those. Call before addStages.
+    void compactPairs(bool compact) { m_compact = compact; }
     /// Pairs between faces that intersect at x0 are left out (the safe step's recovery from
     /// intersecting input, decision 0024): run() first marks them from the intersection list.
     void skipTangledPairs(bool skip);
@@ -46,11 +49,20 @@ class FeatureCcd {
     void run(AppendLists& lists, bool mark = true);
 
   private:
+    /// A uniform of the pair selection (common/ccd_pair_selection.glsl): the CCD kernel's and
+    /// the filter's, which must decide alike.
+    template <typename T> void setSelection(const char* uniform, T value) {
+        m_program.set(uniform, value);
+        m_filter.set(uniform, value);
+    }
+
     gl::Buffer m_nodeToi;
     gl::Buffer m_tangled; ///< uint per node, then per face: 1 where a face pair intersects at x0
     bool m_skipTangled = false;
+    bool m_compact = false;
     gl::ComputeProgram m_program;
-    gl::ComputeProgram m_marks; ///< tangled_marks.comp
+    gl::ComputeProgram m_filter; ///< feature_ccd_filter.comp (compactPairs)
+    gl::ComputeProgram m_marks;  ///< tangled_marks.comp
 };
 
 } // namespace glcollide::passes
