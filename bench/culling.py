@@ -52,36 +52,57 @@ def run(binary, scene, frames, workdir, tag, stats_dir=None, write_only=False):
 
 
 def median(frames, key):
-    return statistics.median(key(f) for f in frames)
+    return statistics.median(key(f) for f in frames) if frames else float("nan")
 
 
-def summarize(stats):
-    frames = stats["frames"][1:]
-    ms = lambda name: (lambda f: f["gpu_ms"].get(name, 0.0))
-    row = {
-        "faces": stats["faces"],
-        "detection_ms": median(frames, lambda f: sum(f["gpu_ms"].get(p, 0.0) for p in DETECTION)),
-        "stage_ms": {p: median(frames, ms(p)) for p in DETECTION},
-        "wall_ms": median(frames, lambda f: f["wall_ms"]),
-        "ccd_pairs_listed": median(frames, lambda f: f["collision"]["vertex_face_pairs"] + f["collision"]["edge_edge_pairs"]),
-        "tri_tri_candidates": median(frames, lambda f: f["collision"]["candidate_pairs"]),
-        "ccd_may_touch": median(frames, lambda f: f["ccd"]["vertex_face_may_touch"] + f["ccd"]["edge_edge_may_touch"]),
-        "max_intersecting_pairs": max(f["collision"]["max_intersecting_pairs"] for f in stats["frames"]),
-    }
-    radial = [f.get("radial_culling") for f in frames]
-    if all(r is not None for r in radial):
-        observed = radial[0]["observed_faces"]
-        row["positive_fraction"] = median(frames, lambda f: 1 - f["radial_culling"]["non_positive_faces"] / observed)
-        row["min_positive_fraction"] = min(1 - r["non_positive_faces"] / observed for r in radial)
-        row["free_fraction"] = median(frames, lambda f: f["radial_culling"]["free_faces"] / observed)
-        row["ccd_pairs_tested"] = median(frames, lambda f: f["collision"]["vertex_face_pairs"] + f["collision"]["edge_edge_pairs"]
-                                         - f["radial_culling"]["ccd_pairs_left_out"])
-        row["tri_tri_tested"] = median(frames, lambda f: f["collision"]["candidate_pairs"] - f["radial_culling"]["tri_tri_pairs_left_out"])
-        row["substeps_culled"] = sum(r["substeps_culled"] for r in radial)
-    else:
-        row["ccd_pairs_tested"] = row["ccd_pairs_listed"]
-        row["tri_tri_tested"] = row["tri_tri_candidates"]
-    return row
+def detection_ms(f):
+    return sum(f["gpu_ms"].get(p, 0.0) for p in DETECTION)
+
+
+def ccd_tested(f):
+    listed = f["collision"]["vertex_face_pairs"] + f["collision"]["edge_edge_pairs"]
+    return listed - (f.get("radial_culling") or {}).get("ccd_pairs_left_out", 0)
+
+
+def tri_tri_tested(f):
+    return f["collision"]["candidate_pairs"] - (f.get("radial_culling") or {}).get("tri_tri_pairs_left_out", 0)
+
+
+def summarize(none_stats, radial_stats, first_frame):
+    """Medians over two sets of frames of the bit-identical runs: every frame from `first_frame`,
+    and the folded ones (some face not proven positive: the culling has work to do)."""
+    none_frames = {f["frame"]: f for f in none_stats["frames"] if f["frame"] >= first_frame}
+    radial_frames = {f["frame"]: f for f in radial_stats["frames"] if f["frame"] >= first_frame}
+    observed = radial_stats["frames"][-1]["radial_culling"]["observed_faces"]
+    folded = [k for k, f in radial_frames.items() if f["radial_culling"]["non_positive_faces"] > 0]
+    out = {"faces": none_stats["faces"], "observed_faces": observed,
+           "max_intersecting_pairs": {c: max(f["collision"]["max_intersecting_pairs"] for f in s["frames"])
+                                      for c, s in [("none", none_stats), ("radial", radial_stats)]},
+           "same_ccd_answers": all(
+               none_frames[k]["ccd"]["vertex_face_may_touch"] == radial_frames[k]["ccd"]["vertex_face_may_touch"]
+               and none_frames[k]["ccd"]["edge_edge_may_touch"] == radial_frames[k]["ccd"]["edge_edge_may_touch"]
+               for k in radial_frames)}
+    for name, keys in [("all", sorted(radial_frames)), ("folded", sorted(folded))]:
+        n = [none_frames[k] for k in keys]
+        r = [radial_frames[k] for k in keys]
+        out[name] = {
+            "frames": len(keys),
+            "positive_fraction": median(r, lambda f: 1 - f["radial_culling"]["non_positive_faces"] / observed),
+            "free_fraction": median(r, lambda f: f["radial_culling"]["free_faces"] / observed),
+            "ccd_pairs": {"none": median(n, ccd_tested), "radial": median(r, ccd_tested)},
+            "tri_tri_pairs": {"none": median(n, tri_tri_tested), "radial": median(r, tri_tri_tested)},
+            "detection_ms": {"none": median(n, detection_ms), "radial": median(r, detection_ms)},
+            "stage_ms": {c: {p: median(fs, lambda f, p=p: f["gpu_ms"].get(p, 0.0)) for p in DETECTION}
+                         for c, fs in [("none", n), ("radial", r)]},
+            "wall_ms": {"none": median(n, lambda f: f["wall_ms"]), "radial": median(r, lambda f: f["wall_ms"])},
+        }
+    out["min_positive_fraction"] = min(1 - f["radial_culling"]["non_positive_faces"] / observed
+                                       for f in radial_frames.values())
+    return out
+
+
+def ratio(a, b):
+    return "all culled" if b == 0 else f"{a / b:.1f}×"
 
 
 def main():
@@ -98,52 +119,50 @@ def main():
     with tempfile.TemporaryDirectory() as temp:
         work = args.write_scenes or temp
         for sub in [int(s) for s in args.subdivisions.split(",")]:
-            size = {}
+            runs = {}
             for culling in ["none", "radial"]:
                 scene = json.loads(json.dumps(base))
                 scene["objects"][0]["generator"]["subdivisions"] = sub
                 scene["collision"]["culling"] = culling
-                stats = run(args.glcollide, scene, args.frames, work, f"ball{sub}_{culling}", args.stats_dir,
-                            args.write_scenes is not None)
-                if stats is None:
-                    continue
-                results.setdefault("device", stats["device"])
-                results.setdefault("gl_renderer", stats["gl_renderer"])
-                size[culling] = summarize(stats)
-                print(f"subdivisions {sub} ({stats['faces']} faces), culling {culling}: "
-                      f"detection {size[culling]['detection_ms']:.2f} ms", file=sys.stderr)
-            if not size:
+                runs[culling] = run(args.glcollide, scene, args.frames, work, f"ball{sub}_{culling}", args.stats_dir,
+                                    args.write_scenes is not None)
+            if args.write_scenes:
                 continue
-            none, radial = size["none"], size["radial"]
-            size["ccd_pair_ratio"] = none["ccd_pairs_tested"] / max(radial["ccd_pairs_tested"], 1)
-            size["tri_tri_ratio"] = none["tri_tri_tested"] / max(radial["tri_tri_tested"], 1)
-            size["detection_speedup"] = none["detection_ms"] / radial["detection_ms"]
-            size["same_exact_answers"] = (none["ccd_may_touch"] == radial["ccd_may_touch"]
-                                          and none["max_intersecting_pairs"] == radial["max_intersecting_pairs"])
+            results.setdefault("device", runs["none"]["device"])
+            results.setdefault("gl_renderer", runs["none"]["gl_renderer"])
+            size = summarize(runs["none"], runs["radial"], 2)
+            print(f"subdivisions {sub} ({size['faces']} faces): detection {size['all']['detection_ms']}", file=sys.stderr)
             results["sizes"].append(size)
     if args.write_scenes:
         return
     sizes = results["sizes"]
     if len(sizes) >= 2:
         for culling in ["none", "radial"]:
-            a, b = sizes[0][culling], sizes[-1][culling]
-            results[f"cost_exponent_{culling}"] = math.log(b["detection_ms"] / a["detection_ms"]) / math.log(b["faces"] / a["faces"])
+            a, b = sizes[0]["all"]["detection_ms"][culling], sizes[-1]["all"]["detection_ms"][culling]
+            results[f"cost_exponent_{culling}"] = math.log(b / a) / math.log(sizes[-1]["faces"] / sizes[0]["faces"])
     commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
     results["commit"] = commit
     lines = [f"Radial culling on {results['gl_renderer']} ({results['device']}), commit {commit}, "
-             f"{args.frames} frames, medians over frames 2..{args.frames}:", "",
-             "| faces | positive | free | CCD pairs none → radial | ratio | TriTri pairs none → radial | ratio "
-             "| detection ms none → radial (culling stage) | speed-up |",
-             "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+             f"{args.frames} frames; medians over frames 2..{args.frames} (all) and over the frames in which some "
+             "face was not proven positive (folded):", "",
+             "| faces | frames | positive (min) | free | CCD pairs none → radial | TriTri pairs none → radial "
+             "| detection ms none → radial (culling stage) | speed-up | same answers |",
+             "|---:|---|---:|---:|---:|---:|---:|---:|---|"]
     for s in sizes:
-        n, r = s["none"], s["radial"]
-        lines.append(f"| {n['faces']} | {100 * r['positive_fraction']:.1f} % (min {100 * r['min_positive_fraction']:.1f} %) "
-                     f"| {100 * r['free_fraction']:.1f} % | {n['ccd_pairs_tested']:.0f} → {r['ccd_pairs_tested']:.0f} "
-                     f"| {s['ccd_pair_ratio']:.1f}× | {n['tri_tri_tested']:.0f} → {r['tri_tri_tested']:.0f} | {s['tri_tri_ratio']:.1f}× "
-                     f"| {n['detection_ms']:.2f} → {r['detection_ms']:.2f} ({r['stage_ms']['RadialCulling']:.2f}) "
-                     f"| {s['detection_speedup']:.2f}× |")
+        for name in ["all", "folded"]:
+            x = s[name]
+            if x["frames"] == 0:
+                lines.append(f"| {s['faces']} | {name}: 0 | | | | | | | |")
+                continue
+            c, t, d = x["ccd_pairs"], x["tri_tri_pairs"], x["detection_ms"]
+            lines.append(f"| {s['faces']} | {name}: {x['frames']} | {100 * x['positive_fraction']:.1f} % "
+                         f"({100 * s['min_positive_fraction']:.1f} %) | {100 * x['free_fraction']:.1f} % "
+                         f"| {c['none']:.0f} → {c['radial']:.0f} ({ratio(c['none'], c['radial'])}) "
+                         f"| {t['none']:.0f} → {t['radial']:.0f} ({ratio(t['none'], t['radial'])}) "
+                         f"| {d['none']:.2f} → {d['radial']:.2f} ({x['stage_ms']['radial']['RadialCulling']:.2f}) "
+                         f"| {d['none'] / d['radial']:.2f}× | {'yes' if s['same_ccd_answers'] else 'NO'} |")
     if "cost_exponent_none" in results:
-        lines += ["", f"Cost exponent of detection time in faces: none {results['cost_exponent_none']:.2f}, "
+        lines += ["", f"Cost exponent of the detection time in faces (all frames): none {results['cost_exponent_none']:.2f}, "
                       f"radial {results['cost_exponent_radial']:.2f}."]
     table = "\n".join(lines)
     print(table)
