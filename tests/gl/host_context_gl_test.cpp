@@ -474,9 +474,9 @@ TEST(HostContextGl, GuardCost) {
         engine.step();
         stepMs = std::min(stepMs, engine.lastStep().wallMilliseconds);
     }
-    std::printf("HostStateGuard: compute %.2f us (24 buffers bound), %.2f us (none bound), transfer %.2f us; "
+    std::printf("HostStateGuard: compute %.2f us (%u buffers bound), %.2f us (none bound), transfer %.2f us; "
                 "smallest step of a %u-node cloth: %.3f ms\n",
-                compute, unbound, transfer, engine.nodeCount(), stepMs);
+                compute, hostBindings(), unbound, transfer, engine.nodeCount(), stepMs);
     // The claim (docs/embedding.md, GL state contract) is that the guard is negligible next to a step: a
     // few dozen glGet and bind calls. Measured: 0.3-1.5 us on llvmpipe against a 0.3-0.9 ms step,
     // 6.6 us against 0.24 ms on an NVIDIA H100 (bench/results/nvidia-h100/fabad4e/gltests.log).
