@@ -8,7 +8,10 @@
 
 #include "cpu/oracle/exact_radial.hpp"
 #include "cpu/radial_twin.hpp"
+#include "cpu/collision_twin.hpp"
+#include "passes/collision/append_lists.hpp"
 #include "passes/radial_classify.hpp"
+#include "passes/radial_culling.hpp"
 #include "support/collision_buffers.hpp"
 #include "support/glsl_as_written.hpp"
 
@@ -122,6 +125,81 @@ TEST(RadialClassifyGl, AClosedSurfaceAroundItsObserver) {
     RecordProperty("outside_positive", static_cast<int>(outside.positive));
     EXPECT_GT(outside.positive, faces / 2);
     EXPECT_LT(outside.positive, faces * 3 / 4);
+}
+
+// The whole culling pass (RadialObservers, RadialClassify, RadialFree) on the sphere surface
+// whose cap is shoved through its far side during the substep: the observer is the nodes'
+// centroid at both ends (the CPU's double mean, within the float sum's rounding); the free mask
+// is the twin's (cpu::radialFreeFaces with the GPU's observers) bit for bit where the GPU
+// evaluates the GLSL as written; on every device no face the GPU calls free intersects anything
+// at eight times of the substep (the exact TriTri oracle), and the counts reach the statistics.
+TEST(RadialClassifyGl, TheCullingPassFreesWhatTheTwinFreesAndNothingThatIntersects) {
+    const Surface s = sphereSurface(3);
+    const auto faces = static_cast<std::uint32_t>(s.faces.size() / 3);
+    std::vector<glm::vec3> x1 = s.x0;
+    for (std::size_t i = 0; i < x1.size(); ++i)
+        if (s.x0[i].y > 0.3f && s.x0[i].x > 0.0f) x1[i].x -= 0.6f;
+    passes::DeviceBuffers b = test::collisionBuffers(s.x0, s.faces);
+    b.predictedPositions = gl::makeBuffer("predictedPositions", test::positionsWithUnitW(x1));
+    passes::RadialCullingConfig config;
+    config.faceObserver.assign(faces, 0u);
+    config.surfaces = {{0u, static_cast<std::uint32_t>(s.x0.size())}};
+    passes::RadialCullingPass pass(config);
+    passes::AppendLists lists(0);
+    lists.bind();
+    b.positions.bindStorage(GLC_BIND_NODE_POSITIONS);
+    b.predictedPositions.bindStorage(GLC_BIND_PREDICTED_POSITIONS);
+    b.faces.bindStorage(GLC_BIND_FACES);
+    pass.run(lists);
+    lists.readCounters();
+
+    // The observer: the centroid. A fixed-order float sum of n terms of size <= |x| is within
+    // n * 2^-24 * max|x| of the exact sum, so the mean is within 2^-24 * max|x| * (1 + small): 1e-6 m here.
+    const std::vector<passes::RadialObserver> q = pass.readObservers();
+    ASSERT_EQ(q.size(), 1u);
+    glm::dvec3 c0(0.0), c1(0.0);
+    for (std::size_t i = 0; i < s.x0.size(); ++i) c0 += glm::dvec3(s.x0[i]), c1 += glm::dvec3(x1[i]);
+    c0 /= static_cast<double>(s.x0.size());
+    c1 /= static_cast<double>(s.x0.size());
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(q[0].start[k], c0[k], 1e-6);
+        EXPECT_NEAR(q[0].end[k], c1[k], 1e-6);
+    }
+
+    const std::vector<std::uint32_t> mask = pass.readFreeMask();
+    const std::vector<std::uint8_t> twin =
+        cpu::radialFreeFaces(s.faces, s.x0, x1, config.faceObserver, {q[0].start, q[0].end});
+    std::uint32_t gpuFree = 0, twinFree = 0;
+    std::vector<std::uint8_t> free(faces);
+    for (std::uint32_t f = 0; f < faces; ++f) {
+        free[f] = static_cast<std::uint8_t>(mask[f / 32] >> (f % 32) & 1u);
+        gpuFree += free[f];
+        twinFree += twin[f];
+    }
+    if (test::deviceEvaluatesGlslAsWritten()) {
+        EXPECT_EQ(free, twin) << "GPU free " << gpuFree << ", twin free " << twinFree;
+    }
+    EXPECT_GT(gpuFree, 0u);
+    EXPECT_LT(gpuFree, faces) << "the fold must leave faces that are not free";
+    EXPECT_EQ(lists.stat(GLC_STAT_RADIAL_FREE), gpuFree);
+    EXPECT_GT(lists.stat(GLC_STAT_RADIAL_NON_POSITIVE), 0u);
+
+    const std::vector<std::uint32_t> faceObject(faces, 0u);
+    const cpu::PairRules self{false, true};
+    std::size_t intersecting = 0;
+    for (int k = 1; k <= 8; ++k) {
+        const float t = static_cast<float>(k) / 8.0f;
+        std::vector<glm::vec3> x(s.x0.size());
+        for (std::size_t i = 0; i < x.size(); ++i) x[i] = s.x0[i] + t * (x1[i] - s.x0[i]);
+        const auto pairs =
+            cpu::twinIntersections(s.faces, x, cpu::twinCandidates(s.faces, faceObject, x, 0.0, self));
+        intersecting = std::max(intersecting, pairs.size());
+        for (const cpu::FacePair& p : pairs)
+            EXPECT_FALSE(free[p[0]] || free[p[1]])
+                << "faces " << p[0] << " and " << p[1] << " intersect at t = " << k
+                << "/8, one of them free on the GPU";
+    }
+    EXPECT_GT(intersecting, 0u) << "the fold must really intersect, or the test shows nothing";
 }
 
 TEST(RadialClassifyGl, BadObserverIndicesAreRefused) {
