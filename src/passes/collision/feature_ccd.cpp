@@ -63,9 +63,9 @@ void FeatureCcd::addStages(StageChain& chain, AppendLists& lists) {
     lists.declare(GLC_LIST_CCD_EDGE_EDGE_TESTS,
                   {"ccdEdgeEdgeTests", "indices", sizeof(std::uint32_t), GLC_BIND_CCD_EDGE_EDGE_TESTS, 1,
                    static_cast<int>(GLC_LIST_EDGE_EDGE)});
-    chain.add({PassId::Ccd,
-               {GLC_LIST_CCD_VERTEX_FACE_TESTS, GLC_LIST_CCD_EDGE_EDGE_TESTS},
-               [this, &lists] { run(lists); }});
+    chain.add({PassId::Ccd, {GLC_LIST_CCD_VERTEX_FACE_TESTS, GLC_LIST_CCD_EDGE_EDGE_TESTS}, [this, &lists] {
+                   run(lists);
+               }});
 }
 
 void FeatureCcd::run(AppendLists& lists, bool mark) {
@@ -85,7 +85,8 @@ void FeatureCcd::run(AppendLists& lists, bool mark) {
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         for (std::uint32_t edgeEdge : {0u, 1u}) {
             m_filter.set("u_edgeEdge", edgeEdge);
-            lists.dispatchOver(m_filter, edgeEdge ? GLC_LIST_EDGE_EDGE : GLC_LIST_VERTEX_FACE, GLC_WORKGROUP_SIZE);
+            lists.dispatchOver(m_filter, edgeEdge ? GLC_LIST_EDGE_EDGE : GLC_LIST_VERTEX_FACE,
+                               GLC_WORKGROUP_SIZE);
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
