@@ -81,6 +81,7 @@ struct RenderOptions {
     int every = 10;               ///< write frame 0 and every K-th frame
     std::string size = "800x600"; ///< WIDTHxHEIGHT in pixels
     int samples = 4;              ///< multisampling (0 or 1: none)
+    bool flat = false;            ///< flat shading (one normal per face) instead of smooth
     std::string outDir = "glcollide-render";
     std::string device;
     bool quiet = false;

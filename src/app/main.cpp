@@ -122,6 +122,8 @@ int main(int argc, char** argv) {
     renderCmd->add_option("--size", render.size, "Image size WIDTHxHEIGHT in pixels")->default_val("800x600");
     renderCmd->add_option("--samples", render.samples, "Multisampling samples per pixel (0: none)")
         ->default_val(4);
+    renderCmd->add_flag("--flat", render.flat,
+                        "Flat shading, one normal per face (default: smooth, per-vertex normals)");
     renderCmd->add_option("--out", render.outDir, "Output folder for frame_NNNNNN.png")
         ->default_val("glcollide-render");
     renderCmd->add_option("--device", render.device,

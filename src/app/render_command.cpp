@@ -56,7 +56,7 @@ int renderCommand(const RenderOptions& options) {
     HeadlessContext context({options.device});
     Engine engine(scene, {false});
     for (const std::string& w : engine.warnings()) std::cerr << "glcollide: warning: " << w << "\n";
-    render::SceneRenderer renderer(engine, {width, height, options.samples});
+    render::SceneRenderer renderer(engine, {width, height, options.samples, !options.flat});
     const bool collisions =
         engine.scene().effects.has(Effect::Collisions) || engine.scene().effects.has(Effect::SelfCollisions);
     const auto frames = static_cast<std::uint64_t>(scene.time.frames);

@@ -22,8 +22,7 @@ constexpr std::array<GLenum, 13> kCapabilities = {
 
 } // namespace
 
-SavedGlState::SavedGlState(GLuint storageBinding, GLuint textureUnit)
-    : m_storageBinding(storageBinding), m_textureUnit(textureUnit) {
+SavedGlState::SavedGlState(GLuint textureUnit) : m_textureUnit(textureUnit) {
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &m_drawFramebuffer);
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &m_readFramebuffer);
     glGetIntegerv(GL_RENDERBUFFER_BINDING, &m_renderbuffer);
@@ -35,9 +34,12 @@ SavedGlState::SavedGlState(GLuint storageBinding, GLuint textureUnit)
     glGetIntegerv(GL_COPY_WRITE_BUFFER_BINDING, &m_copyWriteBuffer);
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &m_storageBuffer);
     glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &m_pixelPackBuffer);
-    glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, storageBinding, &m_indexedStorageBuffer);
-    glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, storageBinding, &m_indexedStorageStart);
-    glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, storageBinding, &m_indexedStorageSize);
+    for (GLuint i = 0; i < kStorageBindings; ++i) {
+        glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &m_storage[i].buffer);
+        glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, i, &m_storage[i].start);
+        glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, i, &m_storage[i].size);
+    }
+    glGetIntegerv(GL_FRONT_FACE, &m_frontFace);
     glGetIntegerv(GL_ACTIVE_TEXTURE, &m_activeTexture);
     glActiveTexture(GL_TEXTURE0 + textureUnit);
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &m_texture2D);
@@ -60,6 +62,7 @@ SavedGlState::SavedGlState(GLuint storageBinding, GLuint textureUnit)
 }
 
 SavedGlState::~SavedGlState() {
+    glFrontFace(static_cast<GLenum>(m_frontFace));
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(m_drawFramebuffer));
     glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(m_readFramebuffer));
     glBindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(m_renderbuffer));
@@ -70,13 +73,15 @@ SavedGlState::~SavedGlState() {
     glUseProgram(program != 0 && glIsProgram(program) ? program : 0);
     glBindVertexArray(static_cast<GLuint>(m_vertexArray));
     // Indexed bindings also set the generic binding point: restore them first.
-    const auto buffer = static_cast<GLuint>(m_indexedStorageBuffer);
-    if (buffer != 0 && m_indexedStorageSize > 0)
-        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, m_storageBinding, buffer,
-                          static_cast<GLintptr>(m_indexedStorageStart),
-                          static_cast<GLsizeiptr>(m_indexedStorageSize));
-    else
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, m_storageBinding, buffer);
+    for (GLuint i = 0; i < kStorageBindings; ++i) {
+        const StorageBinding& b = m_storage[i];
+        const auto buffer = static_cast<GLuint>(b.buffer);
+        if (buffer != 0 && b.size > 0)
+            glBindBufferRange(GL_SHADER_STORAGE_BUFFER, i, buffer, static_cast<GLintptr>(b.start),
+                              static_cast<GLsizeiptr>(b.size));
+        else
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffer);
+    }
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(m_storageBuffer));
     glBindBuffer(GL_ARRAY_BUFFER, static_cast<GLuint>(m_arrayBuffer));
     glBindBuffer(GL_COPY_READ_BUFFER, static_cast<GLuint>(m_copyReadBuffer));

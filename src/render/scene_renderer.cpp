@@ -47,7 +47,12 @@ using Texture = gl::Handle<deleteTexture>;
 using Program = gl::Handle<gl::deleteProgram>;
 
 // The one indexed SSBO binding and texture unit the renderer uses (both restored after drawing).
-constexpr GLuint kStyleBinding = 0;
+constexpr GLuint kStyleBinding = 0;           // surface.frag: per-face style
+constexpr GLuint kPositionsBinding = 1;       // surface.vert: the engine's positions (smooth shading)
+constexpr GLuint kFacesBinding = 2;           // surface.vert: the engine's faces
+constexpr GLuint kNodeFaceOffsetsBinding = 3; // surface.vert: node -> face incidence, offsets
+constexpr GLuint kNodeFaceListBinding = 4;    // surface.vert: node -> face incidence, faces
+static_assert(kNodeFaceListBinding < SavedGlState::kStorageBindings);
 constexpr GLuint kShadowUnit = 0;
 constexpr int kShadowMapSize = 2048;
 constexpr std::uint32_t kHighlightBit = 0x80000000u;
@@ -68,6 +73,7 @@ const std::array<glm::vec3, 10> kPalette = {{
 }};
 const glm::vec3 kHighlight{0.890f, 0.102f, 0.110f};
 const glm::vec3 kBackground{1.0f, 1.0f, 1.0f};
+const glm::vec3 kBackTint{0.95f, 0.92f, 0.80f}; // a pale warm grey: the back side of a face, halfway
 
 struct Box {
     glm::dvec3 lo{std::numeric_limits<double>::infinity()};
@@ -304,6 +310,7 @@ struct SceneRenderer::Impl {
     Program surface, depth, gridProgram;
     VertexArray meshArray, emptyArray;
     gl::Buffer styleBuffer;
+    gl::Buffer nodeFaceOffsets, nodeFaceList; ///< smooth shading: each node's faces (surface.vert)
     Renderbuffer colour, depthBuffer, resolvedColour;
     Framebuffer target, resolve, shadowTarget;
     Texture shadowMap;
@@ -340,13 +347,31 @@ SceneRenderer::SceneRenderer(const Engine& engine, const RenderOptions& options)
     }
     m.faceStyle = m.faceObject;
 
-    const SavedGlState saved(kStyleBinding, kShadowUnit);
+    const SavedGlState saved(kShadowUnit);
     gl::DebugGroup group("glcollide::render::SceneRenderer");
     m.surface = buildProgram("surface.vert", "surface.frag");
     m.depth = buildProgram("surface.vert", "depth.frag");
     m.gridProgram = buildProgram("grid.vert", "grid.frag");
     m.styleBuffer =
         gl::Buffer("render/faceStyle", m.faceStyle.size() * sizeof(std::uint32_t), m.faceStyle.data());
+    // Each node's faces in global face order (CSR), for surface.vert's vertex normals: the
+    // engine's face buffer holds the bodies' faces in body order, node indices global.
+    {
+        std::vector<std::uint32_t> faceNodes;
+        const std::vector<std::uint32_t> firstNodes = engine.bodyFirstNodes();
+        for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+            for (const auto& f : scene.bodies[b].faces)
+                for (int k = 0; k < 3; ++k) faceNodes.push_back(firstNodes[b] + f[k]);
+        std::vector<std::uint32_t> offsets(std::size_t{m.nodeCount} + 1, 0u), list(faceNodes.size());
+        for (std::uint32_t n : faceNodes) ++offsets[n + 1];
+        for (std::size_t i = 0; i < m.nodeCount; ++i) offsets[i + 1] += offsets[i];
+        std::vector<std::uint32_t> next(offsets.begin(), offsets.end() - 1);
+        for (std::size_t c = 0; c < faceNodes.size(); ++c)
+            list[next[faceNodes[c]]++] = static_cast<std::uint32_t>(c / 3);
+        if (list.empty()) list.push_back(0u); // GL rejects zero-size storage
+        m.nodeFaceOffsets = gl::makeBuffer("render/nodeFaceOffsets", offsets);
+        m.nodeFaceList = gl::makeBuffer("render/nodeFaceList", list);
+    }
 
     GLuint vao = 0;
     glGenVertexArrays(1, &vao);
@@ -418,6 +443,9 @@ SceneRenderer::SceneRenderer(const Engine& engine, const RenderOptions& options)
     glProgramUniform3fv(m.surface.name(), location(m.surface, "u_palette[0]"),
                         static_cast<GLsizei>(kPalette.size()), palette.data());
     setVec3(m.surface, "u_highlight", glm::dvec3(kHighlight));
+    setVec3(m.surface, "u_backTint", glm::dvec3(kBackTint));
+    glProgramUniform1ui(m.surface.name(), location(m.surface, "u_smooth"), m.options.smooth ? 1u : 0u);
+    glProgramUniform1ui(m.depth.name(), location(m.depth, "u_smooth"), 0u);
     setVec3(m.surface, "u_eye", m.view.eye);
     setVec3(m.surface, "u_keyDir", keyDir);
     setVec3(m.surface, "u_fillDir", fillDir);
@@ -446,7 +474,7 @@ Image SceneRenderer::renderFrame(const Engine& engine) {
     std::vector<std::array<std::uint32_t, 2>> pairs;
     {
         // The readback is the engine's work, but on the renderer's behalf: leave no trace of it.
-        const SavedGlState saved(kStyleBinding, kShadowUnit);
+        const SavedGlState saved(kShadowUnit);
         pairs = engine.readIntersectingPairs();
     }
     return renderFrame(engine, pairs);
@@ -464,7 +492,7 @@ Image SceneRenderer::renderFrame(const Engine& engine,
     m.highlighted = static_cast<std::size_t>(std::count_if(
         m.faceStyle.begin(), m.faceStyle.end(), [](std::uint32_t s) { return (s & kHighlightBit) != 0; }));
 
-    const SavedGlState saved(kStyleBinding, kShadowUnit);
+    const SavedGlState saved(kShadowUnit);
     gl::DebugGroup group("glcollide::render::SceneRenderer::renderFrame");
     m.styleBuffer.upload(0, m.faceStyle.size() * sizeof(std::uint32_t), m.faceStyle.data());
     // step() already issues this barrier; a caller who changed positions otherwise may not have.
@@ -485,6 +513,11 @@ Image SceneRenderer::renderFrame(const Engine& engine,
     glBindVertexBuffer(0, engine.positionBuffer(), 0, 16);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, engine.faceIndexBuffer());
     const auto indexCount = static_cast<GLsizei>(3 * m.faceCount);
+    // Smooth shading reads the same two buffers as storage, and the node -> face incidence.
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionsBinding, engine.positionBuffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFacesBinding, engine.faceIndexBuffer());
+    m.nodeFaceOffsets.bindStorage(kNodeFaceOffsetsBinding);
+    m.nodeFaceList.bindStorage(kNodeFaceListBinding);
 
     // Shadow map: depth seen from the key light, pushed back a little against self-shadowing.
     glBindFramebuffer(GL_FRAMEBUFFER, m.shadowTarget.name());
@@ -506,6 +539,7 @@ Image SceneRenderer::renderFrame(const Engine& engine,
     glBindSampler(kShadowUnit, 0);
     m.styleBuffer.bindStorage(kStyleBinding);
     glUseProgram(m.surface.name());
+    glFrontFace(GL_CCW); // faces wind counter-clockwise seen from outside: the front
     if (indexCount > 0) glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
 
     // The grid after the surfaces: hidden where they are in front, and pushed back so faces
@@ -568,6 +602,10 @@ glm::vec3 SceneRenderer::bodyColour(std::size_t index) {
 glm::vec3 SceneRenderer::highlightColour() {
     return kHighlight;
 }
+glm::vec3 SceneRenderer::backTint() {
+    return kBackTint;
+}
+
 glm::vec3 SceneRenderer::backgroundColour() {
     return kBackground;
 }

@@ -33,6 +33,9 @@ struct RenderOptions {
     int width = 800;  ///< pixels, 1 ... GL_MAX_RENDERBUFFER_SIZE
     int height = 600; ///< pixels, 1 ... GL_MAX_RENDERBUFFER_SIZE
     int samples = 4;  ///< multisampling; clamped to GL_MAX_SAMPLES; 0 or 1 = none
+    /// Smooth shading from per-vertex normals (area-weighted, gathered on the GPU each frame);
+    /// false: flat, one normal per face.
+    bool smooth = true;
 };
 
 /// What a frame is seen from: a perspective camera plus its matrices (OpenGL clip conventions).
@@ -102,6 +105,8 @@ class SceneRenderer {
     static glm::vec3 bodyColour(std::size_t index);
     /// Colour of intersecting faces (red), before shading.
     static glm::vec3 highlightColour();
+    /// What the back side of a face (winding clockwise as seen) is tinted towards, halfway.
+    static glm::vec3 backTint();
     /// Colour where nothing is drawn.
     static glm::vec3 backgroundColour();
 

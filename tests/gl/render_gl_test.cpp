@@ -242,6 +242,71 @@ TEST(RenderGl, CameraFromTheSceneFile) {
     EXPECT_THROW((void)SceneRenderer(bad, {16, 16, 0}), Error);
 }
 
+// Smooth shading (issue 25): on a curved surface (a 1,280-face sphere seen from the side) the
+// flat-shaded facets show as steps in brightness between neighbouring pixels; interpolated vertex
+// normals make the brightness vary smoothly. Counted inside the sphere's silhouette (pixels whose
+// 8 neighbours are all on the sphere): steps of more than 6/255 in luminance between horizontal
+// neighbours. Flat shading must show many (facet edges), smooth a fraction of them.
+std::size_t brightnessSteps(const Image& image) {
+    const auto luminance = [&](int x, int y) {
+        const auto p = image.pixel(x, y);
+        return 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
+    };
+    const auto onSphere = [&](int x, int y) {
+        const auto p = image.pixel(x, y);
+        return p[2] > p[0] + 40; // the blue body colour, not the white background or grey grid
+    };
+    std::size_t steps = 0;
+    for (int y = 1; y + 1 < image.height; ++y)
+        for (int x = 1; x + 1 < image.width; ++x) {
+            bool inside = true;
+            for (int dy = -1; dy <= 1 && inside; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) inside = inside && onSphere(x + dx, y + dy);
+            if (inside && std::abs(luminance(x + 1, y) - luminance(x, y)) > 6.0) ++steps;
+        }
+    return steps;
+}
+
+TEST(RenderGl, SmoothShadingHidesTheFacetsOfACurvedSurface) {
+    const Scene scene = parseScene(R"({"format_version": 1, "name": "ball", "effects": [],
+      "camera": {"eye": [0, 0.4, 1.6], "target": [0, 0.4, 0]},
+      "objects": [{"name": "ball", "generator": {"type": "sphere", "radius": 0.3, "subdivisions": 3},
+                   "transform": {"translate": [0, 0.4, 0]}, "mass": 1}]})",
+                                   ".", "ball");
+    Engine engine(scene);
+    const std::size_t flat = brightnessSteps(SceneRenderer(engine, {200, 150, 0, false}).renderFrame(engine));
+    const std::size_t smooth =
+        brightnessSteps(SceneRenderer(engine, {200, 150, 0, true}).renderFrame(engine));
+    RecordProperty("flat_steps", static_cast<int>(flat));
+    RecordProperty("smooth_steps", static_cast<int>(smooth));
+    EXPECT_GT(flat, 50u) << "the facets must show when flat, or the test shows nothing";
+    EXPECT_LT(smooth * 4, flat) << "smooth " << smooth << " steps, flat " << flat;
+}
+
+// The back side of a face (a cloth's underside) is drawn in a paler colour than its front: the
+// same cloth, seen from above, turned with its front up and with its back up (the grid below the
+// scene would hide it from underneath); the saturation of its centre pixel.
+TEST(RenderGl, TheBackOfAClothIsPaler) {
+    const auto saturationAtCentre = [](int rotateXDeg) {
+        Scene scene = parseScene(R"({"format_version": 1, "name": "sheet", "effects": [],
+          "objects": [{"name": "cloth", "generator": {"type": "cloth", "size": [1, 1], "resolution": [4, 4]},
+                       "transform": {"translate": [0, 0.5, 0], "rotate_deg": [)" +
+                                     std::to_string(rotateXDeg) + R"(, 0, 0]}, "mass": 1}]})",
+                                 ".", "sheet");
+        scene.camera = CameraSettings{{0.0, 2.0, 0.0}, {0.0, 0.5, 0.0}, {0.0, 0.0, 1.0}, 40.0};
+        Engine engine(scene);
+        const Image image = SceneRenderer(engine, {64, 64, 0}).renderFrame(engine);
+        const auto p = image.pixel(32, 32);
+        const double mx = std::max({p[0], p[1], p[2]}), mn = std::min({p[0], p[1], p[2]});
+        return mx > 0 ? (mx - mn) / mx : 0.0;
+    };
+    const double a = saturationAtCentre(90), b = saturationAtCentre(-90);
+    RecordProperty("saturation_plus_90", std::to_string(a));
+    RecordProperty("saturation_minus_90", std::to_string(b));
+    // One side is the front (the body colour), the other tinted halfway towards a pale grey.
+    EXPECT_LT(std::min(a, b), 0.75 * std::max(a, b)) << "turned +90: " << a << ", -90: " << b;
+}
+
 TEST(RenderGl, BadSizesAreErrors) {
     Engine engine(twoBoxes(0.7, false));
     EXPECT_THROW((void)SceneRenderer(engine, {0, 10, 0}), Error);
