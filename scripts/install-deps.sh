@@ -2,7 +2,7 @@
 # Installs what a fresh Debian 12 machine lacks to build and test glcollide, Mesa's EGL and
 # llvmpipe included (the GL tests run on it when there is no GPU), and clang with its sanitizer and
 # libFuzzer runtimes plus llvm-symbolizer (scripts/test-sanitizers.sh), and clang-format
-# (scripts/format.sh --check). Needs root (or sudo).
+# (scripts/format.sh --check), and ffmpeg (`glcollide render --video`, tests/cli/render_video_test.sh). Needs root (or sudo).
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config git python3
@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev glslang-tools libgmp-dev libstb-dev
   libegl1 libegl-mesa0 libgl1-mesa-dri libgl1 libopengl0
   clang libclang-rt-14-dev llvm clang-format
+  ffmpeg
 )
 missing=()
 for p in "${packages[@]}"; do

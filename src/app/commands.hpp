@@ -83,6 +83,9 @@ struct RenderOptions {
     int samples = 4;              ///< multisampling (0 or 1: none)
     bool flat = false;            ///< flat shading (one normal per face) instead of smooth
     std::string outDir = "glcollide-render";
+    /// Non-empty: an MP4 (H.264 through the ffmpeg program) of every K-th frame at 1 / (K·dt)
+    /// frames per second instead of PNGs; nothing else is written.
+    std::string video;
     std::string device;
     bool quiet = false;
 };

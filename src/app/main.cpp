@@ -126,6 +126,9 @@ int main(int argc, char** argv) {
                         "Flat shading, one normal per face (default: smooth, per-vertex normals)");
     renderCmd->add_option("--out", render.outDir, "Output folder for frame_NNNNNN.png")
         ->default_val("glcollide-render");
+    renderCmd->add_option(
+        "--video", render.video,
+        "Write an MP4 (H.264, needs ffmpeg) of every K-th frame at 1/(K*dt) fps instead of PNGs");
     renderCmd->add_option("--device", render.device,
                           "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
     renderCmd->add_flag("--quiet", render.quiet, "No progress on stderr");

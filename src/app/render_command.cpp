@@ -1,5 +1,6 @@
 // glcollide render: headless simulation with PNG snapshots drawn from the engine's own buffers.
 #include "app/commands.hpp"
+#include "app/video_pipe.hpp"
 #include "app/progress.hpp"
 #include "render/scene_renderer.hpp"
 
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <regex>
 
 namespace glcollide::app {
@@ -49,9 +51,16 @@ int renderCommand(const RenderOptions& options) {
         if (*options.frames <= 0) throw Error("--frames must be positive");
         scene.time.frames = *options.frames;
     }
-    std::error_code ec;
-    std::filesystem::create_directories(options.outDir, ec);
-    if (ec) throw Error(options.outDir + ": cannot create output directory: " + ec.message());
+    const bool video = !options.video.empty();
+    // Checked before the engine starts: a missing ffmpeg is an error, not minutes of simulation lost.
+    if (video && findOnPath("ffmpeg").empty())
+        throw Error(
+            "--video needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)");
+    if (!video) {
+        std::error_code ec;
+        std::filesystem::create_directories(options.outDir, ec);
+        if (ec) throw Error(options.outDir + ": cannot create output directory: " + ec.message());
+    }
 
     HeadlessContext context({options.device});
     Engine engine(scene, {false});
@@ -67,13 +76,18 @@ int renderCommand(const RenderOptions& options) {
               << " frames\n";
 
     std::size_t written = 0, maxHighlighted = 0;
+    std::optional<VideoPipe> pipe;
+    if (video) pipe.emplace(options.video, width, height, 1.0 / (options.every * engine.scene().time.dt));
     auto snapshot = [&](std::uint64_t frame) {
         // Highlights for exactly the drawn state (the last substep's pairs describe the positions
         // before its NodeUpdate; frame 0 has had no substep at all).
         if (collisions) engine.detectCollisions();
         const render::Image image = renderer.renderFrame(engine);
         maxHighlighted = std::max(maxHighlighted, renderer.highlightedFaces());
-        render::writePng(std::filesystem::path(options.outDir) / frameName(frame), image);
+        if (pipe)
+            pipe->write(image.rgba);
+        else
+            render::writePng(std::filesystem::path(options.outDir) / frameName(frame), image);
         ++written;
     };
     snapshot(0);
@@ -84,7 +98,9 @@ int renderCommand(const RenderOptions& options) {
         progress.update(f);
     }
     progress.finish();
-    std::cout << "wrote " << written << " PNG frames to " << options.outDir;
+    if (pipe) pipe->finish();
+    std::cout << "wrote " << written
+              << (pipe ? " frames to " + options.video : " PNG frames to " + options.outDir);
     if (collisions) std::cout << " (at most " << maxHighlighted << " faces highlighted as intersecting)";
     std::cout << "\n";
     return 0;

@@ -1,0 +1,35 @@
+#pragma once
+// `glcollide render --video`: frames piped to the ffmpeg program (H.264 in MP4), nothing written
+// but the video. GL-free; POSIX (pipe, fork, exec).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace glcollide::app {
+
+/// The path of `program` on PATH, or empty when there is none.
+std::string findOnPath(const std::string& program);
+
+class VideoPipe {
+  public:
+    /// Starts `ffmpeg` writing `path` (H.264, yuv420p, padded to even sizes) from raw RGBA frames of
+    /// width x height at `framesPerSecond`. Throws Error when ffmpeg is not on PATH or cannot start.
+    VideoPipe(const std::string& path, int width, int height, double framesPerSecond);
+    ~VideoPipe(); ///< closes the pipe and reaps ffmpeg if finish() was not called (no throw)
+    VideoPipe(const VideoPipe&) = delete;
+    VideoPipe& operator=(const VideoPipe&) = delete;
+
+    /// One frame, rows top to bottom, 4 bytes per pixel. Throws Error when ffmpeg stopped reading.
+    void write(const std::vector<std::uint8_t>& rgba);
+    /// Closes the pipe and waits for ffmpeg; throws Error (with its exit status) when it failed.
+    void finish();
+
+  private:
+    std::string m_path;
+    std::size_t m_frameBytes = 0;
+    int m_fd = -1;
+    int m_pid = -1;
+};
+
+} // namespace glcollide::app
