@@ -23,7 +23,8 @@ std::string findOnPath(const std::string& program) {
         const std::string dir(rest.substr(0, colon));
         const std::string candidate = (dir.empty() ? "." : dir) + "/" + program;
         struct stat st {};
-        if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(candidate.c_str(), X_OK) == 0)
+        if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+            ::access(candidate.c_str(), X_OK) == 0)
             return candidate;
         if (colon == std::string_view::npos) return {};
         rest.remove_prefix(colon + 1);
@@ -34,18 +35,21 @@ VideoPipe::VideoPipe(const std::string& path, int width, int height, double fram
     : m_path(path), m_frameBytes(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4) {
     const std::string ffmpeg = findOnPath("ffmpeg");
     if (ffmpeg.empty())
-        throw Error("--video needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)");
+        throw Error(
+            "--video needs the ffmpeg program, which is not on PATH (Debian: apt-get install ffmpeg)");
     std::ostringstream size, rate;
     size << width << "x" << height;
     rate.precision(17);
     rate << framesPerSecond;
     // ffmpeg reads raw RGBA from stdin; H.264 needs even sizes (the pad filter adds a row or a
     // column), yuv420p plays everywhere, +faststart puts the index first.
-    const std::vector<std::string> args = {ffmpeg,     "-loglevel", "error", "-y",   "-f",      "rawvideo",
-                                           "-pix_fmt", "rgba",      "-s",    size.str(), "-framerate", rate.str(),
-                                           "-i",       "-",         "-vf",   "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                           "-c:v",     "libx264",   "-pix_fmt", "yuv420p", "-movflags", "+faststart",
-                                           path};
+    const std::vector<std::string> args = {
+        ffmpeg,      "-loglevel",  "error",      "-y",
+        "-f",        "rawvideo",   "-pix_fmt",   "rgba",
+        "-s",        size.str(),   "-framerate", rate.str(),
+        "-i",        "-",          "-vf",        "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+        "-c:v",      "libx264",    "-pix_fmt",   "yuv420p",
+        "-movflags", "+faststart", path};
     int fds[2];
     if (::pipe(fds) != 0) throw Error(std::string("--video: pipe: ") + std::strerror(errno));
     const pid_t pid = ::fork();
