@@ -100,4 +100,20 @@ std::vector<FacePair> twinIntersections(const std::vector<std::uint32_t>& faceIn
     return out;
 }
 
+std::vector<std::vector<FacePair>> twinIntersectionsAlongMotion(const std::vector<std::uint32_t>& faceIndices,
+                                                                const std::vector<std::uint32_t>& faceObject,
+                                                                const std::vector<glm::vec3>& x0,
+                                                                const std::vector<glm::vec3>& x1,
+                                                                const PairRules& rules, int samples) {
+    std::vector<std::vector<FacePair>> out;
+    for (int k = 1; k <= samples; ++k) {
+        const float t = static_cast<float>(k) / static_cast<float>(samples);
+        std::vector<glm::vec3> x(x0.size());
+        for (std::size_t i = 0; i < x.size(); ++i) x[i] = x0[i] + t * (x1[i] - x0[i]);
+        out.push_back(
+            twinIntersections(faceIndices, x, twinCandidates(faceIndices, faceObject, x, 0.0, rules)));
+    }
+    return out;
+}
+
 } // namespace glcollide::cpu

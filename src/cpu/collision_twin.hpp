@@ -68,4 +68,12 @@ std::vector<FacePair> twinIntersections(const std::vector<std::uint32_t>& faceIn
                                         const std::vector<glm::vec3>& positions,
                                         const std::vector<FacePair>& pairs);
 
+/// The intersecting valid pairs (exact oracle) at t = k / samples, k = 1 ... samples, of the linear
+/// motion x0 -> x1: one list per time. The oracle radial culling's theorem is tested against.
+std::vector<std::vector<FacePair>> twinIntersectionsAlongMotion(const std::vector<std::uint32_t>& faceIndices,
+                                                                const std::vector<std::uint32_t>& faceObject,
+                                                                const std::vector<glm::vec3>& x0,
+                                                                const std::vector<glm::vec3>& x1,
+                                                                const PairRules& rules, int samples);
+
 } // namespace glcollide::cpu

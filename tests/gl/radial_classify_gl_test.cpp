@@ -186,13 +186,9 @@ TEST(RadialClassifyGl, TheCullingPassFreesWhatTheTwinFreesAndNothingThatIntersec
 
     const std::vector<std::uint32_t> faceObject(faces, 0u);
     const cpu::PairRules self{false, true};
-    std::size_t intersecting = 0;
-    for (int k = 1; k <= 8; ++k) {
-        const float t = static_cast<float>(k) / 8.0f;
-        std::vector<glm::vec3> x(s.x0.size());
-        for (std::size_t i = 0; i < x.size(); ++i) x[i] = s.x0[i] + t * (x1[i] - s.x0[i]);
-        const auto pairs =
-            cpu::twinIntersections(s.faces, x, cpu::twinCandidates(s.faces, faceObject, x, 0.0, self));
+    std::size_t intersecting = 0, k = 0;
+    for (const auto& pairs : cpu::twinIntersectionsAlongMotion(s.faces, faceObject, s.x0, x1, self, 8)) {
+        ++k;
         intersecting = std::max(intersecting, pairs.size());
         for (const cpu::FacePair& p : pairs)
             EXPECT_FALSE(free[p[0]] || free[p[1]])

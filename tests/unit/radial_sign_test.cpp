@@ -21,22 +21,6 @@
 namespace glcollide {
 namespace {
 
-struct Q3 {
-    mpq_class x, y, z;
-};
-Q3 exact(const glm::vec3& v) {
-    return {mpq_class(static_cast<double>(v.x)), mpq_class(static_cast<double>(v.y)),
-            mpq_class(static_cast<double>(v.z))};
-}
-Q3 operator-(const Q3& a, const Q3& b) {
-    return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-mpq_class tripleMagnitude(const Q3& a, const Q3& b, const Q3& c) {
-    const auto m = [](const mpq_class& v) { return mpq_class(abs(v)); };
-    return (m(a.y) * m(b.z) + m(a.z) * m(b.y)) * m(c.x) + (m(a.z) * m(b.x) + m(a.x) * m(b.z)) * m(c.y) +
-           (m(a.x) * m(b.y) + m(a.y) * m(b.x)) * m(c.z);
-}
-
 /// A triangle and an observer at both ends of the substep.
 struct Case {
     std::array<glm::vec3, 4> start, end; // p0, p1, p2, q
@@ -49,15 +33,7 @@ std::array<mpq_class, 4> exactCoefficients(const Case& c) {
 
 /// True when every exact coefficient exceeds `ratio` times its products' magnitude sum.
 bool wellSeparated(const Case& c, double ratio) {
-    std::array<Q3, 4> s, e;
-    for (int i = 0; i < 4; ++i) s[i] = exact(c.start[i]), e[i] = exact(c.end[i]);
-    const Q3 a0 = s[1] - s[0], b0 = s[2] - s[0], c0 = s[0] - s[3];
-    const Q3 a1 = e[1] - e[0], b1 = e[2] - e[0], c1 = e[0] - e[3];
-    const std::array<mpq_class, 4> m = {
-        tripleMagnitude(a0, b0, c0),
-        tripleMagnitude(a1, b0, c0) + tripleMagnitude(a0, b1, c0) + tripleMagnitude(a0, b0, c1),
-        tripleMagnitude(a1, b1, c0) + tripleMagnitude(a1, b0, c1) + tripleMagnitude(a0, b1, c1),
-        tripleMagnitude(a1, b1, c1)};
+    const std::array<mpq_class, 4> m = cpu::exactRadialMagnitudes(c.start, c.end);
     const std::array<mpq_class, 4> b = exactCoefficients(c);
     for (int i = 0; i < 4; ++i)
         if (!(b[i] > mpq_class(ratio) * m[i])) return false;

@@ -17,6 +17,10 @@ using RadialPoints = std::array<glm::vec3, 4>;
 /// B0, 3 B1, 3 B2, B3 (docs/culling.md, "Classification").
 std::array<mpq_class, 4> exactRadialCoefficients(const RadialPoints& start, const RadialPoints& end);
 
+/// The same four sums with every product of coordinate differences taken in absolute value: the
+/// scale each coefficient's float rounding is relative to.
+std::array<mpq_class, 4> exactRadialMagnitudes(const RadialPoints& start, const RadialPoints& end);
+
 /// True when all four are > 0 (phi > 0 over the whole substep).
 bool exactlyRadialPositive(const RadialPoints& start, const RadialPoints& end);
 
