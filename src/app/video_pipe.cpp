@@ -6,6 +6,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 #include <string_view>
 
@@ -93,17 +94,22 @@ void VideoPipe::finish() {
     while (::waitpid(m_pid, &status, 0) < 0 && errno == EINTR) {
     }
     m_pid = -1;
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        std::error_code ec;
+        std::filesystem::remove(m_path, ec); // a failed video is not left behind half-written
         throw Error("--video: ffmpeg failed writing " + m_path + " (exit status " +
                     std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
+    }
 }
 
 VideoPipe::~VideoPipe() {
     if (m_fd >= 0) ::close(m_fd);
-    if (m_pid > 0) {
+    if (m_pid > 0) { // not finished: an error stopped the frames; the partial video goes too
         int status = 0;
         while (::waitpid(m_pid, &status, 0) < 0 && errno == EINTR) {
         }
+        std::error_code ec;
+        std::filesystem::remove(m_path, ec);
     }
 }
 

@@ -16,13 +16,16 @@ class VideoPipe {
     /// Starts `ffmpeg` writing `path` (H.264, yuv420p, padded to even sizes) from raw RGBA frames of
     /// width x height at `framesPerSecond`. Throws Error when ffmpeg is not on PATH or cannot start.
     VideoPipe(const std::string& path, int width, int height, double framesPerSecond);
-    ~VideoPipe(); ///< closes the pipe and reaps ffmpeg if finish() was not called (no throw)
+    /// If finish() was not called (an error stopped the frames): closes the pipe, reaps ffmpeg and
+    /// removes the partial video (no throw).
+    ~VideoPipe();
     VideoPipe(const VideoPipe&) = delete;
     VideoPipe& operator=(const VideoPipe&) = delete;
 
     /// One frame, rows top to bottom, 4 bytes per pixel. Throws Error when ffmpeg stopped reading.
     void write(const std::vector<std::uint8_t>& rgba);
-    /// Closes the pipe and waits for ffmpeg; throws Error (with its exit status) when it failed.
+    /// Closes the pipe and waits for ffmpeg; when it failed, removes the video and throws Error with
+    /// its exit status.
     void finish();
 
   private:

@@ -24,6 +24,14 @@ check "6 frames (0, 2, ..., 10)" test "$(probe nb_read_frames)" = "6"
 check "30 fps (every 2nd frame of dt = 1/60 s)" test "$(probe r_frame_rate)" = "30/1"
 check "65x48 padded to 66x48" test "$(probe width),$(probe height)" = "66,48"
 
+# ffmpeg fails (a file name it cannot write): exit 1, an error naming ffmpeg, no partial video.
+mkdir "$work/fail"
+(cd "$work/fail" && "$bin" render "$src/scenes/two_tet_bodies.json" --frames 2 --size 32x32 --video clip.unknownext \
+  --quiet >/dev/null 2>"$work/err3.txt")
+check "ffmpeg failing: exit 1" test $? -eq 1
+check "ffmpeg failing: the error says so" grep -q "glcollide: error: --video: ffmpeg failed" "$work/err3.txt"
+check "ffmpeg failing: no partial video left" test -z "$(ls "$work/fail")"
+
 # No ffmpeg: the binary by its path, a PATH where no ffmpeg is.
 mkdir "$work/none"
 (cd "$work/none" && PATH=/nonexistent "$bin" render "$src/scenes/two_tet_bodies.json" --frames 2 --video x.mp4 \
