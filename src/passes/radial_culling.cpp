@@ -49,7 +49,7 @@ void RadialCullingPass::run(AppendLists& lists) const {
     bindForConsumers();
     m_classify.observers().bindStorage(GLC_BIND_RADIAL_OBSERVERS);
     m_observers.use();
-    glDispatchCompute(m_observerCount, 1, 1);
+    gl::ComputeProgram::dispatch(m_observerCount, 1, 1); // one work group per observer; counted
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     m_classify.dispatchOnBoundPositions();
     m_free.fill32(0u);
