@@ -60,6 +60,10 @@ struct ImplicitParams {
     double groundStiffness = 0.0;
     double groundHeight = 0.0; ///< m
     double groundBand = 0.0;   ///< m
+    /// Newton steps per substep (Scene: time.solver.newton_steps); above 1 the pass is built with
+    /// contacts and each further step is ImplicitSolverPass::dispatchNewton: the system assembled
+    /// again at the previous step's end x1 with the contacts found there.
+    int newtonSteps = 1;
     double tolerance = 1.0e-4; ///< stop when ‖r‖ ≤ tolerance·‖b‖
     int maxIterations = 64;    ///< CG iteration cap
 };

@@ -278,7 +278,14 @@ Engine::Engine(const Scene& scene, const EngineOptions& options) {
                        !d.plan.collisions && (d.plan.nodeForce || d.plan.springUpdate) &&
                        d.buffers.nodeCount <= kFrameStepMaxNodes && d.heavyNodes.empty();
     d.stages = d.plan.stages();
-    for (engine::Stage stage : d.stages) d.makePass(stage);
+    // A stage that runs twice in a substep (the Newton step's NodePredict and CollisionDetection)
+    // has one pass object.
+    std::vector<engine::Stage> made;
+    for (engine::Stage stage : d.stages)
+        if (std::find(made.begin(), made.end(), stage) == made.end()) {
+            d.makePass(stage);
+            made.push_back(stage);
+        }
     d.passIds = d.plan.passIds();
     for (passes::PassId id : d.passIds) d.passNames.emplace_back(passes::passName(id));
     d.stats.substeps = d.substeps.substeps;
@@ -326,6 +333,9 @@ void Engine::Impl::makePass(engine::Stage stage) {
         break;
     case Stage::Commit:
         break; // SafeStepPass::commit: a copy
+    case Stage::NewtonDetection:
+    case Stage::ImplicitNewton:
+        break; // the CollisionDetection and ImplicitSolve stages' passes
     case Stage::FrameStep: {
         FrameStepParams& f = frameStepParams;
         f.external = plan.nodeForceParams;
@@ -473,6 +483,23 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
                 run(*implicitSolve, plan.implicitParams);
             }
             break;
+        case Stage::NewtonDetection:
+            // The same detection over [x0, x1] for the Newton step's contacts; the substep's
+            // counts (intersections at x0, CCD) are the final detection's.
+            collision->setRadialCulling(radialPremise);
+            collision->detect(buffers, options.gpuTiming ? &timer : nullptr);
+            break;
+        case Stage::ImplicitNewton: {
+            // The contacts of this substep's detection at x1; sides from x1 − h·v1 = x0.
+            ContactParams params = plan.contact;
+            params.substep = substeps.substepLength;
+            const passes::ImplicitContacts contacts{contactInputs(), params};
+            const gl::TimedSection section(options.gpuTiming ? &timer : nullptr,
+                                           passes::passIndex(passes::ImplicitSolverPass::kId),
+                                           passes::ImplicitSolverPass::kName);
+            implicitSolve->dispatchNewton(buffers, plan.implicitParams, contacts);
+            break;
+        }
         case Stage::ContactResponse:
             run(*contact, contactInputs(), plan.contact);
             if (lastOfFrame) readContacts();

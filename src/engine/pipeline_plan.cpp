@@ -5,6 +5,8 @@
 
 #include <glcollide/error.hpp>
 
+#include <algorithm>
+
 namespace glcollide::engine {
 
 std::vector<Stage> PipelinePlan::stages() const {
@@ -45,6 +47,10 @@ std::vector<Stage> PipelinePlan::safeStepStages() const {
     if (nodeForce) s.push_back(Stage::NodeForce);
     if (springUpdate) s.push_back(Stage::SpringUpdate);
     if (implicitSolve) s.push_back(Stage::ImplicitSolve);
+    // Each further Newton step: the last step's end x1 is detected (the contacts it brings into the
+    // thickness join the feature-pair lists), then the system is solved again at x1.
+    for (int k = 1; implicitSolve && implicitContacts && k < implicitParams.newtonSteps; ++k)
+        s.insert(s.end(), {Stage::NodePredict, Stage::NewtonDetection, Stage::ImplicitNewton});
     s.insert(s.end(),
              {Stage::NodePredict, Stage::ContactIterations, Stage::CollisionDetection, Stage::SafeStep});
     if (energyGuard) s.push_back(Stage::EnergyGuard);
@@ -79,6 +85,9 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
         case Stage::ImplicitSolve:
             p.push_back(PassId::ImplicitSolve);
             break;
+        case Stage::NewtonDetection:
+        case Stage::ImplicitNewton:
+            break; // the passes of CollisionDetection and ImplicitSolve again, timed as theirs
         case Stage::ContactResponse:
             p.push_back(PassId::ContactResponse);
             break;
@@ -102,7 +111,11 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
             break;
         }
     }
-    return p;
+    // A pass that runs twice in a substep (NodePredict of a Newton step) is listed once.
+    std::vector<PassId> unique;
+    for (PassId id : p)
+        if (std::find(unique.begin(), unique.end(), id) == unique.end()) unique.push_back(id);
+    return unique;
 }
 
 std::vector<std::string> PipelinePlan::passes() const {
@@ -221,7 +234,8 @@ PipelinePlan planPipeline(const Scene& scene) {
         ip.airDamping = nf.damping ? nf.dampingCoefficient : 0.0;
         ip.tolerance = scene.time.solver.tolerance;
         ip.maxIterations = scene.time.solver.maxIterations;
-        plan.springUpdate = false; // the solver gathers the springs itself
+        ip.newtonSteps = scene.time.solver.newtonSteps; // above 1 only with intersection_free (validated)
+        plan.springUpdate = false;                      // the solver gathers the springs itself
         plan.nodeForce = false;
         nu.forces = false; // v is the solve's; NodeUpdate adds the contact forces (if any) and moves x
     }

@@ -25,6 +25,8 @@ enum class Stage : std::uint8_t {
     NodePredict,        ///< continuous detection: v += h·M⁻¹f and the predicted end positions x1
     CollisionDetection, ///< broad phase, TriTri and FeaturePairs (their own PassIds)
     ImplicitSolve,      ///< implicit Euler: the springs' linear solve, v += Δv
+    NewtonDetection,    ///< CollisionDetection of a Newton step's x1 (its counts are not the substep's)
+    ImplicitNewton,     ///< implicit Euler: a further Newton step at x1 with the contacts found there
     ContactResponse,    ///< contact forces or impulses on the feature pairs
     SafeStep,           ///< intersection-free response: steps cut to before the first contact, committed
     EnergyGuard,        ///< intersection-free response: a rise of the total energy taken out of v or x1

@@ -51,6 +51,10 @@ ImplicitSolverPass::ImplicitSolverPass(const ImplicitParams& config, std::uint32
       m_setupContacts(contactProgram(contacts, "implicit_setup", solverDefines(config, true, true))),
       m_directionContacts(
           contactProgram(contacts, "implicit_cg_direction", solverDefines(config, false, true))),
+      m_newton(contacts && config.newtonSteps > 1),
+      m_setupNewton(contactProgram(contacts && config.newtonSteps > 1, "implicit_newton_setup",
+                                   solverDefines(config, true))),
+      m_startVelocities("solverStartVelocities", contacts && config.newtonSteps > 1 ? nodeCount * kVec4 : 0),
       m_contactFind(contactProgram(contacts, "implicit_contact_find")),
       m_contactScan(contactProgram(contacts, "implicit_contact_scan")),
       m_contactScatter(contactProgram(contacts, "implicit_contact_scatter")),
@@ -183,13 +187,28 @@ void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& 
     if (contacts && !m_contacts)
         throw Error(std::string(kName) + ": dispatched with contacts, but built without the contact term");
     if (m_nodeCount == 0) return;
-    const gl::ComputeProgram& setup = contacts ? m_setupContacts : m_setup;
+    // v0 for the Newton step's right-hand side.
+    if (m_newton) gl::copyBufferData(b.velocities, m_startVelocities, m_startVelocities.bytes());
+    solve(b, params, contacts, b.positions, contacts ? m_setupContacts : m_setup);
+}
+
+void ImplicitSolverPass::dispatchNewton(const DeviceBuffers& b, const ImplicitParams& params,
+                                        const ImplicitContacts& contacts) const {
+    if (!m_newton) throw Error(std::string(kName) + ": a Newton step, but the pass was built without it");
+    if (m_nodeCount == 0) return;
+    m_startVelocities.bindStorage(GLC_BIND_SOLVER_START_VELOCITIES);
+    solve(b, params, &contacts, b.predictedPositions, m_setupNewton);
+}
+
+void ImplicitSolverPass::solve(const DeviceBuffers& b, const ImplicitParams& params,
+                               const ImplicitContacts* contacts, const gl::Buffer& positions,
+                               const gl::ComputeProgram& setup) const {
     const gl::ComputeProgram& direction = contacts ? m_directionContacts : m_direction;
     const float h = static_cast<float>(params.h);
     const float massFactor = static_cast<float>(1.0 + params.h * params.airDamping);
     const gl::Buffer* directions[2] = {&m_direction0, &m_direction1};
 
-    bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
+    bindRequired(positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
     if (contacts) {
         buildContactRows(b, *contacts); // reads the positions and velocities bound above
@@ -264,9 +283,9 @@ std::vector<std::string> ImplicitSolverPass::allocatedLabels() const {
                                      &m_blockInverse, &m_partialsR, &m_partialsPq, &m_state})
         labels.push_back(buffer->label());
     if (m_contacts)
-        for (const gl::Buffer* buffer :
-             std::initializer_list<const gl::Buffer*>{&m_nodeContactCounts, &m_contactData})
-            if (*buffer) labels.push_back(buffer->label());
+        for (const gl::Buffer* buffer : std::initializer_list<const gl::Buffer*>{
+                 &m_nodeContactCounts, &m_contactData, &m_startVelocities})
+            if (*buffer && (buffer != &m_startVelocities || m_newton)) labels.push_back(buffer->label());
     return labels;
 }
 
@@ -276,9 +295,9 @@ std::size_t ImplicitSolverPass::allocatedBytes() const {
                                      &m_blockInverse, &m_partialsR, &m_partialsPq, &m_state})
         bytes += buffer->bytes();
     if (m_contacts)
-        for (const gl::Buffer* buffer :
-             std::initializer_list<const gl::Buffer*>{&m_nodeContactCounts, &m_contactData})
-            bytes += buffer->bytes();
+        for (const gl::Buffer* buffer : std::initializer_list<const gl::Buffer*>{
+                 &m_nodeContactCounts, &m_contactData, &m_startVelocities})
+            if (buffer != &m_startVelocities || m_newton) bytes += buffer->bytes();
     return bytes;
 }
 

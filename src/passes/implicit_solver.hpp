@@ -81,6 +81,13 @@ class ImplicitSolverPass {
     /// is read back); nullptr: the springs-only solve, the same kernels and bits as without contacts.
     void dispatch(const DeviceBuffers& buffers, const ImplicitParams& params,
                   const ImplicitContacts* contacts = nullptr) const;
+    /// The second Newton step of the same substep (the pass built with contacts and
+    /// ImplicitParams::newtonSteps > 1, after a dispatch with contacts): the system assembled at
+    /// x1 = buffers.predictedPositions with the velocities v1 bound, the contacts of `contacts`'
+    /// lists found at x1 (sides: x1 − params.substep·v1), right-hand side h·f(x1, v1) − m·(v1 − v0)
+    /// with v0 the velocities the first dispatch started from; the velocities become v1 + δ.
+    void dispatchNewton(const DeviceBuffers& buffers, const ImplicitParams& params,
+                        const ImplicitContacts& contacts) const;
 
     void resetStatistics();
     [[nodiscard]] ImplicitSolverCounts readStatistics() const;
@@ -115,6 +122,10 @@ class ImplicitSolverPass {
     static constexpr std::uint32_t kContactDispatches = 7;
 
   private:
+    /// One solve: setup (`setup`, the positions bound at GLC_BIND_NODE_POSITIONS: `positions`) and
+    /// the conjugate-gradient iterations.
+    void solve(const DeviceBuffers& b, const ImplicitParams& params, const ImplicitContacts* contacts,
+               const gl::Buffer& positions, const gl::ComputeProgram& setup) const;
     /// The row layout's bindings and uniforms plus the partial sums and the state.
     void bindLayout(const gl::ComputeProgram& program, const DeviceBuffers& b) const;
     /// Builds the records and the sorted node → contact incidence list of this substep.
@@ -138,6 +149,10 @@ class ImplicitSolverPass {
     // are their contact variants and the incidence list's builders.
     bool m_contacts = false;
     gl::ComputeProgram m_setupContacts, m_directionContacts;
+    // The Newton step (ImplicitParams::newtonSteps > 1): its setup and the start velocities v0.
+    bool m_newton = false;
+    gl::ComputeProgram m_setupNewton;
+    gl::Buffer m_startVelocities;
     gl::ComputeProgram m_contactFind, m_contactScan, m_contactScatter, m_contactSort;
     mutable gl::Buffer m_nodeContactCounts; // cleared by every dispatch with contacts
     // Row offsets, the record count, incidence entries, the records' list slots and the records

@@ -118,7 +118,7 @@ std::string string(const Ctx& c, const json& j, const Ptr& p) {
 // ---- top level ----
 
 ImplicitSolverSettings parseSolver(const Ctx& c, const json& j, const Ptr& p) {
-    checkObject(c, j, p, {"tolerance", "max_iterations"});
+    checkObject(c, j, p, {"tolerance", "max_iterations", "newton_steps"});
     ImplicitSolverSettings s;
     if (const json* v = find(j, "tolerance")) {
         s.tolerance = positive(c, *v, p / "tolerance");
@@ -127,6 +127,7 @@ ImplicitSolverSettings parseSolver(const Ctx& c, const json& j, const Ptr& p) {
     }
     if (const json* v = find(j, "max_iterations"))
         s.maxIterations = integer(c, *v, p / "max_iterations", 1, 1024);
+    if (const json* v = find(j, "newton_steps")) s.newtonSteps = integer(c, *v, p / "newton_steps", 1, 4);
     return s;
 }
 
@@ -669,6 +670,12 @@ Scene parseRoot(const Ctx& c, const json& root) {
                    "radial culling leaves out self-collision pairs: add \"self_collisions\" to /effects");
     }
 
+    const bool collides = scene.effects.has(Effect::Collisions) || scene.effects.has(Effect::SelfCollisions);
+    if (scene.time.solver.newtonSteps > 1 &&
+        (!collides || scene.collision.response != ContactResponse::IntersectionFree))
+        c.fail(p / "time" / "solver" / "newton_steps",
+               "more than 1 Newton step needs the contacts in the solve: \"collision\": {\"response\": "
+               "\"intersection_free\"} with a collision effect");
     if (const json* v = find(root, "camera")) scene.camera = parseCamera(c, *v, p / "camera");
 
     const json& objects = require(c, root, p, "objects");

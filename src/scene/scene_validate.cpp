@@ -51,6 +51,15 @@ void validateScene(const Scene& scene) {
     if (col.initialCapacity < 1) fail("collision.initial_capacity must be >= 1");
     if (col.response == ContactResponse::IntersectionFree && col.detection != Detection::Continuous)
         fail("collision.response intersection_free needs collision.detection continuous");
+    const int newtonSteps = scene.time.solver.newtonSteps;
+    if (newtonSteps < 1 || newtonSteps > 4)
+        fail("time.solver.newton_steps must be 1 … 4, got " + std::to_string(newtonSteps));
+    if (newtonSteps > 1 &&
+        (scene.time.integrator != Integrator::ImplicitEuler ||
+         col.response != ContactResponse::IntersectionFree ||
+         (!scene.effects.has(Effect::Collisions) && !scene.effects.has(Effect::SelfCollisions))))
+        fail(
+            "time.solver.newton_steps above 1 needs implicit_euler and collision.response intersection_free");
 
     for (std::size_t bi = 0; bi < scene.bodies.size(); ++bi) {
         const Body& b = scene.bodies[bi];
