@@ -7,7 +7,7 @@
 // with the contacts found at x1, and
 //   b = h·f(x1, v1) − m·(v1 − v0),   v = v1 + δ after the conjugate gradients,
 // the residual of backward Euler M(v − v0) = h·f(x0 + h·v, v) at v1 (the stiffness term belongs to
-// the first step's linearisation at x0 and is not used). Twin: cpu::implicitNewtonUpdate.
+// the first step's linearisation at x0 and is not used). Twin: cpu::implicitNewtonChangeDense / implicitNewtonRightHandSide.
 #define GLC_IMPLICIT_CONTACTS
 #include "common/implicit_setup_main.glsl"
 

@@ -65,8 +65,10 @@ double massFactor(const ImplicitParams& p) {
     return 1.0 + p.h * p.airDamping;
 }
 
+/// `startVelocities`: the Newton step's system (b = h·f − m·(v − v0), no stiffness term).
 Assembly assemble(const ImplicitParams& p, const std::vector<model::FlatSpring>& springs,
-                  const model::Csr& rows, const NodeState& state, const ImplicitContactSet* contacts) {
+                  const model::Csr& rows, const NodeState& state, const ImplicitContactSet* contacts,
+                  const std::vector<glm::dvec3>* startVelocities = nullptr) {
     const std::size_t n = state.positions.size();
     Assembly a{std::vector<glm::dvec3>(n, glm::dvec3(0.0)), std::vector<glm::dmat3>(n, glm::dmat3(0.0))};
     for (std::size_t i = 0; i < n; ++i) {
@@ -82,14 +84,15 @@ Assembly assemble(const ImplicitParams& p, const std::vector<model::FlatSpring>&
             stiffnessTimesVelocity +=
                 blk.transverseStiffness * dv + blk.alongStiffness * glm::dot(blk.u, dv) * blk.u;
         });
-        a.b[i] = p.h * f + p.h * p.h * stiffnessTimesVelocity;
+        a.b[i] = startVelocities ? p.h * f - (state.velocities[i] - (*startVelocities)[i]) / w
+                                 : p.h * f + p.h * p.h * stiffnessTimesVelocity;
         a.diagonal[i] = d;
     }
     forEachContactRow(contacts, state, [&](std::uint32_t i, double ai, const ContactGeometry& c) {
         const double k = contacts->stiffness;
         const glm::dvec3 vRel = weightedSum(c, state.velocities, state, false);
-        a.b[i] +=
-            p.h * ai * k * c.depth * c.normal - p.h * p.h * k * ai * glm::dot(c.normal, vRel) * c.normal;
+        a.b[i] += p.h * ai * k * c.depth * c.normal;
+        if (!startVelocities) a.b[i] -= p.h * p.h * k * ai * glm::dot(c.normal, vRel) * c.normal;
         a.diagonal[i] += p.h * p.h * k * ai * ai * glm::outerProduct(c.normal, c.normal);
     });
     return a;
@@ -197,10 +200,12 @@ ImplicitSolveStats implicitVelocityUpdate(const ImplicitParams& params,
     return stats;
 }
 
-std::vector<glm::dvec3> implicitVelocityChangeDense(const ImplicitParams& params,
-                                                    const std::vector<model::FlatSpring>& springs,
-                                                    const model::Csr& nodeSprings, const NodeState& state,
-                                                    const ImplicitContactSet* contacts) {
+namespace {
+std::vector<glm::dvec3> denseSolve(const ImplicitParams& params,
+                                   const std::vector<model::FlatSpring>& springs,
+                                   const model::Csr& nodeSprings, const NodeState& state,
+                                   const ImplicitContactSet* contacts,
+                                   const std::vector<glm::dvec3>* startVelocities) {
     const std::size_t n = state.positions.size();
     std::vector<std::size_t> freeIndex(n, n);
     std::vector<std::size_t> freeNodes;
@@ -212,7 +217,7 @@ std::vector<glm::dvec3> implicitVelocityChangeDense(const ImplicitParams& params
     const std::size_t m = 3 * freeNodes.size();
     // Column c of A is A·e_c: build it with the same product the solver uses.
     std::vector<double> A(m * m, 0.0), b(m, 0.0);
-    const Assembly a = assemble(params, springs, nodeSprings, state, contacts);
+    const Assembly a = assemble(params, springs, nodeSprings, state, contacts, startVelocities);
     for (std::size_t c = 0; c < m; ++c) {
         std::vector<glm::dvec3> e(n, glm::dvec3(0.0));
         e[freeNodes[c / 3]][static_cast<int>(c % 3)] = 1.0;
@@ -243,6 +248,30 @@ std::vector<glm::dvec3> implicitVelocityChangeDense(const ImplicitParams& params
     std::vector<glm::dvec3> dv(n, glm::dvec3(0.0));
     for (std::size_t r = 0; r < m; ++r) dv[freeNodes[r / 3]][static_cast<int>(r % 3)] = b[r];
     return dv;
+}
+} // namespace
+
+std::vector<glm::dvec3> implicitVelocityChangeDense(const ImplicitParams& params,
+                                                    const std::vector<model::FlatSpring>& springs,
+                                                    const model::Csr& nodeSprings, const NodeState& state,
+                                                    const ImplicitContactSet* contacts) {
+    return denseSolve(params, springs, nodeSprings, state, contacts, nullptr);
+}
+
+std::vector<glm::dvec3> implicitNewtonChangeDense(const ImplicitParams& params,
+                                                  const std::vector<model::FlatSpring>& springs,
+                                                  const model::Csr& nodeSprings, const NodeState& state,
+                                                  const std::vector<glm::dvec3>& startVelocities,
+                                                  const ImplicitContactSet* contacts) {
+    return denseSolve(params, springs, nodeSprings, state, contacts, &startVelocities);
+}
+
+std::vector<glm::dvec3> implicitNewtonRightHandSide(const ImplicitParams& params,
+                                                    const std::vector<model::FlatSpring>& springs,
+                                                    const model::Csr& nodeSprings, const NodeState& state,
+                                                    const std::vector<glm::dvec3>& startVelocities,
+                                                    const ImplicitContactSet* contacts) {
+    return assemble(params, springs, nodeSprings, state, contacts, &startVelocities).b;
 }
 
 std::vector<glm::dvec3> implicitRightHandSide(const ImplicitParams& params,

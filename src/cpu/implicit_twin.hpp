@@ -72,6 +72,20 @@ std::vector<glm::dvec3> implicitVelocityChangeDense(const ImplicitParams& params
                                                     const model::Csr& nodeSprings, const NodeState& state,
                                                     const ImplicitContactSet* contacts = nullptr);
 
+/// The Newton step (implicit_newton_setup.comp): at the state's positions x1 and velocities v1,
+/// with v0 = `startVelocities`, the same A and b = h·f(x1, v1) − m·(v1 − v0) (contacts: their
+/// force only); the exact δ by the dense solve (the step's velocities are v1 + δ), and b.
+std::vector<glm::dvec3> implicitNewtonChangeDense(const ImplicitParams& params,
+                                                  const std::vector<model::FlatSpring>& springs,
+                                                  const model::Csr& nodeSprings, const NodeState& state,
+                                                  const std::vector<glm::dvec3>& startVelocities,
+                                                  const ImplicitContactSet* contacts = nullptr);
+std::vector<glm::dvec3> implicitNewtonRightHandSide(const ImplicitParams& params,
+                                                    const std::vector<model::FlatSpring>& springs,
+                                                    const model::Csr& nodeSprings, const NodeState& state,
+                                                    const std::vector<glm::dvec3>& startVelocities,
+                                                    const ImplicitContactSet* contacts = nullptr);
+
 /// The right-hand side b of the system, per node (0 for pinned nodes), as the twin assembles it.
 std::vector<glm::dvec3> implicitRightHandSide(const ImplicitParams& params,
                                               const std::vector<model::FlatSpring>& springs,

@@ -164,8 +164,12 @@ struct GpuRun {
 };
 
 /// The GPU's solve of `s` with the lists holding `pairs` in that order (capacity ≥ `capacity`).
+/// `newtonStart` (v0): the Newton step instead (ImplicitSolverPass::dispatchNewton) at the state's
+/// positions x1 and velocities v1: a first dispatch from v0 records v0, then v1 and x1 (as the
+/// predicted positions) are uploaded and the Newton step solves.
 GpuRun runGpu(const ContactScene& s, const ImplicitParams& p, const ContactParams& cp,
-              const cpu::FeaturePairList& pairs, std::uint32_t capacity = 0, bool contacts = true) {
+              const cpu::FeaturePairList& pairs, std::uint32_t capacity = 0, bool contacts = true,
+              const std::vector<glm::dvec3>* newtonStart = nullptr) {
     passes::DeviceBuffers b = uploadModel(s.model);
     std::vector<gpu::GpuFaceInfo> info;
     for (std::size_t f = 0; f < s.owned.size(); ++f) info.push_back({s.faceObject[f], 0u, s.owned[f], 0u});
@@ -182,9 +186,21 @@ GpuRun runGpu(const ContactScene& s, const ImplicitParams& p, const ContactParam
     lists.fillFromHost(GLC_LIST_VERTEX_FACE, pairs.vertexFace.data(), vf);
     lists.fillFromHost(GLC_LIST_EDGE_EDGE, pairs.edgeEdge.data(), ee);
     const std::vector<std::uint32_t> heavy = passes::heavyRowNodes(s.model.nodeSprings.offsets);
-    passes::ImplicitSolverPass pass(p, b.nodeCount, static_cast<std::uint32_t>(heavy.size()), contacts);
+    ImplicitParams params = p;
+    if (newtonStart) params.newtonSteps = 2;
+    passes::ImplicitSolverPass pass(params, b.nodeCount, static_cast<std::uint32_t>(heavy.size()), contacts);
     const passes::ImplicitContacts term{{&lists, &faceInfo, &objectBuffer}, cp};
-    pass.dispatch(b, p, contacts ? &term : nullptr);
+    if (newtonStart) {
+        const std::vector<glm::vec4> v0 = pack(*newtonStart), v1 = pack(s.model.state.velocities);
+        b.velocities.upload(0, v0.size() * sizeof(glm::vec4), v0.data());
+        pass.dispatch(b, params, &term);
+        b.velocities.upload(0, v1.size() * sizeof(glm::vec4), v1.data());
+        b.predictedPositions =
+            upload("predictedPositions", pack(s.model.state.positions, &s.model.state.inverseMasses));
+        pass.dispatchNewton(b, params, term);
+    } else {
+        pass.dispatch(b, params, contacts ? &term : nullptr);
+    }
     GpuRun r;
     r.counts = pass.readStatistics();
     r.velocities.resize(b.nodeCount);
@@ -379,6 +395,48 @@ TEST_P(ImplicitContactGl, SolveMatchesTheDenseSolveOfTheSameSystem) {
     EXPECT_LE(std::sqrt(error2), (rGpu + rDense) * maxInverseMass * (1.0 + 1e-9));
 }
 
+// The Newton step (time.solver.newton_steps 2): the same contacts and matrix at x1, right-hand side
+// h·f(x1, v1) − m·(v1 − v0). Its δ against the dense solve of the twin's Newton system, with the
+// same residual bound as the first step's.
+TEST_P(ImplicitContactGl, NewtonStepMatchesTheDenseSolveOfItsSystem) {
+    ContactScene s = clothOverGround(6, 0.01, GetParam(), 14);
+    const ImplicitParams p = solverParams(1.0 / 30.0, true);
+    const ContactParams cp = contactParams(0.01, 1.0e4);
+    // v0: the state's velocities turned and scaled, so that v1 − v0 is of the order of v1.
+    std::vector<glm::dvec3> v0;
+    for (const glm::dvec3& v : s.model.state.velocities)
+        v0.push_back(glm::dvec3(glm::vec3(glm::dvec3(-0.5 * v.z, 0.8 * v.y - 0.1, 0.5 * v.x))));
+    const GpuRun r = runGpu(s, p, cp, s.pairs, 0, true, &v0);
+    EXPECT_EQ(r.counts.unconvergedSubsteps, 0u);
+    cpu::nodeForce(p.external, s.model.faceIndices, s.model.nodeFaces, s.model.state); // the GPU's f at v1
+    const cpu::ImplicitContactSet contacts = gpuContacts(r, cp.stiffness);
+    ASSERT_GT(contacts.contacts.size(), 40u);
+    const RandomModel& m = s.model;
+    const std::vector<glm::dvec3> dDense =
+        cpu::implicitNewtonChangeDense(p, m.springs, m.nodeSprings, m.state, v0, &contacts);
+    const std::vector<glm::dvec3> gpu = widened(r.velocities);
+    std::vector<glm::dvec3> dGpu(gpu.size());
+    for (std::size_t i = 0; i < gpu.size(); ++i) dGpu[i] = gpu[i] - m.state.velocities[i];
+    const std::vector<glm::dvec3> b =
+        cpu::implicitNewtonRightHandSide(p, m.springs, m.nodeSprings, m.state, v0, &contacts);
+    const auto residual = [&](const std::vector<glm::dvec3>& d) {
+        const std::vector<glm::dvec3> a =
+            cpu::implicitSystemProduct(p, m.springs, m.nodeSprings, m.state, d, &contacts);
+        std::vector<glm::dvec3> res(b.size());
+        for (std::size_t i = 0; i < b.size(); ++i) res[i] = b[i] - a[i];
+        return norm(res);
+    };
+    const double rGpu = residual(dGpu), rDense = residual(dDense), bNorm = norm(b);
+    std::printf("Newton, closed ground %d: %zu contacts, true ‖b − Aδ‖/‖b‖ = %.4g, dense %.3g\n",
+                GetParam() ? 1 : 0, contacts.contacts.size(), rGpu / bNorm, rDense / bNorm);
+    // The first step's bound: tol·‖b‖ plus the float evaluation of b and A·δ (c = 64).
+    EXPECT_LE(rGpu, (p.tolerance + kResidualRoundoffUnits * kUnitRoundoff) * bNorm);
+    double maxInverseMass = 0.0, error2 = 0.0;
+    for (double w : m.state.inverseMasses) maxInverseMass = std::max(maxInverseMass, w);
+    for (std::size_t i = 0; i < gpu.size(); ++i) error2 += glm::dot(dGpu[i] - dDense[i], dGpu[i] - dDense[i]);
+    EXPECT_LE(std::sqrt(error2), (rGpu + rDense) * maxInverseMass * (1.0 + 1e-9));
+}
+
 INSTANTIATE_TEST_SUITE_P(Ground, ImplicitContactGl, ::testing::Bool(),
                          [](const auto& param) { return param.param ? "Closed" : "Open"; });
 
@@ -487,6 +545,56 @@ TEST(ImplicitContactGlAnalytic, RestingNodeMatchesBackwardEulerOfOneSpring) {
             ASSERT_TRUE(cpu::implicitVelocityUpdate(p, {}, s.model.nodeSprings, twin, &contacts).converged);
             EXPECT_NEAR(twin.velocities[3].y, expected, 1e-12 * scale);
         }
+}
+
+// A node 1.5 thicknesses above a pinned triangle, falling: the first step (contacts at x0) sees no
+// contact and ends at x1 below the triangle. The Newton step finds the contact at x1 (the side from
+// x1 − h·v1 = x0: above) and, the penalty being linear in y there, lands on backward Euler's
+// closed form with the contact, v* = (m·v0 + h(−m·g + k(h_c − y0)))/(m + h²k), whose y0 + h·v* lies
+// inside the thickness: the contact the first step did not see acts in the solve.
+TEST(ImplicitContactGlAnalytic, NewtonStepCatchesAContactTheFirstStepMissed) {
+    const double m = 0.05, k = 1.0e4, h = 1.0 / 30.0, thickness = 0.01;
+    const ImplicitParams p = solverParams(h, false);
+    ContactParams cp = contactParams(thickness, k);
+    cp.substep = h;
+    for (const double v0 : {-0.2, -0.3}) {
+        ContactScene s = nodeOnTriangle(m, 1.5 * thickness, v0);
+        cpu::NodeState& st = s.model.state;
+        const double mass = 1.0 / st.inverseMasses[3], y0 = st.positions[3].y;
+        const double vy0 = st.velocities[3].y;
+        // The first step as the GPU takes it: no contact at x0, so v1 = v0 − h·g (float).
+        const std::vector<glm::dvec3> start = st.velocities;
+        st.velocities[3].y = toFloat(vy0 - h * kGravity);
+        st.positions[3] = glm::dvec3(glm::vec3(st.positions[3] + h * st.velocities[3]));
+        ASSERT_LT(st.positions[3].y, 0.0) << "x1 is through the triangle";
+        const GpuRun r = runGpu(s, p, cp, s.pairs, 0, true, &start);
+        ASSERT_EQ(r.list.size(), 1u) << "the Newton step finds the contact at x1; v " << r.velocities[3].y
+                                     << " x1 " << st.positions[3].x << " " << st.positions[3].y << " "
+                                     << st.positions[3].z << " offsets " << r.offsets.size();
+        const double kf = toFloat(k), hc = toFloat(thickness);
+        const double expected = (mass * vy0 + h * (-mass * kGravity + kf * (hc - y0))) / (mass + h * h * kf);
+        ASSERT_LT(y0 + h * expected, hc) << "the closed form's end is inside the thickness";
+        // Float: b and the block are a few operations on terms of at most
+        // S = m(|v0| + |v1|) + h(m·g + k(h_c + |y1|)), each rounding ≤ u relative; one CG step:
+        // 64u·S/(m + h²k), as the resting test's bound.
+        const double scale = (mass * (std::abs(vy0) + std::abs(st.velocities[3].y)) +
+                              h * (mass * kGravity + kf * (hc + std::abs(st.positions[3].y)))) /
+                             (mass + h * h * kf);
+        EXPECT_NEAR(r.velocities[3].y, expected, 64.0 * kUnitRoundoff * scale) << "v0 " << v0;
+        // The twin's Newton system gives the same closed form (double).
+        cpu::NodeState twin = st;
+        cpu::nodeForce(p.external, s.model.faceIndices, s.model.nodeFaces, twin);
+        ContactParams twinParams = cp;
+        twinParams.stiffness = kf;
+        twinParams.thickness = hc;
+        const std::vector<std::uint8_t> closed = s.faceClosed();
+        const cpu::ImplicitContactSet contacts =
+            cpu::implicitContacts(twinParams, twinInput(s, closed), s.pairs);
+        ASSERT_EQ(contacts.contacts.size(), 1u);
+        const std::vector<glm::dvec3> delta =
+            cpu::implicitNewtonChangeDense(p, {}, s.model.nodeSprings, twin, start, &contacts);
+        EXPECT_NEAR(st.velocities[3].y + delta[3].y, expected, 1e-9 * scale);
+    }
 }
 
 // m = 1 kg on k = 10⁴ N/m at h = 1/30 s (h·ω = 3.3, beyond symplectic Euler's limit of 2): at one

@@ -193,14 +193,18 @@ TEST(IntersectionFreeGl, RestingOnABouncyGroundNeedsNoGuard) {
 // (the CPU oracle). `self`: with self_collisions too (continuous
 // detection's expansion gives the CCD the feature pairs that Representative-Triangle ownership
 // alone misses, decision 0018 addendum).
-Scene randomDrop(unsigned seed, bool implicit, bool self = false) {
+// `newtonSteps` (implicit only): time.solver.newton_steps.
+Scene randomDrop(unsigned seed, bool implicit, bool self = false, int newtonSteps = 1) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> offset(-0.05, 0.05), speed(-6.0, 6.0);
     std::ostringstream s;
     s << R"({"format_version": 1, "name": "random drop", "effects": ["gravity", "springs", "ground", "collisions")"
       << (self ? R"(, "self_collisions")" : "") << R"(],
       "time": {"dt": 0.016666666666666666, )"
-      << (implicit ? R"("integrator": "implicit_euler", "substeps": 1)" : R"("substeps": "auto")") << R"(},
+      << (implicit ? R"("integrator": "implicit_euler", "substeps": 1, "solver": {"newton_steps": )" +
+                         std::to_string(newtonSteps) + "}"
+                   : std::string(R"("substeps": "auto")"))
+      << R"(},
       "ground": {"height": 0.0},
       "collision": {"broad_phase": "bvh", "thickness": 0.01, "stiffness": 500, "response": "intersection_free"},
       "objects": [
@@ -238,6 +242,26 @@ TEST_P(IntersectionFreeDrops, NoFacePairEverIntersectsAndNoEnergyIsGained) {
 INSTANTIATE_TEST_SUITE_P(Seeds, IntersectionFreeDrops,
                          ::testing::Combine(::testing::Values(1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u),
                                             ::testing::Bool(), ::testing::Bool()));
+
+// The same drops with two Newton steps per substep (time.solver.newton_steps): the promises are the
+// same, and the Newton step's detection and solve run in every substep (its contacts at x1).
+class IntersectionFreeNewtonDrops : public ::testing::TestWithParam<std::tuple<unsigned, bool>> {};
+
+TEST_P(IntersectionFreeNewtonDrops, NoFacePairEverIntersectsAndNoEnergyIsGained) {
+    const auto [seed, self] = GetParam();
+    Engine engine(randomDrop(seed, true, self, 2));
+    ASSERT_EQ(exactIntersectingPairs(engine), 0u);
+    EnergyReport energy = engine.energy();
+    for (int frame = 1; frame <= 12; ++frame) {
+        engine.step();
+        ASSERT_EQ(engine.lastStep().collision.maxIntersectingPairs, 0u) << "frame " << frame;
+        energy = expectNoEnergyGain(engine, energy, frame);
+    }
+    EXPECT_EQ(exactIntersectingPairs(engine), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, IntersectionFreeNewtonDrops,
+                         ::testing::Combine(::testing::Values(1u, 2u, 3u, 4u), ::testing::Bool()));
 
 } // namespace
 } // namespace glcollide

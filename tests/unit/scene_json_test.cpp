@@ -304,6 +304,25 @@ TEST(SceneJson, SettingsAndEffects) {
         kCloth,
         R"("wind": {"velocity": [1, 0, 0]}, "collision": {"response": "intersection_free", "energy_guard": false})",
         R"(["springs", "wind", "self_collisions"])")));
+    // Newton steps (time.solver.newton_steps): 1 by default, 1 … 4, above 1 only where the contacts
+    // are in the solve (the intersection_free response).
+    const std::string implicitTime =
+        R"("time": {"integrator": "implicit_euler", "solver": {"newton_steps": )";
+    EXPECT_EQ(safe.time.solver.newtonSteps, 1) << "documented default";
+    EXPECT_EQ(parse(scene(kCloth, implicitTime + R"(2}}, "collision": {"response": "intersection_free"})",
+                          R"(["springs", "self_collisions"])"))
+                  .time.solver.newtonSteps,
+              2);
+    EXPECT_THAT(errorOf(scene(kCloth, implicitTime + R"(5}}, "collision": {"response": "intersection_free"})",
+                              R"(["springs", "self_collisions"])")),
+                HasSubstr("/time/solver/newton_steps: expected an integer in [1, 4], got 5"));
+    EXPECT_THAT(
+        errorOf(scene(kCloth, implicitTime + R"(2}}, "collision": {"response": "bridson"})",
+                      R"(["springs", "self_collisions"])")),
+        HasSubstr("/time/solver/newton_steps: more than 1 Newton step needs the contacts in the solve"));
+    EXPECT_THAT(
+        errorOf(scene(kCloth, implicitTime + R"(2}})")),
+        HasSubstr("/time/solver/newton_steps: more than 1 Newton step needs the contacts in the solve"));
     EXPECT_EQ(c.collision.thickness, 0.002);
     EXPECT_EQ(c.collision.stiffness, 500.0);
     EXPECT_EQ(c.collision.damping, 0.1);
