@@ -164,11 +164,12 @@ struct ImplicitSolverSettings {
     /// right-hand side), > 0.
     double tolerance = 1.0e-4;
     int maxIterations = 64; ///< iteration cap per substep, 1 … 1024 (two dispatches each)
-    /// Newton steps of backward Euler per substep, 1 … 4. Above 1 (the intersection_free response
-    /// only) each further step detects the previous step's end x1 and solves again at x1 with the
+    /// Newton steps of backward Euler per substep, 1 … 4, or 0: automatic (2 where the contacts are
+    /// in the solve — the intersection_free response — else 1). Above 1 (intersection_free only)
+    /// each further step detects the previous step's end x1 and solves again at x1 with the
     /// contacts found there, so contacts that enter the thickness during the substep act in the
     /// solve itself (decision 0024, "Newton steps"); each costs one more detection and solve.
-    int newtonSteps = 1;
+    int newtonSteps = 0;
 };
 
 struct TimeSettings {

@@ -1,7 +1,7 @@
 // The body of ImplicitSetup (implicit_setup.comp) and of its Newton step
 // (implicit_newton_setup.comp): the row of A and P at the bound positions, the force f and the
 // stiffness term, the start of the conjugate gradients. The including kernel defines
-// rightHandSide(): the one line in which the two differ.
+// rightHandSide(): the one line in which the two differ, and GLC_RESIDUAL_ACCESS.
 #include "common/layout.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
@@ -45,7 +45,9 @@ ContactRow contactRow(uint i) {
     return row;
 }
 #endif
-layout(std430, binding = GLC_BIND_SOLVER_RESIDUAL) writeonly buffer ResidualBuf { vec4 g_residual[]; };
+// GLC_RESIDUAL_ACCESS: writeonly, or empty where rightHandSide() reads the buffer first (the
+// Newton step finds v0 there).
+layout(std430, binding = GLC_BIND_SOLVER_RESIDUAL) GLC_RESIDUAL_ACCESS buffer ResidualBuf { vec4 g_residual[]; };
 layout(std430, binding = GLC_BIND_SOLVER_PRECONDITIONED) writeonly buffer PreconditionedBuf { vec4 g_preconditioned[]; };
 layout(std430, binding = GLC_BIND_SOLVER_DIRECTION_OUT) writeonly buffer DirectionOutBuf { vec4 g_direction[]; };
 layout(std430, binding = GLC_BIND_SOLVER_BLOCK_INVERSE) writeonly buffer BlockInverseBuf { float g_blockInverse[]; };

@@ -99,14 +99,13 @@
                                           // committed end (the host moved it between frames; RadialHostCheck)
 #define GLC_BIND_CCD_VERTEX_FACE_TESTS 64 // uint[]: GLC_LIST_CCD_VERTEX_FACE_TESTS
 #define GLC_BIND_CCD_EDGE_EDGE_TESTS 65   // uint[]: GLC_LIST_CCD_EDGE_EDGE_TESTS
-#define GLC_BIND_SOLVER_START_VELOCITIES 66 // vec4[nodes]: v0, the velocities at the substep's start (Newton step)
 #define GLC_RADIAL_NO_OBSERVER 0xffffffffu
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 67
+#define GLC_BINDING_COUNT 66
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a

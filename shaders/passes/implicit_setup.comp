@@ -10,6 +10,7 @@
 // the stiffness term and h²k·a_i²·u uᵀ to P; without it contacts come after the solve
 // (ContactResponse, then NodeUpdate). Pinned nodes (w = 0) get zeros everywhere: their Δv stays 0.
 // Twin: cpu::implicitVelocityUpdate.
+#define GLC_RESIDUAL_ACCESS writeonly
 #include "common/implicit_setup_main.glsl"
 
 vec3 rightHandSide(uint i, float w, vec3 f, vec3 stiffnessTerm) {

@@ -108,6 +108,7 @@ struct Engine::Impl {
     gl::Buffer makeBuffer(passes::BufferId id);
     void allocate();
     void makePass(engine::Stage stage);
+    bool newtonSkipped = false; ///< this substep's Newton steps are skipped: its start intersects
     void substep(int index, bool lastOfFrame);
     void checkFrameCompleted();
     void readHealth();
@@ -487,9 +488,14 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             // The same detection over [x0, x1] for the Newton step's contacts; the substep's
             // counts (intersections at x0, CCD) are the final detection's.
             collision->setRadialCulling(radialPremise);
-            collision->detect(buffers, options.gpuTiming ? &timer : nullptr);
+            newtonSkipped =
+                collision->detect(buffers, options.gpuTiming ? &timer : nullptr).intersections > 0;
             break;
         case Stage::ImplicitNewton: {
+            // Not while the start intersects (recovery, decision 0024): the penalty's force ends at
+            // the band's edge, so a Newton step from a first step that pushed a pair out of the band
+            // sees no force and cancels the push (two overlapping boxes never came apart).
+            if (newtonSkipped) break;
             // The contacts of this substep's detection at x1; sides from x1 − h·v1 = x0.
             ContactParams params = plan.contact;
             params.substep = substeps.substepLength;

@@ -73,6 +73,7 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
             p.push_back(PassId::NodePredict);
             break;
         case Stage::CollisionDetection:
+        case Stage::NewtonDetection:
             // The broad phase's passes come from its factory entry; TriTri tests its candidates;
             // FeaturePairs expands them into the feature pairs ContactResponse reads. Radial
             // culling, when the scene asks for it, runs first (decision 0025).
@@ -85,9 +86,8 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
         case Stage::ImplicitSolve:
             p.push_back(PassId::ImplicitSolve);
             break;
-        case Stage::NewtonDetection:
         case Stage::ImplicitNewton:
-            break; // the passes of CollisionDetection and ImplicitSolve again, timed as theirs
+            break; // ImplicitSolve's pass again, timed as its
         case Stage::ContactResponse:
             p.push_back(PassId::ContactResponse);
             break;
@@ -159,6 +159,9 @@ void planSafeStep(const Scene& scene, PipelinePlan& plan) {
     plan.safeStep = plan.continuous;
     if (!plan.safeStep) return; // the scene validation refuses discrete detection with it
     plan.implicitContacts = plan.implicitSolve;
+    // Automatic Newton steps with the contacts in the solve: 2, so that the contacts the first
+    // step brings into the thickness act in the solve (decision 0024, "Newton steps").
+    if (plan.implicitSolve && scene.time.solver.newtonSteps == 0) plan.implicitParams.newtonSteps = 2;
     const NodeForceParams& nf = plan.nodeForceParams;
     const NodeUpdateParams& nu = plan.nodeUpdateParams;
     // x1 is the whole step with the ground (SafeStep then commits it; there is no NodeUpdate):
@@ -234,8 +237,9 @@ PipelinePlan planPipeline(const Scene& scene) {
         ip.airDamping = nf.damping ? nf.dampingCoefficient : 0.0;
         ip.tolerance = scene.time.solver.tolerance;
         ip.maxIterations = scene.time.solver.maxIterations;
-        ip.newtonSteps = scene.time.solver.newtonSteps; // above 1 only with intersection_free (validated)
-        plan.springUpdate = false;                      // the solver gathers the springs itself
+        // Above 1 only with intersection_free (validated); automatic: 1 here, planSafeStep raises it.
+        ip.newtonSteps = std::max(1, scene.time.solver.newtonSteps);
+        plan.springUpdate = false; // the solver gathers the springs itself
         plan.nodeForce = false;
         nu.forces = false; // v is the solve's; NodeUpdate adds the contact forces (if any) and moves x
     }

@@ -187,8 +187,11 @@ void ImplicitSolverPass::dispatch(const DeviceBuffers& b, const ImplicitParams& 
     if (contacts && !m_contacts)
         throw Error(std::string(kName) + ": dispatched with contacts, but built without the contact term");
     if (m_nodeCount == 0) return;
-    // v0 for the Newton step's right-hand side.
-    if (m_newton) gl::copyBufferData(b.velocities, m_startVelocities, m_startVelocities.bytes());
+    // v0 for the Newton step's right-hand side (after the shader writes of the velocities).
+    if (m_newton) {
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        gl::copyBufferData(b.velocities, m_startVelocities, m_startVelocities.bytes());
+    }
     solve(b, params, contacts, b.positions, contacts ? m_setupContacts : m_setup);
 }
 
@@ -196,7 +199,10 @@ void ImplicitSolverPass::dispatchNewton(const DeviceBuffers& b, const ImplicitPa
                                         const ImplicitContacts& contacts) const {
     if (!m_newton) throw Error(std::string(kName) + ": a Newton step, but the pass was built without it");
     if (m_nodeCount == 0) return;
-    m_startVelocities.bindStorage(GLC_BIND_SOLVER_START_VELOCITIES);
+    // ImplicitNewtonSetup reads v0 from the residual buffer (then writes r over it), after the
+    // last solve's writes of r.
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl::copyBufferData(m_startVelocities, m_residual, m_startVelocities.bytes());
     solve(b, params, &contacts, b.predictedPositions, m_setupNewton);
 }
 

@@ -149,7 +149,8 @@ class ImplicitSolverPass {
     // are their contact variants and the incidence list's builders.
     bool m_contacts = false;
     gl::ComputeProgram m_setupContacts, m_directionContacts;
-    // The Newton step (ImplicitParams::newtonSteps > 1): its setup and the start velocities v0.
+    // The Newton step (ImplicitParams::newtonSteps > 1): its setup and the start velocities v0
+    // (copied into m_residual for its setup).
     bool m_newton = false;
     gl::ComputeProgram m_setupNewton;
     gl::Buffer m_startVelocities;

@@ -52,8 +52,8 @@ void validateScene(const Scene& scene) {
     if (col.response == ContactResponse::IntersectionFree && col.detection != Detection::Continuous)
         fail("collision.response intersection_free needs collision.detection continuous");
     const int newtonSteps = scene.time.solver.newtonSteps;
-    if (newtonSteps < 1 || newtonSteps > 4)
-        fail("time.solver.newton_steps must be 1 … 4, got " + std::to_string(newtonSteps));
+    if (newtonSteps < 0 || newtonSteps > 4)
+        fail("time.solver.newton_steps must be 1 … 4 (or 0: automatic), got " + std::to_string(newtonSteps));
     if (newtonSteps > 1 &&
         (scene.time.integrator != Integrator::ImplicitEuler ||
          col.response != ContactResponse::IntersectionFree ||

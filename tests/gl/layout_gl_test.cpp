@@ -80,7 +80,6 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"PartialsRBuf", GLC_BIND_SOLVER_PARTIALS_R},
     {"PartialsPqBuf", GLC_BIND_SOLVER_PARTIALS_PQ},
     {"SolverStateBuf", GLC_BIND_SOLVER_STATE},
-    {"StartVelocitiesBuf", GLC_BIND_SOLVER_START_VELOCITIES},
     {"HeavyNodesBuf", GLC_BIND_HEAVY_NODES},
     {"ImplicitContactsBuf", GLC_BIND_IMPLICIT_CONTACTS},
     {"NodeContactCountsBuf", GLC_BIND_NODE_CONTACT_COUNTS},

@@ -141,10 +141,27 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     EXPECT_FALSE(plan.contact.sidesFromPrevious);
     EXPECT_TRUE(plan.contact.velocityResponse);
     scene.time.integrator = Integrator::ImplicitEuler;
+    scene.time.solver.newtonSteps = 1;
     plan = engine::planPipeline(scene);
     EXPECT_EQ(plan.stages(), (std::vector<Stage>{Stage::ImplicitSolve, Stage::NodePredict,
                                                  Stage::ContactIterations, Stage::CollisionDetection,
                                                  Stage::SafeStep, Stage::EnergyGuard, Stage::Commit}));
+    // Automatic Newton steps with the contacts in the solve: 2. The second detects the first's end
+    // and solves again there; each pass is listed once.
+    scene.time.solver.newtonSteps = 0;
+    plan = engine::planPipeline(scene);
+    EXPECT_EQ(plan.implicitParams.newtonSteps, 2);
+    EXPECT_EQ(
+        plan.stages(),
+        (std::vector<Stage>{Stage::ImplicitSolve, Stage::NodePredict, Stage::NewtonDetection,
+                            Stage::ImplicitNewton, Stage::NodePredict, Stage::ContactIterations,
+                            Stage::CollisionDetection, Stage::SafeStep, Stage::EnergyGuard, Stage::Commit}));
+    EXPECT_EQ(plan.passes(),
+              (std::vector<std::string>{"ImplicitSolve", "NodePredict", "BBUpdate", "BBCollision", "TriTri",
+                                        "FeaturePairs", "Ccd", "ContactResponse", "ContactApply", "SafeStep",
+                                        "EnergyGuard"}));
+    scene.time.solver.newtonSteps = 3;
+    EXPECT_EQ(engine::planPipeline(scene).stages().size(), plan.stages().size() + 3);
     EXPECT_FALSE(plan.nodePredictParams.forces); // the solve set v
     // The solve's ground penalty has a potential: the guard counts it, from the same level.
     EXPECT_EQ(plan.energyGuardParams.groundStiffness, plan.implicitParams.groundStiffness);

@@ -308,7 +308,7 @@ TEST(SceneJson, SettingsAndEffects) {
     // are in the solve (the intersection_free response).
     const std::string implicitTime =
         R"("time": {"integrator": "implicit_euler", "solver": {"newton_steps": )";
-    EXPECT_EQ(safe.time.solver.newtonSteps, 1) << "documented default";
+    EXPECT_EQ(safe.time.solver.newtonSteps, 0) << "documented default: automatic";
     EXPECT_EQ(parse(scene(kCloth, implicitTime + R"(2}}, "collision": {"response": "intersection_free"})",
                           R"(["springs", "self_collisions"])"))
                   .time.solver.newtonSteps,
