@@ -16,7 +16,9 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -27,11 +29,10 @@ namespace {
 std::string g_glfwError; ///< GLFW's last error message (its callback has no user pointer)
 
 void onGlfwError(int code, const char* message) {
-    g_glfwError = std::string(message ? message : "unknown error") + " (GLFW error 0x" + [&] {
-        char hex[16];
-        std::snprintf(hex, sizeof hex, "%X", code);
-        return std::string(hex);
-    }() + ")";
+    char text[512];
+    std::snprintf(text, sizeof text, "%s (GLFW error 0x%X)", message ? message : "unknown error",
+                  static_cast<unsigned>(code));
+    g_glfwError = text;
 }
 
 /// A clear error when there is no window system to talk to, before GLFW tries.
@@ -63,39 +64,50 @@ struct Window {
 struct Callbacks {
     viewer::Viewer* viewer = nullptr;
     bool userInput = true; ///< false with --frames: only the input script drives the viewer
+    /// An exception thrown inside a callback: it must not cross GLFW's C code, so it waits here
+    /// and is rethrown after glfwPollEvents returns.
+    std::exception_ptr pending;
 };
 
 Callbacks* callbacksOf(GLFWwindow* window) {
     return static_cast<Callbacks*>(glfwGetWindowUserPointer(window));
 }
 
+/// Runs `f` on the viewer when real input is on, keeping any exception for after the event loop.
+template <typename F> void guarded(GLFWwindow* w, F&& f) {
+    Callbacks* c = callbacksOf(w);
+    if (!c->viewer || !c->userInput || c->pending) return;
+    try {
+        f(*c->viewer);
+    } catch (...) {
+        c->pending = std::current_exception();
+    }
+}
+
 // Real input goes to the scene unless the panel has it (the toolkit chains to these callbacks).
 void onKey(GLFWwindow* w, int key, int /*scancode*/, int action, int mods) {
-    Callbacks* c = callbacksOf(w);
-    if (!c->viewer || !c->userInput || action == GLFW_RELEASE || ImGui::GetIO().WantCaptureKeyboard) return;
-    c->viewer->key(key, mods);
+    if (action == GLFW_RELEASE || ImGui::GetIO().WantCaptureKeyboard) return;
+    guarded(w, [&](viewer::Viewer& v) { v.key(key, mods); });
 }
 void onMouseButton(GLFWwindow* w, int button, int action, int mods) {
-    Callbacks* c = callbacksOf(w);
-    if (!c->viewer || !c->userInput) return;
     double x = 0, y = 0;
     glfwGetCursorPos(w, &x, &y);
-    if (action == GLFW_RELEASE)
-        c->viewer->mouseUp(button); // always: a drag that began in the scene ends there
-    else if (!ImGui::GetIO().WantCaptureMouse)
-        c->viewer->mouseDown(button, mods, x, y);
+    guarded(w, [&](viewer::Viewer& v) {
+        if (action == GLFW_RELEASE)
+            v.mouseUp(button); // always: a drag that began in the scene ends there
+        else if (!ImGui::GetIO().WantCaptureMouse)
+            v.mouseDown(button, mods, x, y);
+    });
 }
 void onCursor(GLFWwindow* w, double x, double y) {
-    Callbacks* c = callbacksOf(w);
-    if (c->viewer && c->userInput) c->viewer->mouseMove(x, y);
+    guarded(w, [&](viewer::Viewer& v) { v.mouseMove(x, y); });
 }
 void onScroll(GLFWwindow* w, double /*dx*/, double dy) {
-    Callbacks* c = callbacksOf(w);
-    if (c->viewer && c->userInput && !ImGui::GetIO().WantCaptureMouse) c->viewer->scroll(dy);
+    if (ImGui::GetIO().WantCaptureMouse) return;
+    guarded(w, [&](viewer::Viewer& v) { v.scroll(dy); });
 }
 void onDrop(GLFWwindow* w, int count, const char** paths) {
-    Callbacks* c = callbacksOf(w);
-    if (c->viewer && c->userInput && count > 0) c->viewer->open(paths[0]);
+    if (count > 0) guarded(w, [&](viewer::Viewer& v) { v.open(paths[0]); });
 }
 
 void writeScreenshot(const std::string& path, int width, int height) {
@@ -203,6 +215,7 @@ int viewCommand(const ViewOptions& o) {
     std::size_t next = 0;
     for (int shown = 1; !glfwWindowShouldClose(window.handle) && !view->quitRequested(); ++shown) {
         glfwPollEvents();
+        if (callbacks.pending) std::rethrow_exception(callbacks.pending);
         for (; next < events.size() && events[next].frame == shown; ++next) apply(*view, events[next]);
         int winWidth = 0, winHeight = 0;
         glfwGetFramebufferSize(window.handle, &fbWidth, &fbHeight);
