@@ -102,10 +102,12 @@ struct Engine::Impl {
     gl::GpuTimer timer{passes::kPassCount}; // one section per pass: passes::passIndex(id)
     StepStats stats;
     SetupStats setup;
-    std::vector<std::uint32_t> heavyNodes;        ///< nodes with more than kHeavyRow springs
-    gl::Buffer frameStamp;                        ///< checkFrameCompleted's word (made on first use)
-    std::optional<NodePull> pull;                 ///< Engine::setPull
-    std::optional<engine::NodePullPass> pullPass; ///< built at the first setPull
+    std::vector<std::uint32_t> heavyNodes; ///< nodes with more than kHeavyRow springs
+    gl::Buffer frameStamp;                 ///< checkFrameCompleted's word (made on first use)
+
+    // The host's pull (Engine::setPull); its pass is built at the first call.
+    std::optional<NodePull> pull;
+    std::optional<engine::NodePullPass> pullPass;
 
     void chooseSubsteps();
     gl::Buffer makeBuffer(passes::BufferId id);
