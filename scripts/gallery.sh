@@ -20,10 +20,12 @@ commit=$(git rev-parse --short HEAD)
 rows=()
 for scene in scenes/*.json; do
   name=$(basename "$scene" .json)
-  line_file="$out/$name.line"
-  if [ -n "${GALLERY_ONLY:-}" ] && [[ " $GALLERY_ONLY " != *" $name "* ]] && [ -f "$line_file" ]; then
-    rows+=("$(cat "$line_file")")
-    continue
+  if [ -n "${GALLERY_ONLY:-}" ] && [[ " $GALLERY_ONLY " != *" $name "* ]]; then
+    old=$(grep -F "| \`scenes/$name.json\` |" docs/gallery.md 2>/dev/null || true)
+    if [ -n "$old" ]; then
+      rows+=("$old")
+      continue
+    fi
   fi
   rm -f "$out/$name"_*.png
   tmp=$(mktemp -d)
@@ -44,7 +46,6 @@ for scene in scenes/*.json; do
     row="| \`scenes/$name.json\` | $why | — |"
   fi
   rm -rf "$tmp"
-  echo "$row" >"$line_file"
   rows+=("$row")
   echo "gallery: $name: ${row##*|  }" >&2
 done
