@@ -19,6 +19,7 @@ OrbitCamera::OrbitCamera(const render::View& view)
     m_e1 = glm::normalize(helper - glm::dot(helper, m_up) * m_up);
     m_e2 = glm::cross(m_e1, m_up);
     const glm::dvec3 toEye = view.eye - view.target;
+    // sceneView never gives eye = target (finishView rejects it); 1 µm only keeps the division finite.
     m_distance = std::max(glm::length(toEye), 1e-6);
     const glm::dvec3 d = toEye / m_distance;
     m_elevation =
@@ -48,12 +49,14 @@ void OrbitCamera::pan(double dx, double dy, int viewportHeight) {
 }
 
 void OrbitCamera::zoom(double steps) {
+    // 0.1 mm to 1000 km: beyond either the depth range (far / 1000 near) loses the scene.
     m_distance = std::clamp(m_distance * std::pow(0.9, steps), 1e-4, 1e6);
 }
 
 void OrbitCamera::frame(const glm::dvec3& lo, const glm::dvec3& hi, double aspect) {
     m_target = 0.5 * (lo + hi);
-    const double radius = std::max(0.5 * glm::length(hi - lo), 1e-3);
+    const double radius =
+        std::max(0.5 * glm::length(hi - lo), 1e-3); // a single node still gets 1 mm, as render's view
     // The sphere fits the narrower of the two fields of view, with a 10 % margin.
     const double halfY = glm::radians(m_fovDeg) / 2.0;
     const double halfX = std::atan(std::tan(halfY) * aspect);

@@ -177,6 +177,8 @@ void Viewer::mouseMove(double x, double y) {
         const glm::dvec3 normal = glm::normalize(m_camera->target() - eye);
         const glm::dvec3 ray = cursorRay(x, y);
         const double along = glm::dot(ray, normal);
+        // A ray along the plane (|cos| <= 1e-9: the cursor 90° off the view direction, which a
+        // perspective view never shows) keeps the last target.
         if (std::abs(along) > 1e-9)
             m_grab->target = eye + ray * (glm::dot(m_grab->planePoint - eye, normal) / along);
         updatePull();
@@ -331,6 +333,7 @@ void Viewer::frame(double wallSeconds, int framebufferWidth, int framebufferHeig
             // Real time (times the speed) as far as the engine keeps up; at most one engine frame
             // per shown frame, and no debt carried beyond one frame, so the viewer stays responsive.
             c.pendingSimulated = std::min(c.pendingSimulated + (wallSeconds - m_lastWall) * c.speed, dt);
+            // Relative 1e-9: summed wall-time steps that should make exactly dt may round below it.
             if (c.pendingSimulated >= dt * (1.0 - 1e-9)) {
                 c.pendingSimulated -= dt;
                 stepEngine();
