@@ -74,6 +74,7 @@ const std::array<glm::vec3, 10> kPalette = {{
 const glm::vec3 kHighlight{0.890f, 0.102f, 0.110f};
 const glm::vec3 kBackground{1.0f, 1.0f, 1.0f};
 const glm::vec3 kBackTint{0.95f, 0.92f, 0.80f}; // a pale warm grey: the back side of a face, halfway
+const glm::vec3 kPairLine{0.0f, 0.75f, 0.2f};   // green: no body's colour and not the highlight red
 
 struct Box {
     glm::dvec3 lo{std::numeric_limits<double>::infinity()};
@@ -342,7 +343,11 @@ struct SceneRenderer::Impl {
     glm::dvec3 sceneCentre{0.0}; ///< the framed box's centre: the shadow map looks at it
 
     Program surface, depth, gridProgram, overlay;
-    VertexArray meshArray, emptyArray;
+    VertexArray meshArray, emptyArray, lineArray;
+    GLuint lineBuffer = 0; ///< Overlays::pairLines, re-specified per frame (deleted with the renderer)
+    ~Impl() {
+        if (lineBuffer != 0) glDeleteBuffers(1, &lineBuffer);
+    }
     gl::Buffer styleBuffer;
     gl::Buffer nodeFaceOffsets, nodeFaceList; ///< smooth shading: each node's faces (surface.vert)
     Renderbuffer colour, depthBuffer, resolvedColour;
@@ -660,6 +665,30 @@ void SceneRenderer::Impl::drawInto(const Engine& engine,
         glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(nodeCount));
         glEnable(GL_DEPTH_TEST);
     }
+    if (!overlays.pairLines.empty()) {
+        if (lineBuffer == 0) {
+            glGenBuffers(1, &lineBuffer);
+            GLuint vao = 0;
+            glGenVertexArrays(1, &vao);
+            lineArray = VertexArray(vao);
+            glBindVertexArray(vao);
+            glBindBuffer(GL_ARRAY_BUFFER, lineBuffer);
+            gl::labelObject(GL_BUFFER, lineBuffer, "glcollide/render/pairLines");
+            glEnableVertexAttribArray(0);
+            glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr); // w defaults to 1
+        }
+        glBindVertexArray(lineArray.name());
+        glBindBuffer(GL_ARRAY_BUFFER, lineBuffer);
+        glBufferData(GL_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>(overlays.pairLines.size() * sizeof(overlays.pairLines[0])),
+                     overlays.pairLines.data(), GL_STREAM_DRAW);
+        glProgramUniform1ui(overlay.name(), location(overlay, "u_mode"), 0u);
+        setVec3(overlay, "u_colour", glm::dvec3(kPairLine));
+        glDisable(GL_DEPTH_TEST); // pairs between touching faces lie inside or behind the surfaces
+        glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(2 * overlays.pairLines.size()));
+        glEnable(GL_DEPTH_TEST);
+        glBindVertexArray(meshArray.name());
+    }
     if (overlays.segment) {
         glBindVertexArray(emptyArray.name());
         glProgramUniform1ui(overlay.name(), location(overlay, "u_mode"), 2u);
@@ -701,6 +730,10 @@ glm::vec3 SceneRenderer::highlightColour() {
 }
 glm::vec3 SceneRenderer::backTint() {
     return kBackTint;
+}
+
+glm::vec3 SceneRenderer::pairLineColour() {
+    return kPairLine;
 }
 
 glm::vec3 SceneRenderer::backgroundColour() {

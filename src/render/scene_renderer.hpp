@@ -89,6 +89,8 @@ struct Overlays {
     bool pinnedNodes = false; ///< nodes with inverse mass 0 as points
     /// A segment between two world points (the viewer's pull: from the node to the cursor).
     std::optional<std::array<glm::dvec3, 2>> segment;
+    /// Segments drawn in one colour (the viewer's candidate face pairs: centroid to centroid).
+    std::vector<std::array<glm::vec3, 2>> pairLines;
 };
 
 /// The grid under a scene: at the ground height when the ground effect is on, else just below the
@@ -139,6 +141,8 @@ class SceneRenderer {
     static glm::vec3 highlightColour();
     /// What the back side of a face (winding clockwise as seen) is tinted towards, halfway.
     static glm::vec3 backTint();
+    /// Colour of Overlays::pairLines.
+    static glm::vec3 pairLineColour();
     /// Colour where nothing is drawn.
     static glm::vec3 backgroundColour();
 

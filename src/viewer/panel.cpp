@@ -67,7 +67,8 @@ void Viewer::panel() {
         ImGui::Checkbox("wireframe (W)", &m_wireframe);
         ImGui::Checkbox("pinned nodes (P)", &m_pinned);
         if (ImGui::Checkbox("smooth shading (S)", &m_smooth)) m_loaded.renderer->setSmooth(m_smooth);
-        ImGui::TextDisabled("not built: contact pairs, BVH / octree boxes");
+        if (ImGui::Checkbox("candidate face pairs, green (C)", &m_showPairs)) afterStateChange();
+        ImGui::TextDisabled("not built: feature contacts, BVH / octree boxes");
         float pull = static_cast<float>(m_pullScale);
         if (ImGui::SliderFloat("pull", &pull, 0.01f, 1.0f, "%.2f x", ImGuiSliderFlags_Logarithmic))
             m_pullScale = pull;
@@ -102,6 +103,7 @@ void Viewer::panel() {
             std::snprintf(overlay, sizeof overlay, "total %.5g J", m_energy->total());
             plot("energy", m_energyHistory, overlay);
         }
+        if (m_showPairs) ImGui::Text("candidate pairs drawn %zu", m_pairLines.size());
         if (s.collisions) {
             const CollisionStats& c = s.collision;
             ImGui::Text("candidates %u, contacts %u", c.candidatePairs, c.contacts);
@@ -109,6 +111,9 @@ void Viewer::panel() {
                         c.maxIntersectingPairs, m_intersecting.size());
             if (c.boxPairs) ImGui::Text("octree box pairs %u", c.boxPairs);
             if (c.bvhNodeVisits) ImGui::Text("BVH node visits %u", c.bvhNodeVisits);
+        } else if (engine.scene().effects.has(Effect::Collisions) ||
+                   engine.scene().effects.has(Effect::SelfCollisions)) {
+            ImGui::TextDisabled("collision counts: after the first frame");
         } else {
             ImGui::TextDisabled("no collision effect");
         }

@@ -18,9 +18,10 @@ namespace glcollide::viewer {
 
 namespace {
 
-constexpr std::size_t kHistory = 240; ///< frames in the panel's plots
-constexpr double kPickRadius = 20.0;  ///< window pixels: how near the cursor a node is grabbed
-constexpr double kRateWindow = 0.5;   ///< s of wall time per frame-rate measurement
+constexpr std::size_t kHistory = 240;         ///< frames in the panel's plots
+constexpr double kPickRadius = 20.0;          ///< window pixels: how near the cursor a node is grabbed
+constexpr double kRateWindow = 0.5;           ///< s of wall time per frame-rate measurement
+constexpr std::size_t kMaxPairLines = 100000; ///< candidate pairs drawn at most (2.4 MB of lines)
 
 /// The pull's spring for a node of mass `nodeMass` pulled in substeps of `h` seconds: the stiffest
 /// the explicit pull allows (Engine::setPull takes it explicitly; symplectic Euler is stable while
@@ -124,6 +125,10 @@ void Viewer::key(int key, int mods) {
         break;
     case GLFW_KEY_P:
         m_pinned = !m_pinned;
+        break;
+    case GLFW_KEY_C:
+        m_showPairs = !m_showPairs;
+        afterStateChange();
         break;
     case GLFW_KEY_S:
         m_smooth = !m_smooth;
@@ -305,11 +310,28 @@ void Viewer::afterStateChange() {
     m_energyHistory.push_back(static_cast<float>(m_energy->total()));
     if (m_energyHistory.size() > kHistory) m_energyHistory.pop_front();
     m_intersecting.clear();
+    m_pairLines.clear();
     const EffectSet& effects = engine.scene().effects;
-    if (m_showIntersecting && (effects.has(Effect::Collisions) || effects.has(Effect::SelfCollisions))) {
-        // As `render` does: detect on the drawn positions, so the red faces are exactly this state's.
-        engine.detectCollisions();
-        m_intersecting = engine.readIntersectingPairs();
+    if (!(effects.has(Effect::Collisions) || effects.has(Effect::SelfCollisions))) return;
+    if (!m_showIntersecting && !m_showPairs) return;
+    // As `render` does: detect on the drawn positions, so red faces and pairs are this state's.
+    engine.detectCollisions();
+    if (m_showIntersecting) m_intersecting = engine.readIntersectingPairs();
+    if (!m_showPairs) return;
+    // Candidate pairs (faces within the contact thickness) as lines between the faces' centroids.
+    const std::vector<std::array<std::uint32_t, 2>> pairs = engine.readCandidatePairs();
+    const std::vector<glm::dvec3> x = engine.readPositions();
+    const std::vector<std::uint32_t> firstNodes = engine.bodyFirstNodes();
+    std::vector<glm::vec3> centroids;
+    centroids.reserve(engine.faceCount());
+    for (std::size_t b = 0; b < engine.scene().bodies.size(); ++b)
+        for (const auto& f : engine.scene().bodies[b].faces)
+            centroids.emplace_back(
+                (x[firstNodes[b] + f[0]] + x[firstNodes[b] + f[1]] + x[firstNodes[b] + f[2]]) / 3.0);
+    for (const auto& p : pairs) {
+        if (m_pairLines.size() >= kMaxPairLines) break;
+        if (p[0] < centroids.size() && p[1] < centroids.size())
+            m_pairLines.push_back({centroids[p[0]], centroids[p[1]]});
     }
 }
 
@@ -356,6 +378,7 @@ void Viewer::frame(double wallSeconds, int framebufferWidth, int framebufferHeig
     overlays.wireframe = m_wireframe;
     overlays.pinnedNodes = m_pinned;
     if (m_grab) overlays.segment = {{m_loaded.engine->readPositions()[m_grab->node], m_grab->target}};
+    overlays.pairLines = m_pairLines;
     renderer.draw(*m_loaded.engine, m_intersecting, {0, framebufferWidth, framebufferHeight}, overlays);
 }
 

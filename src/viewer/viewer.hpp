@@ -110,6 +110,8 @@ class Viewer {
     // Overlays and shading.
     bool m_showIntersecting = true, m_wireframe = false, m_pinned = false, m_smooth = true, m_panel = true;
     std::vector<std::array<std::uint32_t, 2>> m_intersecting;
+    bool m_showPairs = false;                          ///< candidate face pairs as lines (key C)
+    std::vector<std::array<glm::vec3, 2>> m_pairLines; ///< centroid to centroid, at most kMaxPairLines
 
     // The mouse.
     int m_fbWidth = 1, m_fbHeight = 1, m_winWidth = 1, m_winHeight = 1;

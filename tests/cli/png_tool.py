@@ -9,6 +9,8 @@ for the viewer's tests (tests/cli/view_test.sh).
       body:  the first body's blue (render's palette entry 0), lit or in shade, front or back (the
              back side is mixed halfway with a warm grey: blue still above red by about 24): blue
              above red by > 15, which the neutral grey grid and white background never are
+      pairs: the candidate-pair overlay's green (0, 191, 51), unlit: within 8 per channel (the
+             window's multisampling blends line edges)
 Rectangles are [X0, X1) x [Y0, Y1) in pixels from the top left.
 """
 import struct
@@ -80,7 +82,9 @@ def main(argv):
             return max(p) < 60 and max(p) - min(p) <= 12
         def body(p):
             return p[2] > p[0] + 15
-        test = {"panel": panel, "body": body}[kind]
+        def pairs(p):
+            return abs(p[0] - 0) <= 8 and abs(p[1] - 191) <= 8 and abs(p[2] - 51) <= 8
+        test = {"panel": panel, "body": body, "pairs": pairs}[kind]
         hits = sum(test(rows[y][x]) for y in range(y0, y1) for x in range(x0, x1))
         print(f"{hits / ((x1 - x0) * (y1 - y0)):.4f}")
     else:

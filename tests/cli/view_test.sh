@@ -85,6 +85,16 @@ printf '2 open %s\n' "$still" >"$work/open2.txt"
 view 4 "$swinging" --input "$work/open2.txt"
 check "opening another scene: it is shown" grep -q "view test: still cloth: 4 frames shown" "$work/out.txt"
 
+# Candidate face pairs (key C) over two boxes 5 mm apart, within the contact thickness: green lines.
+printf '1 key space\n1 key c\n' >"$work/pairs.txt"
+view 2 "$src/tests/data/view/touching_boxes.json" --input "$work/pairs.txt" --screenshot pairs.png
+check "pairs: exits 0" test $? -eq 0
+green=$($png count "$work/pairs.png" $scene_rect pairs)
+check "pairs: the overlay's green lines are drawn ($green of the scene)" ge "$green" 0.001
+printf '1 key space\n' >"$work/nopairs.txt"
+view 2 "$src/tests/data/view/touching_boxes.json" --input "$work/nopairs.txt" --screenshot nopairs.png
+check "pairs: none without the toggle" test "$($png count "$work/nopairs.png" $scene_rect pairs)" = "0.0000"
+
 # Bad input scripts: file:line, exit 1, before any window.
 printf '1 key space\n\n2 jump 3\n' >"$work/bad1.txt"
 printf '1 key nosuchkey\n' >"$work/bad2.txt"

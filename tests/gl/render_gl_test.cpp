@@ -16,6 +16,7 @@
 #define STBI_ONLY_PNG
 #include <stb/stb_image.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -475,6 +476,7 @@ TEST(RenderGl, DrawsIntoAHostsFramebufferWithOverlaysAndLeavesItsState) {
     overlays.wireframe = true;
     overlays.pinnedNodes = true;
     overlays.segment = {{glm::dvec3(0.0), glm::dvec3(0.3, 0.3, 0.0)}};
+    overlays.pairLines = {{glm::vec3(-0.3f, 0.2f, 0.0f), glm::vec3(0.3f, 0.2f, 0.0f)}};
     const auto drawAndRead = [&] {
         // Magenta first: a pixel left magenta was not drawn (draw() clears its whole target).
         glBindFramebuffer(GL_FRAMEBUFFER, fbo);
@@ -490,7 +492,7 @@ TEST(RenderGl, DrawsIntoAHostsFramebufferWithOverlaysAndLeavesItsState) {
         return image;
     };
     const Image first = drawAndRead();
-    std::size_t magenta = 0, blue = 0;
+    std::size_t magenta = 0, blue = 0, green = 0;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             const auto p = first.pixel(x, y);
@@ -498,9 +500,13 @@ TEST(RenderGl, DrawsIntoAHostsFramebufferWithOverlaysAndLeavesItsState) {
             // The first box's blue (palette 0) lit or in shade has blue above red by about 90 of
             // 255; the grid and the background are neutral grey (r = g = b).
             blue += p[2] > p[0] + 15;
+            // The pair lines' green (0, 191, 51), drawn unlit over everything: exact.
+            green += p[0] == 0 && p[1] == 191 && p[2] == 51;
         }
     EXPECT_EQ(magenta, 0u);
     EXPECT_GT(blue, 0u);
+    EXPECT_GT(green, 0u);
+    EXPECT_EQ(glm::vec3(0.0f, 191.0f, 51.0f), glm::round(SceneRenderer::pairLineColour() * 255.0f));
 
     GLint mode[2] = {};
     glGetIntegerv(GL_POLYGON_MODE, mode);
