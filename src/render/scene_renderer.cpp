@@ -646,7 +646,8 @@ void SceneRenderer::Impl::drawInto(const Engine& engine,
     glUseProgram(overlay.name());
     if (overlays.wireframe && indexCount > 0) {
         glProgramUniform1ui(overlay.name(), location(overlay, "u_mode"), 0u);
-        setVec3(overlay, "u_colour", glm::dvec3(0.15));
+        // Mid grey: seen on a dark face in shade and on a pale back side alike.
+        setVec3(overlay, "u_colour", glm::dvec3(0.42));
         glDepthFunc(GL_LEQUAL);
         glEnable(GL_POLYGON_OFFSET_LINE);
         glPolygonOffset(-1.0f, -1.0f);
