@@ -141,7 +141,8 @@ int main(int argc, char** argv) {
     viewCmd->add_option("scene", view.scenePath,
                         "Scene file (JSON; an optional /camera sets the first view)");
     viewCmd->add_option("--broad-phase", view.broadPhase,
-                        "Override the broad phase of every scene opened: octree, masked, all_pairs or bvh");
+                        "Override the broad phase of every scene opened that has collisions: octree, masked, "
+                        "all_pairs or bvh");
     viewCmd->add_option("--device", view.device,
                         "auto, or software (Mesa's llvmpipe): the window system makes the context");
     viewCmd->add_option("--size", view.size, "Window size WIDTHxHEIGHT in pixels")->default_val("1280x800");

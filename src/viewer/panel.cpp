@@ -84,6 +84,9 @@ void Viewer::panel() {
                     engine.nodeCount(), engine.faceCount(), engine.springCount());
         wrappedList("effects", m_effects);
         wrappedList("pipeline", m_passNames);
+        if (engine.scene().effects.has(Effect::Collisions) ||
+            engine.scene().effects.has(Effect::SelfCollisions))
+            ImGui::Text("broad phase: %s", broadPhaseName(engine.scene().collision.broadPhase));
     }
 
     if (ImGui::CollapsingHeader("GPU time per pass", ImGuiTreeNodeFlags_DefaultOpen)) {

@@ -162,10 +162,9 @@ int viewCommand(const ViewOptions& o) {
     std::vector<viewer::InputEvent> events;
     if (!o.input.empty()) events = viewer::readInputScript(o.input, o.frames.value_or(0), width, height);
     if (!o.scenePath.empty()) (void)loadScene(o.scenePath); // a bad scene: its error, no window
-    if (!o.broadPhase.empty()) {
-        Scene probe = defaultScene();
-        overrideBroadPhase(probe, o.broadPhase);
-    }
+    if (!o.broadPhase.empty() && !broadPhaseFromName(o.broadPhase))
+        throw Error("--broad-phase: unknown broad phase \"" + o.broadPhase +
+                    "\"; expected octree, masked, all_pairs or bvh");
 
     requireDisplay();
     glfwSetErrorCallback(onGlfwError);

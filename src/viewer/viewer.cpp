@@ -39,7 +39,10 @@ Loaded openScene(const std::string& path, const std::string& broadPhase) {
     Loaded l;
     l.path = path;
     l.scene = path.empty() ? defaultScene() : loadScene(path);
-    if (!broadPhase.empty()) overrideBroadPhase(l.scene, broadPhase);
+    // The override is for scenes with collisions; the viewer opens the others as they are.
+    const bool collisions =
+        l.scene.effects.has(Effect::Collisions) || l.scene.effects.has(Effect::SelfCollisions);
+    if (!broadPhase.empty() && collisions) overrideBroadPhase(l.scene, broadPhase);
     l.engine = std::make_unique<Engine>(l.scene);
     for (const std::string& w : l.engine->warnings()) std::cerr << "glcollide: warning: " << w << "\n";
     // The renderer's own framebuffer is for renderFrame only; the viewer draws into the window.

@@ -28,7 +28,8 @@ struct Loaded {
     std::unique_ptr<render::SceneRenderer> renderer;
 };
 
-/// Loads a scene file (empty: the built-in default scene), applies the broad-phase override and
+/// Loads a scene file (empty: the built-in default scene), applies the broad-phase override (to a
+/// scene with collisions) and
 /// builds its engine and renderer on the current context. Throws Error as loadScene and Engine do.
 Loaded openScene(const std::string& path, const std::string& broadPhase);
 

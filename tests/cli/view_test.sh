@@ -95,6 +95,16 @@ printf '1 key space\n' >"$work/nopairs.txt"
 view 2 "$src/tests/data/view/touching_boxes.json" --input "$work/nopairs.txt" --screenshot nopairs.png
 check "pairs: none without the toggle" test "$($png count "$work/nopairs.png" $scene_rect pairs)" = "0.0000"
 
+# --broad-phase: every broad phase finds the same candidate pairs, so the BVH's picture is the octree's.
+view 2 "$src/tests/data/view/touching_boxes.json" --broad-phase bvh --input "$work/pairs.txt" --screenshot bvh.png
+check "--broad-phase bvh: exits 0" test $? -eq 0
+check "--broad-phase bvh: the same picture as the scene's own broad phase" \
+  test "$($png diff "$work/pairs.png" "$work/bvh.png" $scene_rect)" = 0
+view 2 "$swinging" --broad-phase bvh
+check "--broad-phase on a scene without collisions: opened as it is" test $? -eq 0
+"$bin" view "$swinging" --broad-phase nonsense >/dev/null 2>"$work/bp.err"
+check "--broad-phase nonsense: exit 1, explained" test $? -eq 1 -a -n "$(grep 'unknown broad phase "nonsense"' "$work/bp.err")"
+
 # Bad input scripts: file:line, exit 1, before any window.
 printf '1 key space\n\n2 jump 3\n' >"$work/bad1.txt"
 printf '1 key nosuchkey\n' >"$work/bad2.txt"
