@@ -69,10 +69,16 @@ check "pull: the centre node (60) was grabbed and released" test -n "$line"
 read -r grabbed released < <(echo "$line" | sed -E 's/.*released: ([0-9.]+) m .*, ([0-9.]+) m at the release/\1 \2/')
 check "pull: the target moved away from the node (${grabbed:-?} m)" ge "${grabbed:-0}" 0.3
 check "pull: the node came to within a third of that (${released:-?} m)" ge "$(python3 -c "print(${grabbed:-0} / 3)")" "${released:-1}"
-# A drag without Ctrl orbits the camera: no pull.
-printf '2 drag left 640 400 800 400 5\n' >"$work/orbit.txt"
-view 8 "$still" --input "$work/orbit.txt"
+# A drag without Ctrl orbits the camera: no pull, another picture; the wheel zooms, F frames all.
+printf '1 screenshot still.png\n2 drag left 640 400 800 400 5\n' >"$work/orbit.txt"
+view 8 "$still" --input "$work/orbit.txt" --screenshot orbited.png
 check "orbit: exits 0, no node pulled" test $? -eq 0 -a -z "$(grep '^pull:' "$work/out.txt")"
+check "orbit: the view turned" test "$($png diff "$work/still.png" "$work/orbited.png" $scene_rect)" -gt 1000
+printf '2 scroll 3\n4 screenshot zoomed.png\n5 key f\n' >"$work/zoom.txt"
+view 6 "$still" --input "$work/zoom.txt" --screenshot framed.png
+check "zoom and frame all: exits 0" test $? -eq 0
+check "zoom: the picture changed" test "$($png diff "$work/still.png" "$work/zoomed.png" $scene_rect)" -gt 1000
+check "frame all: the picture changed again" test "$($png diff "$work/zoomed.png" "$work/framed.png" $scene_rect)" -gt 1000
 
 # A bad scene opened from the script: the engine's error on stderr (and in the panel), the viewer runs on.
 printf '2 open %s\n' "$src/tests/data/view/no_such_scene.json" >"$work/open.txt"
