@@ -11,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -221,6 +222,16 @@ struct EnergyReport {
     [[nodiscard]] double total() const { return kinetic + potential + contact; }
 };
 
+/// A pull on one node by the host (a mouse perturbation, as in MuJoCo's simulate): a spring from
+/// the node to a target point, applied as an external force in every substep while it is set
+/// (Engine::setPull). The spring's force on the node is stiffness·(target − x) − damping·v.
+struct NodePull {
+    std::uint32_t globalNode = 0; ///< the node, in the global (concatenated) node order
+    glm::dvec3 target{0.0};       ///< m
+    double stiffness = 0.0;       ///< N/m, >= 0
+    double damping = 0.0;         ///< N·s/m, >= 0: against the node's own velocity
+};
+
 /// Simulates a scene on the current GL ≥ 4.3 context: a HeadlessContext or the caller's own.
 /// Not thread-safe; every call needs the construction context (or a sharing one) current.
 ///
@@ -261,6 +272,17 @@ class Engine {
     /// host's own glMemoryBarrier with that use's bit first.
     void step();
     [[nodiscard]] const StepStats& lastStep() const;
+    /// Sets (or, with nullopt, removes) the host's pull on one node, applied from the next step()
+    /// on, at the start of every substep, before the scene's passes: v += h·w·f with f the pull's
+    /// force and w the node's inverse mass (symplectic Euler takes it as one more external force;
+    /// implicit Euler takes it explicitly, so a stiffness with h·sqrt(k·w) well below 1 keeps it
+    /// stable). A pinned node is not moved. Its own small compute pass (shaders/passes/node_pull.comp),
+    /// built at the first call and dispatched only while a pull is set; with EngineOptions::frameStep
+    /// it is applied once per frame with h = dt. Under the intersection-free response the energy
+    /// guard may take the pull's work back out as an energy rise. Throws Error for a node out of
+    /// range, a non-finite target or a negative stiffness or damping. Needs the context current.
+    void setPull(std::optional<NodePull> pull);
+    [[nodiscard]] const std::optional<NodePull>& pull() const;
     /// What construction spent building compute programs: per program the wall time and whether
     /// it came from the program binary cache (GLCOLLIDE_CACHE_DIR; docs/cli.md, docs/integration.md).
     [[nodiscard]] const SetupStats& setupStats() const;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace glcollide::app {
@@ -93,5 +94,22 @@ struct RenderOptions {
 /// glcollide render: simulates headless and writes OUT/frame_NNNNNN.png snapshots drawn from the
 /// engine's buffers (shaded bodies in distinct colours, intersecting faces in red, a ground grid).
 int renderCommand(const RenderOptions& options);
+
+struct ViewOptions {
+    std::string scenePath;         ///< empty: the built-in default scene
+    std::string broadPhase;        ///< overrides the broad phase of every scene opened; empty: keep
+    std::string device;            ///< auto or software (a window's context comes from the window system)
+    std::string size = "1280x800"; ///< the window's size in pixels
+    std::optional<int> frames;     ///< run this many frames without a user, then exit
+    std::string screenshot;        ///< with frames: write the window's last frame here (PNG)
+    std::string input;             ///< a script of input events (docs/viewer.md)
+};
+
+/// glcollide view: a window running the engine in its own GL context, with a panel
+/// (docs/viewer.md). Builds without GLFW or Dear ImGui have a view that says so and exits 1.
+int viewCommand(const ViewOptions& options);
+
+/// "WIDTHxHEIGHT", each 1 ... 16384, for `option` (e.g. "--size"); throws Error otherwise.
+std::pair<int, int> parseSize(const std::string& text, const std::string& option = "--size");
 
 } // namespace glcollide::app

@@ -133,6 +133,26 @@ int main(int argc, char** argv) {
                           "EGL device: auto, software, <index> or cuda:<n> (env GLCOLLIDE_EGL_DEVICE)");
     renderCmd->add_flag("--quiet", render.quiet, "No progress on stderr");
 
+    glcollide::app::ViewOptions view;
+    CLI::App* viewCmd = cli.add_subcommand(
+        "view",
+        "Open a window that runs a scene live in its own GL context, with a panel: orbit, pause, step, pull "
+        "nodes with the mouse (docs/viewer.md; needs a display)");
+    viewCmd->add_option("scene", view.scenePath,
+                        "Scene file (JSON; an optional /camera sets the first view)");
+    viewCmd->add_option("--broad-phase", view.broadPhase,
+                        "Override the broad phase of every scene opened that has collisions: octree, masked, "
+                        "all_pairs or bvh");
+    viewCmd->add_option("--device", view.device,
+                        "auto, or software (Mesa's llvmpipe): the window system makes the context");
+    viewCmd->add_option("--size", view.size, "Window size WIDTHxHEIGHT in pixels")->default_val("1280x800");
+    viewCmd->add_option("--frames", view.frames,
+                        "Show this many frames without a user, then exit (for scripts and tests)");
+    viewCmd->add_option("--screenshot", view.screenshot,
+                        "With --frames: write the last frame as the window shows it (PNG)");
+    viewCmd->add_option("--input", view.input,
+                        "Play a script of key presses and mouse drags (docs/viewer.md)");
+
     try {
         cli.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -149,6 +169,7 @@ int main(int argc, char** argv) {
         if (ccdCmd->parsed()) return glcollide::app::queryCcdCommand(ccd);
         if (benchCmd->parsed()) return glcollide::app::benchCommand(bench);
         if (renderCmd->parsed()) return glcollide::app::renderCommand(render);
+        if (viewCmd->parsed()) return glcollide::app::viewCommand(view);
     } catch (const glcollide::Error& e) {
         std::cerr << "glcollide: error: " << e.what() << "\n";
         return 1;

@@ -19,20 +19,6 @@
 namespace glcollide::app {
 namespace {
 
-constexpr int kMaxSide = 16384;
-
-/// "WIDTHxHEIGHT", each 1 ... kMaxSide (the device may allow less: the renderer checks again).
-std::pair<int, int> parseSize(const std::string& text) {
-    static const std::regex re(R"(([0-9]{1,6})[xX]([0-9]{1,6}))");
-    std::smatch m;
-    const std::string expected = "--size: expected WIDTHxHEIGHT in pixels, each 1 ... " +
-                                 std::to_string(kMaxSide) + " (e.g. 800x600), got '" + text + "'";
-    if (!std::regex_match(text, m, re)) throw Error(expected);
-    const int w = std::stoi(m[1].str()), h = std::stoi(m[2].str());
-    if (w < 1 || h < 1 || w > kMaxSide || h > kMaxSide) throw Error(expected);
-    return {w, h};
-}
-
 std::string frameName(std::uint64_t frame) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06llu.png", static_cast<unsigned long long>(frame));
@@ -40,6 +26,19 @@ std::string frameName(std::uint64_t frame) {
 }
 
 } // namespace
+
+/// "WIDTHxHEIGHT", each 1 ... kMaxSide (the device may allow less: the renderer checks again).
+std::pair<int, int> parseSize(const std::string& text, const std::string& option) {
+    constexpr int kMaxSide = 16384;
+    static const std::regex re(R"(([0-9]{1,6})[xX]([0-9]{1,6}))");
+    std::smatch m;
+    const std::string expected = option + ": expected WIDTHxHEIGHT in pixels, each 1 ... " +
+                                 std::to_string(kMaxSide) + " (e.g. 800x600), got '" + text + "'";
+    if (!std::regex_match(text, m, re)) throw Error(expected);
+    const int w = std::stoi(m[1].str()), h = std::stoi(m[2].str());
+    if (w < 1 || h < 1 || w > kMaxSide || h > kMaxSide) throw Error(expected);
+    return {w, h};
+}
 
 int renderCommand(const RenderOptions& options) {
     const auto [width, height] = parseSize(options.size);

@@ -4,6 +4,7 @@
 #include "cpu/contact_twin.hpp"
 #include "cpu/dynamics_twin.hpp"
 #include "cpu/stability.hpp"
+#include "engine/node_pull.hpp"
 #include "engine/pipeline_plan.hpp"
 #include "engine/response_model.hpp"
 #include "engine/robust_self_check.hpp"
@@ -103,6 +104,10 @@ struct Engine::Impl {
     SetupStats setup;
     std::vector<std::uint32_t> heavyNodes; ///< nodes with more than kHeavyRow springs
     gl::Buffer frameStamp;                 ///< checkFrameCompleted's word (made on first use)
+
+    // The host's pull (Engine::setPull); its pass is built at the first call.
+    std::optional<NodePull> pull;
+    std::optional<engine::NodePullPass> pullPass;
 
     void chooseSubsteps();
     gl::Buffer makeBuffer(passes::BufferId id);
@@ -651,7 +656,12 @@ void Engine::step() {
             d.collision->radialCulling()->hostMovedNodes(d.buffers))
             d.radialPremise = false; // the host moved nodes: the start is not known to be free
         const int calls = d.frameStep ? 1 : d.substeps.substeps;
-        for (int s = 0; s < calls; ++s) d.substep(s, s + 1 == calls);
+        // The host's pull (setPull): its own pass before each substep, only while it is set.
+        const double pullStep = d.frameStep ? d.scene.time.dt : d.substeps.substepLength;
+        for (int s = 0; s < calls; ++s) {
+            if (d.pull) d.pullPass->dispatch(d.buffers, *d.pull, pullStep);
+            d.substep(s, s + 1 == calls);
+        }
     }
     if (d.energyGuard) d.readEnergyGuard();
     d.stats.dispatchesPerSubstep =
@@ -676,6 +686,22 @@ void Engine::step() {
 
 const SetupStats& Engine::setupStats() const {
     return m_impl->setup;
+}
+
+void Engine::setPull(std::optional<NodePull> pull) {
+    Impl& d = *m_impl;
+    if (pull) {
+        engine::validatePull(*pull, d.buffers.nodeCount);
+        if (!d.pullPass) {
+            const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Compute, d.glFeatures);
+            d.pullPass.emplace();
+        }
+    }
+    d.pull = pull;
+}
+
+const std::optional<NodePull>& Engine::pull() const {
+    return m_impl->pull;
 }
 
 const StepStats& Engine::lastStep() const {

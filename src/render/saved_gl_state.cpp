@@ -4,13 +4,14 @@ namespace glcollide::render {
 namespace {
 
 // Capabilities the renderer sets one way or the other while drawing.
-constexpr std::array<GLenum, 13> kCapabilities = {
+constexpr std::array<GLenum, 15> kCapabilities = {
     GL_DEPTH_TEST,
     GL_CULL_FACE,
     GL_BLEND,
     GL_SCISSOR_TEST,
     GL_STENCIL_TEST,
     GL_POLYGON_OFFSET_FILL,
+    GL_POLYGON_OFFSET_LINE, // the viewer's wireframe overlay
     GL_MULTISAMPLE,
     GL_FRAMEBUFFER_SRGB,
     GL_RASTERIZER_DISCARD,
@@ -18,6 +19,7 @@ constexpr std::array<GLenum, 13> kCapabilities = {
     GL_PRIMITIVE_RESTART,
     GL_DEPTH_CLAMP,
     GL_DITHER,
+    GL_PROGRAM_POINT_SIZE, // the viewer's pinned-node overlay sets its point size in the shader
 };
 
 } // namespace

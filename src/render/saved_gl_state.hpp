@@ -41,7 +41,7 @@ class SavedGlState {
     std::array<StorageBinding, kStorageBindings> m_storage{};
     GLint m_activeTexture = 0, m_texture2D = 0, m_sampler = 0;
     GLint m_packAlignment = 4, m_packRowLength = 0, m_packSkipRows = 0, m_packSkipPixels = 0;
-    std::array<Capability, 13> m_caps{};
+    std::array<Capability, 15> m_caps{};
     GLint m_depthFunc = GL_LESS, m_frontFace = GL_CCW;
     GLboolean m_depthMask = GL_TRUE;
     std::array<GLboolean, 4> m_colorMask{};

@@ -74,6 +74,7 @@ const std::array<glm::vec3, 10> kPalette = {{
 const glm::vec3 kHighlight{0.890f, 0.102f, 0.110f};
 const glm::vec3 kBackground{1.0f, 1.0f, 1.0f};
 const glm::vec3 kBackTint{0.95f, 0.92f, 0.80f}; // a pale warm grey: the back side of a face, halfway
+const glm::vec3 kPairLine{0.0f, 0.75f, 0.2f};   // green: no body's colour and not the highlight red
 
 struct Box {
     glm::dvec3 lo{std::numeric_limits<double>::infinity()};
@@ -127,8 +128,7 @@ void finishView(View& v, const Scene& scene, double aspect) {
     const Grid grid = sceneGrid(scene);
     v.farPlane = glm::length(v.eye - box.centre()) + box.radius() + 1.5 * grid.halfSize;
     v.nearPlane = v.farPlane / 1000.0;
-    v.viewMatrix = glm::lookAt(v.eye, v.target, v.up);
-    v.projection = glm::perspective(glm::radians(v.fovDeg), aspect, v.nearPlane, v.farPlane);
+    v = lookAtView(v.eye, v.target, v.up, v.fovDeg, v.nearPlane, v.farPlane, aspect);
 }
 
 std::string infoLog(GLuint object, bool isProgram) {
@@ -231,6 +231,25 @@ void checkComplete(const char* what) {
 
 } // namespace
 
+Image readPixels(int width, int height) {
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_PACK_SKIP_ROWS, 0);
+    glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
+    Image image;
+    image.width = width;
+    image.height = height;
+    const std::size_t row = static_cast<std::size_t>(image.width) * 4;
+    std::vector<std::uint8_t> bottomUp(row * static_cast<std::size_t>(image.height));
+    glReadPixels(0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, bottomUp.data());
+    image.rgba.resize(bottomUp.size());
+    for (std::size_t y = 0; y < static_cast<std::size_t>(image.height); ++y)
+        std::copy_n(bottomUp.data() + (static_cast<std::size_t>(image.height) - 1 - y) * row, row,
+                    image.rgba.data() + y * row);
+    return image;
+}
+
 std::array<std::uint8_t, 4> Image::pixel(int x, int y) const {
     const std::size_t i =
         (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4;
@@ -245,6 +264,20 @@ glm::dvec3 View::project(const glm::dvec3& world, int width, int height) const {
 
 bool View::inFront(const glm::dvec3& world) const {
     return (viewProjection() * glm::dvec4(world, 1.0)).w > 0.0;
+}
+
+View lookAtView(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up, double fovDeg,
+                double nearPlane, double farPlane, double aspect) {
+    View v;
+    v.eye = eye;
+    v.target = target;
+    v.up = up;
+    v.fovDeg = fovDeg;
+    v.nearPlane = nearPlane;
+    v.farPlane = farPlane;
+    v.viewMatrix = glm::lookAt(eye, target, up);
+    v.projection = glm::perspective(glm::radians(fovDeg), aspect, nearPlane, farPlane);
+    return v;
 }
 
 Grid sceneGrid(const Scene& scene) {
@@ -307,14 +340,24 @@ struct SceneRenderer::Impl {
     std::vector<std::uint32_t> faceStyle;
     std::size_t highlighted = 0;
 
-    Program surface, depth, gridProgram;
-    VertexArray meshArray, emptyArray;
+    glm::dvec3 sceneCentre{0.0}; ///< the framed box's centre: the shadow map looks at it
+
+    Program surface, depth, gridProgram, overlay;
+    VertexArray meshArray, emptyArray, lineArray;
+    GLuint lineBuffer = 0; ///< Overlays::pairLines, re-specified per frame (deleted with the renderer)
+    ~Impl() {
+        if (lineBuffer != 0) glDeleteBuffers(1, &lineBuffer);
+    }
     gl::Buffer styleBuffer;
     gl::Buffer nodeFaceOffsets, nodeFaceList; ///< smooth shading: each node's faces (surface.vert)
     Renderbuffer colour, depthBuffer, resolvedColour;
     Framebuffer target, resolve, shadowTarget;
     Texture shadowMap;
     glm::dmat4 lightViewProjection{1.0};
+
+    void applyView();
+    void drawInto(const Engine& engine, std::span<const std::array<std::uint32_t, 2>> highlightedPairs,
+                  const DrawTarget& into, const Overlays& overlays);
 };
 
 SceneRenderer::SceneRenderer(const Engine& engine, const RenderOptions& options)
@@ -352,6 +395,7 @@ SceneRenderer::SceneRenderer(const Engine& engine, const RenderOptions& options)
     m.surface = buildProgram("surface.vert", "surface.frag");
     m.depth = buildProgram("surface.vert", "depth.frag");
     m.gridProgram = buildProgram("grid.vert", "grid.frag");
+    m.overlay = buildProgram("overlay.vert", "overlay.frag");
     m.styleBuffer =
         gl::Buffer("render/faceStyle", m.faceStyle.size() * sizeof(std::uint32_t), m.faceStyle.data());
     // Each node's faces in global face order (CSR), for surface.vert's vertex normals: the
@@ -418,25 +462,7 @@ SceneRenderer::SceneRenderer(const Engine& engine, const RenderOptions& options)
     glReadBuffer(GL_NONE);
     checkComplete("shadow");
 
-    // Lights fixed relative to the camera, so every view is lit alike: the key light from above,
-    // left and in front (it casts the shadows on the grid), a weak fill from the right.
-    const glm::dvec3 toEye = glm::normalize(m.view.eye - m.view.target);
-    const glm::dvec3 worldUp{0.0, 1.0, 0.0};
-    glm::dvec3 right = glm::cross(-toEye, worldUp);
-    right = glm::length(right) > 1e-6 ? glm::normalize(right) : glm::dvec3(1.0, 0.0, 0.0);
-    const glm::dvec3 keyDir = glm::normalize(-0.45 * right + 1.1 * worldUp + 0.45 * toEye);
-    const glm::dvec3 fillDir = glm::normalize(0.7 * right + 0.2 * worldUp + 0.7 * toEye);
-    // The shadow map covers the grid's square seen along the key light.
-    const double reach = m.grid.halfSize * 1.2;
-    const glm::dvec3 centre = framedBox(scene).centre();
-    const glm::dvec3 lightUp = std::abs(keyDir.y) > 0.99 ? glm::dvec3(0.0, 0.0, 1.0) : worldUp;
-    m.lightViewProjection = glm::ortho(-reach, reach, -reach, reach, 0.0, 4.0 * reach) *
-                            glm::lookAt(centre + keyDir * (2.0 * reach), centre, lightUp);
-    const glm::dmat4 bias =
-        glm::translate(glm::dmat4(1.0), glm::dvec3(0.5)) * glm::scale(glm::dmat4(1.0), glm::dvec3(0.5));
-    const glm::dmat4 shadowMatrix = bias * m.lightViewProjection;
-    const double texel = 1.0 / kShadowMapSize;
-
+    m.sceneCentre = framedBox(scene).centre();
     std::array<float, 3 * kPalette.size()> palette{};
     for (std::size_t i = 0; i < kPalette.size(); ++i)
         for (int c = 0; c < 3; ++c) palette[3 * i + static_cast<std::size_t>(c)] = kPalette[i][c];
@@ -444,26 +470,51 @@ SceneRenderer::SceneRenderer(const Engine& engine, const RenderOptions& options)
                         static_cast<GLsizei>(kPalette.size()), palette.data());
     setVec3(m.surface, "u_highlight", glm::dvec3(kHighlight));
     setVec3(m.surface, "u_backTint", glm::dvec3(kBackTint));
-    glProgramUniform1ui(m.surface.name(), location(m.surface, "u_smooth"), m.options.smooth ? 1u : 0u);
     glProgramUniform1ui(m.depth.name(), location(m.depth, "u_smooth"), 0u);
-    setVec3(m.surface, "u_eye", m.view.eye);
-    setVec3(m.surface, "u_keyDir", keyDir);
-    setVec3(m.surface, "u_fillDir", fillDir);
-    setMat4(m.surface, "u_viewProjection", m.view.viewProjection());
-    setMat4(m.surface, "u_shadowMatrix", shadowMatrix);
-    setFloat(m.surface, "u_shadowTexel", texel);
-    setFloat(m.surface, "u_normalOffset", 2.0 * reach * texel * 1.5);
     glProgramUniform1i(m.surface.name(), location(m.surface, "u_shadowMap"), static_cast<GLint>(kShadowUnit));
-    setMat4(m.depth, "u_viewProjection", m.lightViewProjection);
-    setMat4(m.gridProgram, "u_viewProjection", m.view.viewProjection());
     setVec3(m.gridProgram, "u_centre", m.grid.centre);
     setFloat(m.gridProgram, "u_halfSize", m.grid.halfSize);
     setFloat(m.gridProgram, "u_spacing", m.grid.spacing);
     setVec3(m.gridProgram, "u_background", glm::dvec3(kBackground));
-    setMat4(m.gridProgram, "u_shadowMatrix", shadowMatrix);
-    setFloat(m.gridProgram, "u_shadowTexel", texel);
     glProgramUniform1i(m.gridProgram.name(), location(m.gridProgram, "u_shadowMap"),
                        static_cast<GLint>(kShadowUnit));
+    m.applyView();
+}
+
+/// The uniforms that follow the view: the camera's matrix and eye, and the lights, which are fixed
+/// relative to the camera so every view is lit alike (with them the shadow map's direction).
+void SceneRenderer::Impl::applyView() {
+    glProgramUniform1ui(surface.name(), location(surface, "u_smooth"), options.smooth ? 1u : 0u);
+    // The key light from above,
+    // left and in front (it casts the shadows on the grid), a weak fill from the right.
+    const glm::dvec3 toEye = glm::normalize(view.eye - view.target);
+    const glm::dvec3 worldUp{0.0, 1.0, 0.0};
+    glm::dvec3 right = glm::cross(-toEye, worldUp);
+    right = glm::length(right) > 1e-6 ? glm::normalize(right) : glm::dvec3(1.0, 0.0, 0.0);
+    const glm::dvec3 keyDir = glm::normalize(-0.45 * right + 1.1 * worldUp + 0.45 * toEye);
+    const glm::dvec3 fillDir = glm::normalize(0.7 * right + 0.2 * worldUp + 0.7 * toEye);
+    // The shadow map covers the grid's square seen along the key light.
+    const double reach = grid.halfSize * 1.2;
+    const glm::dvec3 centre = sceneCentre;
+    const glm::dvec3 lightUp = std::abs(keyDir.y) > 0.99 ? glm::dvec3(0.0, 0.0, 1.0) : worldUp;
+    lightViewProjection = glm::ortho(-reach, reach, -reach, reach, 0.0, 4.0 * reach) *
+                          glm::lookAt(centre + keyDir * (2.0 * reach), centre, lightUp);
+    const glm::dmat4 bias =
+        glm::translate(glm::dmat4(1.0), glm::dvec3(0.5)) * glm::scale(glm::dmat4(1.0), glm::dvec3(0.5));
+    const glm::dmat4 shadowMatrix = bias * lightViewProjection;
+    const double texel = 1.0 / kShadowMapSize;
+
+    setVec3(surface, "u_eye", view.eye);
+    setVec3(surface, "u_keyDir", keyDir);
+    setVec3(surface, "u_fillDir", fillDir);
+    setMat4(surface, "u_viewProjection", view.viewProjection());
+    setMat4(surface, "u_shadowMatrix", shadowMatrix);
+    setFloat(surface, "u_shadowTexel", texel);
+    setFloat(surface, "u_normalOffset", 2.0 * reach * texel * 1.5);
+    setMat4(depth, "u_viewProjection", lightViewProjection);
+    setMat4(gridProgram, "u_viewProjection", view.viewProjection());
+    setMat4(gridProgram, "u_shadowMatrix", shadowMatrix);
+    setFloat(gridProgram, "u_shadowTexel", texel);
 }
 
 SceneRenderer::~SceneRenderer() = default;
@@ -483,72 +534,9 @@ Image SceneRenderer::renderFrame(const Engine& engine) {
 Image SceneRenderer::renderFrame(const Engine& engine,
                                  std::span<const std::array<std::uint32_t, 2>> highlightedPairs) {
     Impl& m = *m_impl;
-    if (engine.nodeCount() != m.nodeCount || engine.faceCount() != m.faceCount)
-        throw Error("SceneRenderer::renderFrame: not the engine the renderer was made for");
-    m.faceStyle = m.faceObject;
-    for (const auto& pair : highlightedPairs)
-        for (std::uint32_t f : pair)
-            if (f < m.faceCount) m.faceStyle[f] |= kHighlightBit;
-    m.highlighted = static_cast<std::size_t>(std::count_if(
-        m.faceStyle.begin(), m.faceStyle.end(), [](std::uint32_t s) { return (s & kHighlightBit) != 0; }));
-
     const SavedGlState saved(kShadowUnit);
     gl::DebugGroup group("glcollide::render::SceneRenderer::renderFrame");
-    m.styleBuffer.upload(0, m.faceStyle.size() * sizeof(std::uint32_t), m.faceStyle.data());
-    // step() already issues this barrier; a caller who changed positions otherwise may not have.
-    glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT);
-
-    for (GLenum cap :
-         {GL_BLEND, GL_CULL_FACE, GL_SCISSOR_TEST, GL_STENCIL_TEST, GL_RASTERIZER_DISCARD,
-          GL_SAMPLE_ALPHA_TO_COVERAGE, GL_PRIMITIVE_RESTART, GL_FRAMEBUFFER_SRGB, GL_DEPTH_CLAMP, GL_DITHER})
-        glDisable(cap);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-    glClearDepth(1.0);
-
-    glBindVertexArray(m.meshArray.name());
-    glBindVertexBuffer(0, engine.positionBuffer(), 0, 16);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, engine.faceIndexBuffer());
-    const auto indexCount = static_cast<GLsizei>(3 * m.faceCount);
-    // Smooth shading reads the same two buffers as storage, and the node -> face incidence.
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionsBinding, engine.positionBuffer());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFacesBinding, engine.faceIndexBuffer());
-    m.nodeFaceOffsets.bindStorage(kNodeFaceOffsetsBinding);
-    m.nodeFaceList.bindStorage(kNodeFaceListBinding);
-
-    // Shadow map: depth seen from the key light, pushed back a little against self-shadowing.
-    glBindFramebuffer(GL_FRAMEBUFFER, m.shadowTarget.name());
-    glViewport(0, 0, kShadowMapSize, kShadowMapSize);
-    glClear(GL_DEPTH_BUFFER_BIT);
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(2.0f, 4.0f);
-    glUseProgram(m.depth.name());
-    if (indexCount > 0) glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
-    glDisable(GL_POLYGON_OFFSET_FILL);
-
-    glBindFramebuffer(GL_FRAMEBUFFER, m.target.name());
-    glViewport(0, 0, m.options.width, m.options.height);
-    if (m.samples > 0) glEnable(GL_MULTISAMPLE);
-    glClearColor(kBackground.r, kBackground.g, kBackground.b, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glActiveTexture(GL_TEXTURE0 + kShadowUnit);
-    glBindTexture(GL_TEXTURE_2D, m.shadowMap.name());
-    glBindSampler(kShadowUnit, 0);
-    m.styleBuffer.bindStorage(kStyleBinding);
-    glUseProgram(m.surface.name());
-    glFrontFace(GL_CCW); // faces wind counter-clockwise seen from outside: the front
-    if (indexCount > 0) glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
-
-    // The grid after the surfaces: hidden where they are in front, and pushed back so faces
-    // lying on the ground win.
-    glBindVertexArray(m.emptyArray.name());
-    glUseProgram(m.gridProgram.name());
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(1.0f, 2.0f);
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    m.drawInto(engine, highlightedPairs, {m.target.name(), m.options.width, m.options.height}, {});
 
     GLuint readFrom = m.target.name();
     if (m.samples > 0) {
@@ -559,22 +547,161 @@ Image SceneRenderer::renderFrame(const Engine& engine,
         readFrom = m.resolve.name();
     }
     glBindFramebuffer(GL_READ_FRAMEBUFFER, readFrom);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
-    glPixelStorei(GL_PACK_SKIP_ROWS, 0);
-    glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
-    Image image;
-    image.width = m.options.width;
-    image.height = m.options.height;
-    const std::size_t row = static_cast<std::size_t>(image.width) * 4;
-    std::vector<std::uint8_t> bottomUp(row * static_cast<std::size_t>(image.height));
-    glReadPixels(0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, bottomUp.data());
-    image.rgba.resize(bottomUp.size());
-    for (std::size_t y = 0; y < static_cast<std::size_t>(image.height); ++y)
-        std::copy_n(bottomUp.data() + (static_cast<std::size_t>(image.height) - 1 - y) * row, row,
-                    image.rgba.data() + y * row);
-    return image;
+    return readPixels(m.options.width, m.options.height);
+}
+
+void SceneRenderer::draw(const Engine& engine, std::span<const std::array<std::uint32_t, 2>> highlightedPairs,
+                         const DrawTarget& target, const Overlays& overlays) {
+    if (target.width < 1 || target.height < 1) return; // a minimised window: nothing to draw
+    const SavedGlState saved(kShadowUnit);
+    gl::DebugGroup group("glcollide::render::SceneRenderer::draw");
+    m_impl->drawInto(engine, highlightedPairs, target, overlays);
+}
+
+void SceneRenderer::setView(const View& view) {
+    m_impl->view = view;
+    m_impl->applyView();
+}
+
+void SceneRenderer::setSmooth(bool smooth) {
+    m_impl->options.smooth = smooth;
+    glProgramUniform1ui(m_impl->surface.name(), location(m_impl->surface, "u_smooth"), smooth ? 1u : 0u);
+}
+
+/// Draws into `target` with the state already saved by the caller (renderFrame, draw).
+void SceneRenderer::Impl::drawInto(const Engine& engine,
+                                   std::span<const std::array<std::uint32_t, 2>> highlightedPairs,
+                                   const DrawTarget& into, const Overlays& overlays) {
+    if (engine.nodeCount() != nodeCount || engine.faceCount() != faceCount)
+        throw Error("SceneRenderer: not the engine the renderer was made for");
+    faceStyle = faceObject;
+    for (const auto& pair : highlightedPairs)
+        for (std::uint32_t f : pair)
+            if (f < faceCount) faceStyle[f] |= kHighlightBit;
+    highlighted = static_cast<std::size_t>(std::count_if(
+        faceStyle.begin(), faceStyle.end(), [](std::uint32_t s) { return (s & kHighlightBit) != 0; }));
+
+    styleBuffer.upload(0, faceStyle.size() * sizeof(std::uint32_t), faceStyle.data());
+    // step() already issues this barrier; a caller who changed positions otherwise may not have.
+    glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT);
+
+    for (GLenum cap : {GL_BLEND, GL_CULL_FACE, GL_SCISSOR_TEST, GL_STENCIL_TEST, GL_RASTERIZER_DISCARD,
+                       GL_SAMPLE_ALPHA_TO_COVERAGE, GL_PRIMITIVE_RESTART, GL_FRAMEBUFFER_SRGB, GL_DEPTH_CLAMP,
+                       GL_DITHER, GL_PROGRAM_POINT_SIZE})
+        glDisable(cap);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glClearDepth(1.0);
+
+    glBindVertexArray(meshArray.name());
+    glBindVertexBuffer(0, engine.positionBuffer(), 0, 16);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, engine.faceIndexBuffer());
+    const auto indexCount = static_cast<GLsizei>(3 * faceCount);
+    // Smooth shading reads the same two buffers as storage, and the node -> face incidence.
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionsBinding, engine.positionBuffer());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFacesBinding, engine.faceIndexBuffer());
+    nodeFaceOffsets.bindStorage(kNodeFaceOffsetsBinding);
+    nodeFaceList.bindStorage(kNodeFaceListBinding);
+
+    // Shadow map: depth seen from the key light, pushed back a little against self-shadowing.
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowTarget.name());
+    glViewport(0, 0, kShadowMapSize, kShadowMapSize);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(2.0f, 4.0f);
+    glUseProgram(depth.name());
+    if (indexCount > 0) glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, into.framebuffer);
+    glViewport(0, 0, into.width, into.height);
+    if (samples > 0 || into.framebuffer == 0) glEnable(GL_MULTISAMPLE); // a window's own samples count too
+    glClearColor(kBackground.r, kBackground.g, kBackground.b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glActiveTexture(GL_TEXTURE0 + kShadowUnit);
+    glBindTexture(GL_TEXTURE_2D, shadowMap.name());
+    glBindSampler(kShadowUnit, 0);
+    styleBuffer.bindStorage(kStyleBinding);
+    glUseProgram(surface.name());
+    glFrontFace(GL_CCW); // faces wind counter-clockwise seen from outside: the front
+    if (indexCount > 0) glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
+
+    // The grid after the surfaces: hidden where they are in front, and pushed back so faces
+    // lying on the ground win.
+    glBindVertexArray(emptyArray.name());
+    glUseProgram(gridProgram.name());
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 2.0f);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glBindVertexArray(meshArray.name());
+
+    // Overlays over the surfaces, in one colour each: the wireframe's lines are pulled towards the
+    // eye by a polygon offset and pass LEQUAL, so their own faces do not bury them.
+    const glm::dmat4 viewProjection = view.viewProjection();
+    setMat4(overlay, "u_viewProjection", viewProjection);
+    glUseProgram(overlay.name());
+    if (overlays.wireframe && indexCount > 0) {
+        glProgramUniform1ui(overlay.name(), location(overlay, "u_mode"), 0u);
+        // Mid grey: seen on a dark face in shade and on a pale back side alike.
+        setVec3(overlay, "u_colour", glm::dvec3(0.42));
+        glDepthFunc(GL_LEQUAL);
+        glEnable(GL_POLYGON_OFFSET_LINE);
+        glPolygonOffset(-1.0f, -1.0f);
+        glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+        glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
+        glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+        glDisable(GL_POLYGON_OFFSET_LINE);
+        glDepthFunc(GL_LESS);
+    }
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    if (overlays.pinnedNodes && nodeCount > 0) {
+        glProgramUniform1ui(overlay.name(), location(overlay, "u_mode"), 1u);
+        setVec3(overlay, "u_colour", glm::dvec3(0.05, 0.05, 0.05));
+        setFloat(overlay, "u_pointSize", 7.0);
+        glDisable(GL_DEPTH_TEST); // a pin stays visible behind its cloth
+        glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(nodeCount));
+        glEnable(GL_DEPTH_TEST);
+    }
+    if (!overlays.pairLines.empty()) {
+        if (lineBuffer == 0) {
+            glGenBuffers(1, &lineBuffer);
+            GLuint vao = 0;
+            glGenVertexArrays(1, &vao);
+            lineArray = VertexArray(vao);
+            glBindVertexArray(vao);
+            glBindBuffer(GL_ARRAY_BUFFER, lineBuffer);
+            gl::labelObject(GL_BUFFER, lineBuffer, "glcollide/render/pairLines");
+            glEnableVertexAttribArray(0);
+            glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr); // w defaults to 1
+        }
+        glBindVertexArray(lineArray.name());
+        glBindBuffer(GL_ARRAY_BUFFER, lineBuffer);
+        glBufferData(GL_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>(overlays.pairLines.size() * sizeof(overlays.pairLines[0])),
+                     overlays.pairLines.data(), GL_STREAM_DRAW);
+        glProgramUniform1ui(overlay.name(), location(overlay, "u_mode"), 0u);
+        setVec3(overlay, "u_colour", glm::dvec3(kPairLine));
+        glDisable(GL_DEPTH_TEST); // pairs between touching faces lie inside or behind the surfaces
+        glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(2 * overlays.pairLines.size()));
+        glEnable(GL_DEPTH_TEST);
+        glBindVertexArray(meshArray.name());
+    }
+    if (overlays.segment) {
+        glBindVertexArray(emptyArray.name());
+        glProgramUniform1ui(overlay.name(), location(overlay, "u_mode"), 2u);
+        setVec3(overlay, "u_a", (*overlays.segment)[0]);
+        setVec3(overlay, "u_b", (*overlays.segment)[1]);
+        setVec3(overlay, "u_colour", glm::dvec3(0.85, 0.1, 0.6));
+        setFloat(overlay, "u_pointSize", 9.0);
+        glDisable(GL_DEPTH_TEST); // the pull's spring is always seen
+        glDrawArrays(GL_LINES, 0, 2);
+        glDrawArrays(GL_POINTS, 0, 2);
+        glEnable(GL_DEPTH_TEST);
+    }
 }
 
 const View& SceneRenderer::view() const {
@@ -604,6 +731,10 @@ glm::vec3 SceneRenderer::highlightColour() {
 }
 glm::vec3 SceneRenderer::backTint() {
     return kBackTint;
+}
+
+glm::vec3 SceneRenderer::pairLineColour() {
+    return kPairLine;
 }
 
 glm::vec3 SceneRenderer::backgroundColour() {

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -70,6 +71,28 @@ struct Grid {
 /// margin. `aspect` = width / height.
 View sceneView(const Scene& scene, double aspect);
 
+/// A perspective view from `eye` towards `target` with its matrices; `aspect` = width / height.
+View lookAtView(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up, double fovDeg,
+                double nearPlane, double farPlane, double aspect);
+
+/// Where SceneRenderer::draw draws: a framebuffer (0: the window's own) and the viewport's size,
+/// from its lower left corner.
+struct DrawTarget {
+    std::uint32_t framebuffer = 0;
+    int width = 0;
+    int height = 0;
+};
+
+/// What SceneRenderer::draw adds over the shaded surfaces (`glcollide view`'s toggles).
+struct Overlays {
+    bool wireframe = false;   ///< every face's edges, dark
+    bool pinnedNodes = false; ///< nodes with inverse mass 0 as points
+    /// A segment between two world points (the viewer's pull: from the node to the cursor).
+    std::optional<std::array<glm::dvec3, 2>> segment;
+    /// Segments drawn in one colour (the viewer's candidate face pairs: centroid to centroid).
+    std::vector<std::array<glm::vec3, 2>> pairLines;
+};
+
 /// The grid under a scene: at the ground height when the ground effect is on, else just below the
 /// lowest initial node; centred under the initial bounding box and a few times its size.
 Grid sceneGrid(const Scene& scene);
@@ -93,6 +116,17 @@ class SceneRenderer {
     /// ignored). Restores the GL state.
     Image renderFrame(const Engine& engine, std::span<const std::array<std::uint32_t, 2>> highlightedPairs);
 
+    /// Draws the engine's current positions into `target` (cleared first) with these faces
+    /// highlighted and the overlays; no readback. Restores the GL state. The view is the last
+    /// setView()'s (at first the scene's, sceneView()).
+    void draw(const Engine& engine, std::span<const std::array<std::uint32_t, 2>> highlightedPairs,
+              const DrawTarget& target, const Overlays& overlays = {});
+    /// The view the next frames are drawn from; the lights turn with it (they are fixed relative
+    /// to the camera). The grid and the shadow map's square stay the scene's.
+    void setView(const View& view);
+    /// Smooth (per-vertex normals) or flat shading from the next frame on.
+    void setSmooth(bool smooth);
+
     [[nodiscard]] const View& view() const;
     [[nodiscard]] const Grid& grid() const;
     [[nodiscard]] int width() const;
@@ -107,6 +141,8 @@ class SceneRenderer {
     static glm::vec3 highlightColour();
     /// What the back side of a face (winding clockwise as seen) is tinted towards, halfway.
     static glm::vec3 backTint();
+    /// Colour of Overlays::pairLines.
+    static glm::vec3 pairLineColour();
     /// Colour where nothing is drawn.
     static glm::vec3 backgroundColour();
 
@@ -114,6 +150,10 @@ class SceneRenderer {
     struct Impl;
     std::unique_ptr<Impl> m_impl;
 };
+
+/// Reads the bound GL_READ_FRAMEBUFFER's read buffer (lower left width x height) into an image,
+/// rows turned top to bottom. Changes the pixel-pack state (the caller saves it if it must).
+Image readPixels(int width, int height);
 
 /// Writes an image as an 8-bit RGB PNG (alpha dropped: frames are opaque). Throws Error naming the
 /// path when it cannot be written.

@@ -16,6 +16,7 @@
 #define STBI_ONLY_PNG
 #include <stb/stb_image.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -445,6 +446,87 @@ TEST(RenderGl, LeavesTheHostsGlStateAsItWas) {
     glDeleteVertexArrays(1, &hostVao);
     glDeleteFramebuffers(1, &hostFbo);
     glDeleteRenderbuffers(1, &hostRb);
+}
+
+// glcollide view draws through SceneRenderer::draw into the window's framebuffer, with overlays and
+// its own view: into a host's framebuffer it draws there (the picture changes with the view) and
+// leaves the state the overlays touch (polygon mode, line offset, point size from the shader) as it was.
+TEST(RenderGl, DrawsIntoAHostsFramebufferWithOverlaysAndLeavesItsState) {
+    Engine engine(twoBoxes(0.25, false));
+    SceneRenderer renderer(engine, {1, 1, 0});
+    constexpr int kWidth = 64, kHeight = 48;
+    GLuint fbo = 0;
+    std::array<GLuint, 2> rb{};
+    glGenRenderbuffers(2, rb.data());
+    glBindRenderbuffer(GL_RENDERBUFFER, rb[0]);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, kWidth, kHeight);
+    glBindRenderbuffer(GL_RENDERBUFFER, rb[1]);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, kWidth, kHeight);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
+    ASSERT_EQ(glCheckFramebufferStatus(GL_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_POINT); // a host's unusual state
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glDisable(GL_POLYGON_OFFSET_LINE);
+
+    render::Overlays overlays;
+    overlays.wireframe = true;
+    overlays.pinnedNodes = true;
+    overlays.segment = {{glm::dvec3(0.0), glm::dvec3(0.3, 0.3, 0.0)}};
+    overlays.pairLines = {{glm::vec3(-0.3f, 0.2f, 0.0f), glm::vec3(0.3f, 0.2f, 0.0f)}};
+    const auto drawAndRead = [&] {
+        // Magenta first: a pixel left magenta was not drawn (draw() clears its whole target).
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glClearColor(1.0f, 0.0f, 1.0f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        renderer.draw(engine, {}, {fbo, kWidth, kHeight}, overlays);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+        const Image image = render::readPixels(kWidth, kHeight);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        return image;
+    };
+    const Image first = drawAndRead();
+    std::size_t magenta = 0, blue = 0, green = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const auto p = first.pixel(x, y);
+            magenta += p[0] == 255 && p[1] == 0 && p[2] == 255;
+            // The first box's blue (palette 0) lit or in shade has blue above red by about 90 of
+            // 255; the grid and the background are neutral grey (r = g = b).
+            blue += p[2] > p[0] + 15;
+            // The pair lines' green (0, 191, 51), drawn unlit over everything: exact.
+            green += p[0] == 0 && p[1] == 191 && p[2] == 51;
+        }
+    EXPECT_EQ(magenta, 0u);
+    EXPECT_GT(blue, 0u);
+    EXPECT_GT(green, 0u);
+    EXPECT_EQ(glm::vec3(0.0f, 191.0f, 51.0f), glm::round(SceneRenderer::pairLineColour() * 255.0f));
+
+    GLint mode[2] = {};
+    glGetIntegerv(GL_POLYGON_MODE, mode);
+    EXPECT_EQ(mode[0], GL_POINT);
+    EXPECT_TRUE(glIsEnabled(GL_PROGRAM_POINT_SIZE));
+    EXPECT_FALSE(glIsEnabled(GL_POLYGON_OFFSET_LINE));
+    GLint drawFbo = -1;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFbo);
+    EXPECT_EQ(drawFbo, 0);
+
+    // Another view, another picture.
+    const render::View v = renderer.view();
+    renderer.setView(render::lookAtView(v.target + 1.5 * (v.eye - v.target), v.target, v.up, v.fovDeg,
+                                        v.nearPlane, 2.0 * v.farPlane, double(kWidth) / kHeight));
+    EXPECT_NE(drawAndRead().rgba, first.rgba);
+
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glDisable(GL_PROGRAM_POINT_SIZE);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(2, rb.data());
 }
 
 } // namespace
