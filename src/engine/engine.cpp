@@ -659,7 +659,15 @@ void Engine::step() {
         // The host's pull (setPull): its own pass before each substep, only while it is set.
         const double pullStep = d.frameStep ? d.scene.time.dt : d.substeps.substepLength;
         for (int s = 0; s < calls; ++s) {
-            if (d.pull) d.pullPass->dispatch(d.buffers, *d.pull, pullStep);
+            if (d.pull) {
+                d.pullPass->dispatch(d.buffers, *d.pull, pullStep);
+                // The pull does work on the scene, as a host's moves do: the energy guard's start
+                // is the state after its kick, not a rise to take back out.
+                if (d.energyGuard) {
+                    const passes::ContactInputs inputs = d.contactInputs();
+                    d.energyGuard->record(d.buffers, &inputs);
+                }
+            }
             d.substep(s, s + 1 == calls);
         }
     }
