@@ -287,9 +287,10 @@ int runCommand(const RunOptions& options) {
     if (engine.lastStep().solver.implicit) {
         const double substepsRun = static_cast<double>(frames) * engine.lastStep().substeps;
         std::cout << "solver: " << (substepsRun > 0 ? solverTotals.totalIterations / substepsRun : 0.0)
-                  << " iterations per substep on average, at most " << solverTotals.maxIterations
-                  << "; largest final relative residual " << solverTotals.maxRelativeResidual << "; "
-                  << solverTotals.unconvergedSubsteps << " substeps stopped at the cap\n";
+                  << " iterations per substep on average (all its Newton steps), at most "
+                  << solverTotals.maxIterations << " in one solve; largest final relative residual "
+                  << solverTotals.maxRelativeResidual << "; " << solverTotals.unconvergedSubsteps
+                  << " solves stopped at the cap\n";
     }
     if (engine.lastStep().collisions)
         std::cout << "collisions: at most " << maxContacts << " contacts and " << maxIntersecting
