@@ -265,6 +265,7 @@ TEST(LayoutGl, WorkGroupSizesMatchTheSharedConstants) {
         {"radix_scatter", {GLC_SORT_BLOCK, 1, 1}},
         {"radix_scan", {GLC_SCAN_GROUP, 1, 1}},
         {"frame_step", {GLC_FRAME_STEP_GROUP, 1, 1}},
+        {"node_pull", {1, 1, 1}}, // one node: Engine::setPull
     };
     std::size_t checked = 0;
     for (const gl::ComputeProgram& program : allPrograms()) {
