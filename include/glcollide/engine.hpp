@@ -269,15 +269,15 @@ struct BroadPhaseBox {
 /// Not thread-safe; every call needs the construction context (or a sharing one) current.
 ///
 /// GL state contract (docs/embedding.md, "GL state contract"): every call that issues GL commands (the
-/// constructor, step(), stepSubstep(), detectCollisions(), the read*() functions, energy(), the destructor
-/// and move assignment) leaves the host's state as it found it: the current program, the generic and indexed
-/// (0..37, with start and size) GL_SHADER_STORAGE_BUFFER bindings, GL_DISPATCH_INDIRECT_BUFFER,
-/// GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER and GL_QUERY_BUFFER are saved and restored; vertex
-/// arrays, GL_ARRAY_BUFFER, GL_ELEMENT_ARRAY_BUFFER, framebuffers, textures and capabilities are
-/// never touched; no query is left active (timing uses glQueryCounter). Exceptions: a pending GL
-/// error flag may be consumed (buffer allocation checks glGetError for GL_OUT_OF_MEMORY), and the
-/// debug callback is changed only when EngineOptions::debugCallback asks for it. Any number of
-/// engines may share a context; they share no state.
+/// constructor, step(), stepSubstep(), detectCollisions(), the read*() functions, broadPhaseDepth(),
+/// energy(), the destructor and move assignment) leaves the host's state as it found it: the current program,
+/// the generic and indexed (0..37, with start and size) GL_SHADER_STORAGE_BUFFER bindings,
+/// GL_DISPATCH_INDIRECT_BUFFER, GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER and GL_QUERY_BUFFER are saved and
+/// restored; vertex arrays, GL_ARRAY_BUFFER, GL_ELEMENT_ARRAY_BUFFER, framebuffers, textures and capabilities
+/// are never touched; no query is left active (timing uses glQueryCounter). Exceptions: a pending GL error
+/// flag may be consumed (buffer allocation checks glGetError for GL_OUT_OF_MEMORY), and the debug callback is
+/// changed only when EngineOptions::debugCallback asks for it. Any number of engines may share a context;
+/// they share no state.
 class Engine {
   public:
     /// Validates the scene, composes the pass list from its effects, allocates the buffers those
