@@ -68,8 +68,9 @@ TEST(FeatureContactsGl, FeaturePairsAreTheTwinsExpansionOfTheCandidates) {
 }
 
 TEST(FeatureContactsGl, AVertexRestingOnATriangleIsExactlyOneVertexFaceContact) {
-    // Triangle A: (0,0,0), (1,0,0), (0,0,1), facing up... either way (an open surface: both sides
-    // count). Triangle B: its first corner 4 mm above A's point (0.25, 0, 0.25), the others 0.5 m up.
+    // Triangle A: (0,0,0), (1,0,0), (0,0,1) in the plane y = 0 (an open surface: both of its sides
+    // take contacts). Triangle B: its first corner 4 mm above A's point (0.25, 0, 0.25), the others
+    // 0.5 m up, so no other vertex, and no edge, comes within the 10 mm of the other triangle.
     const std::filesystem::path dir =
         std::filesystem::temp_directory_path() / ("glcollide-contact-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
