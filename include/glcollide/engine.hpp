@@ -177,7 +177,10 @@ struct SolverStats {
 
 struct StepStats {
     std::uint64_t frame = 0; ///< frames completed, this one included
-    double time = 0.0;       ///< s of simulated time after this frame
+    double time = 0.0;       ///< s of simulated time after this frame (or substep: stepSubstep())
+    /// Substeps done of the frame in progress (Engine::stepSubstep): 0 at a frame boundary (after
+    /// step(), or after the stepSubstep() that completed a frame), else 1 .. substeps-1.
+    int substepInFrame = 0;
     int substeps = 0;
     double wallMilliseconds = 0.0; ///< CPU wall time of step(), including the wait for timings
     std::vector<PassTiming> passes;
@@ -232,19 +235,49 @@ struct NodePull {
     double damping = 0.0;         ///< N·s/m, >= 0: against the node's own velocity
 };
 
+/// The Representative-Triangle feature pairs of the last collision detection (Engine::readFeaturePairs):
+/// what the contact response tests, each list sorted.
+struct FeaturePairs {
+    /// (global node, global face): a vertex owned by one face of a candidate pair against the other.
+    std::vector<std::array<std::uint32_t, 2>> vertexFace;
+    /// (3·fa + e, 3·fb + g), global faces: owned edge e of face fa against owned edge g of fb; edge e
+    /// runs from the face's corner e to corner (e + 1) mod 3 (faceIndexBuffer() order).
+    std::vector<std::array<std::uint32_t, 2>> edgeEdge;
+};
+
+/// One feature contact (Engine::readContacts): a feature pair within the contact thickness by the
+/// response's rules (shaders/common/contact_pair.glsl).
+struct FeatureContact {
+    bool edgeEdge = false; ///< false: a vertex against a face
+    /// Global nodes. Vertex-face: the vertex, then the face's three corners; edge-edge: edge a's two
+    /// ends, then edge b's.
+    std::array<std::uint32_t, 4> nodes{};
+    /// Side A's weights are >= 0 and sum to 1, side B's are <= 0 and sum to −1: the closest points
+    /// are pA = Σ max(wᵢ, 0)·xᵢ and pB = Σ max(−wᵢ, 0)·xᵢ.
+    std::array<double, 4> weights{};
+    glm::dvec3 normal{0.0}; ///< unit, from side B to side A
+    double depth = 0.0;     ///< m: how far inside the contact thickness (thickness − distance)
+};
+
+/// An axis-aligned box of the broad phase (Engine::readBroadPhaseBoxes), m.
+struct BroadPhaseBox {
+    glm::dvec3 lo{0.0};
+    glm::dvec3 hi{0.0};
+};
+
 /// Simulates a scene on the current GL ≥ 4.3 context: a HeadlessContext or the caller's own.
 /// Not thread-safe; every call needs the construction context (or a sharing one) current.
 ///
 /// GL state contract (docs/embedding.md, "GL state contract"): every call that issues GL commands (the
-/// constructor, step(), detectCollisions(), the read*() functions, energy(), the destructor and
-/// move assignment) leaves the host's state as it found it: the current program, the generic and
-/// indexed (0..37, with start and size) GL_SHADER_STORAGE_BUFFER bindings, GL_DISPATCH_INDIRECT_BUFFER,
-/// GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER and GL_QUERY_BUFFER are saved and restored; vertex
-/// arrays, GL_ARRAY_BUFFER, GL_ELEMENT_ARRAY_BUFFER, framebuffers, textures and capabilities are
-/// never touched; no query is left active (timing uses glQueryCounter). Exceptions: a pending GL
-/// error flag may be consumed (buffer allocation checks glGetError for GL_OUT_OF_MEMORY), and the
-/// debug callback is changed only when EngineOptions::debugCallback asks for it. Any number of
-/// engines may share a context; they share no state.
+/// constructor, step(), stepSubstep(), detectCollisions(), the read*() functions, broadPhaseDepth(),
+/// energy(), the destructor and move assignment) leaves the host's state as it found it: the current program,
+/// the generic and indexed (0..37, with start and size) GL_SHADER_STORAGE_BUFFER bindings,
+/// GL_DISPATCH_INDIRECT_BUFFER, GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER and GL_QUERY_BUFFER are saved and
+/// restored; vertex arrays, GL_ARRAY_BUFFER, GL_ELEMENT_ARRAY_BUFFER, framebuffers, textures and capabilities
+/// are never touched; no query is left active (timing uses glQueryCounter). Exceptions: a pending GL error
+/// flag may be consumed (buffer allocation checks glGetError for GL_OUT_OF_MEMORY), and the debug callback is
+/// changed only when EngineOptions::debugCallback asks for it. Any number of engines may share a context;
+/// they share no state.
 class Engine {
   public:
     /// Validates the scene, composes the pass list from its effects, allocates the buffers those
@@ -255,7 +288,8 @@ class Engine {
     Engine(Engine&&) noexcept;
     Engine& operator=(Engine&&) noexcept;
 
-    /// Advances one frame of Scene::time.dt in `substepInfo().substeps` substeps. Throws only
+    /// Advances one frame of Scene::time.dt in `substepInfo().substeps` substeps (after
+    /// stepSubstep() calls mid-frame: the frame's remaining substeps). Throws only
     /// when a collision pair list must grow beyond what the device can hold (more than
     /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE bytes, or GL out of memory): glcollide::Error names the
     /// list and the limit, rather than dropping pairs. The frame is then incomplete; destroy the
@@ -271,6 +305,24 @@ class Engine {
     /// or texture buffer, glGetBufferSubData, glCopyBufferSubData, mapping, indirect draw) needs the
     /// host's own glMemoryBarrier with that use's bit first.
     void step();
+    /// Advances one substep (length substepInfo().substepLength) of the frame in progress: after
+    /// substepInfo().substeps calls from a frame boundary the state is bit for bit the state one
+    /// step() gives (the same dispatches in the same order). A frame's bookkeeping stays per frame:
+    /// the call that begins a frame does what step() does at a frame's start (clears the frame's
+    /// collision and solver statistics, records the energy guard's start, starts the GPU timers),
+    /// and the call that ends it does what step() does at its end (frame += 1, the finite-state and
+    /// completion checks, the solver statistics, the energy guard's counts, the passes' GPU times
+    /// and the wall time, summed over the frame's calls). In between, lastStep() has frame
+    /// unchanged, substepInFrame the substeps done, time = frame·dt + substepInFrame·h, and the
+    /// collision counts of the substeps done so far (contacts: this substep's). Radial culling's
+    /// check that the host moved no node runs at every call (it changes no state; its dispatches
+    /// count in dispatchesPerSubstep). The energy guard's
+    /// start is recorded at the frame's start and after each pull, as in step(): a node the host
+    /// moves by writing positionBuffer() between two substeps of a frame is a rise the guard may
+    /// take back out. step() called mid-frame finishes the frame in progress (its remaining
+    /// substeps). Barriers and GL state: as step(). Throws Error under EngineOptions::frameStep
+    /// (a frame is one dispatch there: it has no substep to stop after), and as step() does.
+    void stepSubstep();
     [[nodiscard]] const StepStats& lastStep() const;
     /// Sets (or, with nullopt, removes) the host's pull on one node, applied from the next step()
     /// on, at the start of every substep, before the scene's passes: v += h·w·f with f the pull's
@@ -324,6 +376,30 @@ class Engine {
     /// before the last substep's NodeUpdate). Returns the counts (contacts 0); all zero without the
     /// collision effects. Waits for the GPU (one counter readback).
     CollisionStats detectCollisions();
+    /// The feature pairs of the last detection (the last substep's, or detectCollisions()'): the
+    /// device's lists, read back and sorted, without the entries only continuous detection tests
+    /// (the response skips them). Throws Error for a scene without collision effects.
+    [[nodiscard]] FeaturePairs readFeaturePairs() const;
+    /// The contacts among readFeaturePairs(), vertex-face first: the response's rules evaluated in
+    /// double precision (the CPU twin, src/cpu/contact_twin.hpp) at the current positions, which
+    /// after detectCollisions() are the positions the pairs were found at (after step(), the pairs
+    /// are the last substep's, found before its node update). Sides are taken from the current
+    /// positions, as energy() does. Throws Error for a scene without collision effects.
+    [[nodiscard]] std::vector<FeatureContact> readContacts() const;
+    /// The broad phase's boxes at tree depth `depth` (0: the root level), as refit by the last
+    /// detection (the last substep's, or detectCollisions()'): the boxes of a cut through the tree,
+    /// so together they hold every face's box (inflated by the contact thickness where the broad
+    /// phase inflates). BVH ("bvh"): the nodes at that depth, and the leaves (one face each) above
+    /// it. Octree ("octree", and the masked broad phase's boxes): per object, the cells of that
+    /// level of its octree, each the union of its leaf boxes (the device stores the leaves, at
+    /// depth broadPhaseDepth()); empty cells are left out. Reads back. Throws Error for a scene
+    /// without collision effects, a broad phase without boxes ("all_pairs"), or a depth outside
+    /// 0 .. broadPhaseDepth().
+    [[nodiscard]] std::vector<BroadPhaseBox> readBroadPhaseBoxes(int depth) const;
+    /// The deepest level readBroadPhaseBoxes() takes: the BVH's depth (its deepest leaf; it can
+    /// change when the tree is rebuilt, so this reads the tree back), the octree's collision.octree_depth.
+    /// Throws as readBroadPhaseBoxes() does for a scene without boxes.
+    [[nodiscard]] int broadPhaseDepth() const;
     /// First global face index of each body.
     [[nodiscard]] std::vector<std::uint32_t> bodyFirstFaces() const;
 

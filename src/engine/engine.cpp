@@ -27,6 +27,7 @@
 #include <glcollide/gl_info.hpp>
 
 #include <epoxy/gl.h>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
@@ -34,6 +35,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -115,6 +117,13 @@ struct Engine::Impl {
     void makePass(engine::Stage stage);
     bool newtonSkipped = false; ///< this substep's Newton steps are skipped: its start intersects
     void substep(int index, bool lastOfFrame);
+    // Frame bookkeeping, shared by step() and stepSubstep().
+    std::uint64_t frameDispatchesBefore = 0;
+    double frameWallMilliseconds = 0.0; ///< summed over the frame's calls
+    void beginFrame();
+    void checkHostMoves();
+    void runSubstep(int s, int calls, bool readLastCounts);
+    void endFrame();
     void checkFrameCompleted();
     void readHealth();
     void readSolverStats();
@@ -125,6 +134,13 @@ struct Engine::Impl {
         double energy = 0.0, magnitude = 0.0;
     };
     [[nodiscard]] ContactEnergy contactEnergy() const;
+    /// The response's contact rules (the CPU twin) on `pairs` at positions x, velocities v, sides from x.
+    [[nodiscard]] std::vector<cpu::ContactGeometry> contactsAt(const std::vector<glm::dvec3>& x,
+                                                               const std::vector<glm::dvec3>& v,
+                                                               const cpu::FeaturePairList& pairs) const;
+    void requireCollisions(const char* call) const;
+    struct BoxTree;
+    [[nodiscard]] BoxTree readBoxTree(const char* call) const;
     template <typename Pass, typename... Args> decltype(auto) run(const Pass& pass, Args&&... args);
 };
 
@@ -633,63 +649,115 @@ void Engine::Impl::readHealth() {
     }
 }
 
+/// A frame's start (step(), or the stepSubstep() that begins a frame).
+void Engine::Impl::beginFrame() {
+    if (options.gpuTiming) timer.beginFrame();
+    stats.collision = {};
+    if (implicitSolve) implicitSolve->resetStatistics();
+    frameDispatchesBefore = gl::dispatchCount();
+    frameWallMilliseconds = 0.0;
+    // The energy guard's start: the host may have moved nodes since the last frame.
+    if (energyGuard) {
+        const passes::ContactInputs inputs = contactInputs();
+        energyGuard->clearFrameCounts();
+        energyGuard->record(buffers, &inputs);
+    }
+}
+
+/// Radial culling's premise against the host: a read-only check, so running it before any
+/// substep (stepSubstep) changes nothing when the host moved no node.
+void Engine::Impl::checkHostMoves() {
+    if (collision && collision->radialCulling() && radialPremise &&
+        collision->radialCulling()->hostMovedNodes(buffers))
+        radialPremise = false; // the host moved nodes: the start is not known to be free
+}
+
+/// Substep `s` of the frame (of `calls` dispatch rounds: 1 under FrameStep), the host's pull first.
+void Engine::Impl::runSubstep(int s, int calls, bool readLastCounts) {
+    // The host's pull (setPull): its own pass before each substep, only while it is set.
+    const double pullStep = frameStep ? scene.time.dt : substeps.substepLength;
+    if (pull) {
+        pullPass->dispatch(buffers, *pull, pullStep);
+        // The pull does work on the scene, as a host's moves do: the energy guard's start
+        // is the state after its kick, not a rise to take back out.
+        if (energyGuard) {
+            const passes::ContactInputs inputs = contactInputs();
+            energyGuard->record(buffers, &inputs);
+        }
+    }
+    substep(s, readLastCounts || s + 1 == calls);
+}
+
+/// A frame's end (step(), or the stepSubstep() that ends a frame).
+void Engine::Impl::endFrame() {
+    if (energyGuard) readEnergyGuard();
+    stats.dispatchesPerSubstep =
+        static_cast<double>(gl::dispatchCount() - frameDispatchesBefore) / substeps.substeps;
+    stats.frame += 1;
+    stats.substepInFrame = 0;
+    stats.time = static_cast<double>(stats.frame) * scene.time.dt;
+    checkFrameCompleted();
+    readHealth();
+    readSolverStats();
+    if (options.gpuTiming) {
+        const std::vector<double> ms = timer.resolveMilliseconds();
+        for (std::size_t p = 0; p < passIds.size(); ++p)
+            stats.passes[p].gpuMilliseconds = ms[passes::passIndex(passIds[p])];
+    }
+}
+
 void Engine::step() {
     Impl& d = *m_impl;
     const auto start = std::chrono::steady_clock::now();
     const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Compute, d.glFeatures);
     // Host shader writes to the position buffer since the last call become visible to the passes.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    if (d.options.gpuTiming) d.timer.beginFrame();
-    d.stats.collision = {};
-    if (d.implicitSolve) d.implicitSolve->resetStatistics();
-    const std::uint64_t dispatchesBefore = gl::dispatchCount();
     {
         gl::DebugGroup frame("glcollide::Engine::step");
+        // Mid-frame (stepSubstep): the frame in progress is finished, its start already done.
+        if (d.stats.substepInFrame == 0) d.beginFrame();
+        d.checkHostMoves();
         // FrameStep runs the frame's substeps in its one dispatch.
-        // The energy guard's start: the host may have moved nodes since the last frame.
-        if (d.energyGuard) {
-            const passes::ContactInputs inputs = d.contactInputs();
-            d.energyGuard->clearFrameCounts();
-            d.energyGuard->record(d.buffers, &inputs);
-        }
-        if (d.collision && d.collision->radialCulling() && d.radialPremise &&
-            d.collision->radialCulling()->hostMovedNodes(d.buffers))
-            d.radialPremise = false; // the host moved nodes: the start is not known to be free
         const int calls = d.frameStep ? 1 : d.substeps.substeps;
-        // The host's pull (setPull): its own pass before each substep, only while it is set.
-        const double pullStep = d.frameStep ? d.scene.time.dt : d.substeps.substepLength;
-        for (int s = 0; s < calls; ++s) {
-            if (d.pull) {
-                d.pullPass->dispatch(d.buffers, *d.pull, pullStep);
-                // The pull does work on the scene, as a host's moves do: the energy guard's start
-                // is the state after its kick, not a rise to take back out.
-                if (d.energyGuard) {
-                    const passes::ContactInputs inputs = d.contactInputs();
-                    d.energyGuard->record(d.buffers, &inputs);
-                }
-            }
-            d.substep(s, s + 1 == calls);
-        }
+        for (int s = d.stats.substepInFrame; s < calls; ++s) d.runSubstep(s, calls, false);
     }
-    if (d.energyGuard) d.readEnergyGuard();
-    d.stats.dispatchesPerSubstep =
-        static_cast<double>(gl::dispatchCount() - dispatchesBefore) / d.substeps.substeps;
     // A host draws positions as vertices and faces as indices right after step().
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT |
                     GL_SHADER_STORAGE_BARRIER_BIT);
-    d.stats.frame += 1;
-    d.stats.time = static_cast<double>(d.stats.frame) * d.scene.time.dt;
-    d.checkFrameCompleted();
-    d.readHealth();
-    d.readSolverStats();
-    if (d.options.gpuTiming) {
-        const std::vector<double> ms = d.timer.resolveMilliseconds();
-        const std::vector<passes::PassId>& ids = d.passIds;
-        for (std::size_t p = 0; p < ids.size(); ++p)
-            d.stats.passes[p].gpuMilliseconds = ms[passes::passIndex(ids[p])];
-    }
-    d.stats.wallMilliseconds =
+    d.endFrame();
+    d.frameWallMilliseconds +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    d.stats.wallMilliseconds = d.frameWallMilliseconds;
+}
+
+void Engine::stepSubstep() {
+    Impl& d = *m_impl;
+    if (d.frameStep)
+        throw Error("engine: stepSubstep() needs the per-substep passes, and EngineOptions::frameStep "
+                    "runs all substeps of a frame in one dispatch; construct the engine with frameStep "
+                    "off to step substeps");
+    const auto start = std::chrono::steady_clock::now();
+    const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Compute, d.glFeatures);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); // as in step(): host shader writes are seen
+    {
+        gl::DebugGroup group("glcollide::Engine::stepSubstep");
+        if (d.stats.substepInFrame == 0) d.beginFrame();
+        d.checkHostMoves();
+        // The contact count is read for every substep (a read, no state): lastStep() describes it.
+        d.runSubstep(d.stats.substepInFrame, d.substeps.substeps, true);
+    }
+    glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT |
+                    GL_SHADER_STORAGE_BARRIER_BIT);
+    d.stats.substepInFrame += 1;
+    if (d.stats.substepInFrame == d.substeps.substeps) {
+        d.endFrame();
+    } else {
+        d.stats.time = static_cast<double>(d.stats.frame) * d.scene.time.dt +
+                       d.stats.substepInFrame * d.substeps.substepLength;
+    }
+    d.frameWallMilliseconds +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    d.stats.wallMilliseconds = d.frameWallMilliseconds;
 }
 
 const SetupStats& Engine::setupStats() const {
@@ -766,6 +834,151 @@ CollisionStats Engine::detectCollisions() {
     return c;
 }
 
+void Engine::Impl::requireCollisions(const char* call) const {
+    if (!collision)
+        throw Error(std::string("engine: ") + call +
+                    " needs a scene with the collisions or self_collisions effect (\"" + scene.name +
+                    "\" has neither): there is no collision detection to read");
+}
+
+FeaturePairs Engine::readFeaturePairs() const {
+    m_impl->requireCollisions("readFeaturePairs()");
+    const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Transfer, m_impl->glFeatures);
+    FeaturePairs out;
+    out.vertexFace = m_impl->collision->readVertexFacePairs();
+    out.edgeEdge = m_impl->collision->readEdgeEdgePairs();
+    // Continuous detection's completion entries are tested by the CCD only (GLC_PAIR_CCD_ONLY).
+    for (auto* list : {&out.vertexFace, &out.edgeEdge})
+        list->erase(std::remove_if(list->begin(), list->end(), cpu::ccdOnly), list->end());
+    return out;
+}
+
+std::vector<FeatureContact> Engine::readContacts() const {
+    const Impl& d = *m_impl;
+    d.requireCollisions("readContacts()");
+    const FeaturePairs pairs = readFeaturePairs();
+    const std::vector<glm::dvec3> x = readPositions(), v = readVelocities();
+    std::vector<FeatureContact> out;
+    // One list at a time, so each contact knows its kind (contactsAt keeps list order).
+    for (const bool edgeEdge : {false, true}) {
+        cpu::FeaturePairList one;
+        (edgeEdge ? one.edgeEdge : one.vertexFace) = edgeEdge ? pairs.edgeEdge : pairs.vertexFace;
+        for (const cpu::ContactGeometry& c : d.contactsAt(x, v, one))
+            out.push_back(FeatureContact{edgeEdge, c.nodes, c.weights, c.normal, c.depth});
+    }
+    return out;
+}
+
+namespace {
+/// The BVH's node depths (root 0), from its links (layout.glsl: node n < faces − 1 is internal with
+/// children links[n].xy; the others are leaves).
+std::vector<int> bvhDepths(const std::vector<std::array<std::uint32_t, 4>>& links, std::uint32_t faces) {
+    std::vector<int> depth(links.size(), -1);
+    if (links.empty()) return depth;
+    std::vector<std::uint32_t> stack{0};
+    depth[0] = 0;
+    while (!stack.empty()) {
+        const std::uint32_t n = stack.back();
+        stack.pop_back();
+        if (n + 1 >= faces) continue; // a leaf
+        for (const std::uint32_t child : {links[n][0], links[n][1]}) {
+            if (child >= links.size())
+                throw Error("engine: the BVH's links read back corrupt (a child out of range)");
+            depth[child] = depth[n] + 1;
+            stack.push_back(child);
+        }
+    }
+    return depth;
+}
+
+std::vector<BroadPhaseBox> toBoxes(const std::vector<gpu::GpuBox>& boxes) {
+    std::vector<BroadPhaseBox> out;
+    out.reserve(boxes.size());
+    for (const gpu::GpuBox& b : boxes) out.push_back({glm::dvec3(b.lo), glm::dvec3(b.hi)});
+    return out;
+}
+} // namespace
+
+struct Engine::Impl::BoxTree {
+    bool bvh = false;
+    std::vector<gpu::GpuBox> boxes; ///< BVH: every node; octree: every leaf
+    std::vector<int> depth;         ///< BVH: per node
+    int maxDepth = 0;
+};
+
+Engine::Impl::BoxTree Engine::Impl::readBoxTree(const char* call) const {
+    requireCollisions(call);
+    BoxTree t;
+    const gl::Buffer& bvhBoxes = collision->broadPhaseBuffer("bvhBoxes");
+    const gl::Buffer& leafBoxes = collision->boxes();
+    if (bvhBoxes) {
+        t.bvh = true;
+        const std::size_t nodes = bvhBoxes.bytes() / sizeof(gpu::GpuBox);
+        t.boxes.resize(nodes);
+        bvhBoxes.download(0, nodes * sizeof(gpu::GpuBox), t.boxes.data());
+        std::vector<std::array<std::uint32_t, 4>> links(nodes);
+        collision->broadPhaseBuffer("bvhLinks").download(0, nodes * sizeof links[0], links.data());
+        t.depth = bvhDepths(links, buffers.faceCount);
+        for (const int d : t.depth) t.maxDepth = std::max(t.maxDepth, d);
+    } else if (leafBoxes) {
+        const std::size_t count = collision->layout().boxCount;
+        t.boxes.resize(count);
+        leafBoxes.download(0, count * sizeof(gpu::GpuBox), t.boxes.data());
+        t.maxDepth = collision->layout().depth;
+    } else {
+        throw Error(std::string("engine: ") + call + ": the broad phase \"" +
+                    std::string(broadPhaseName(scene.collision.broadPhase)) +
+                    "\" keeps no boxes (the BVH and the octree do)");
+    }
+    return t;
+}
+
+int Engine::broadPhaseDepth() const {
+    const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Transfer, m_impl->glFeatures);
+    return m_impl->readBoxTree("broadPhaseDepth()").maxDepth;
+}
+
+std::vector<BroadPhaseBox> Engine::readBroadPhaseBoxes(int depth) const {
+    const Impl& d = *m_impl;
+    const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Transfer, d.glFeatures);
+    Impl::BoxTree t = d.readBoxTree("readBroadPhaseBoxes()");
+    if (depth < 0 || depth > t.maxDepth)
+        throw Error("engine: readBroadPhaseBoxes(" + std::to_string(depth) + "): the depth must be 0 .. " +
+                    std::to_string(t.maxDepth) + " (broadPhaseDepth())");
+    std::vector<gpu::GpuBox> picked;
+    if (t.bvh) {
+        // A cut: the nodes at this depth and the leaves above it.
+        const std::uint32_t faces = d.buffers.faceCount;
+        for (std::size_t n = 0; n < t.boxes.size(); ++n)
+            if (t.depth[n] == depth || (t.depth[n] >= 0 && t.depth[n] < depth && n + 1 >= faces))
+                picked.push_back(t.boxes[n]);
+        return toBoxes(picked);
+    }
+    // Octree: leaf cell c of an object (x fastest, cellsPerAxis per axis) lies in cell
+    // (x, y, z) >> shift of the level `depth`, shift = leaf depth − depth.
+    const model::OctreeLayout& layout = d.collision->layout();
+    const int shift = t.maxDepth - depth;
+    const std::uint32_t n = layout.cellsPerAxis, m = n >> shift;
+    for (std::size_t o = 0; o < layout.firstBox.size(); ++o) {
+        std::vector<gpu::GpuBox> level(std::size_t{m} * m * m);
+        for (gpu::GpuBox& b : level) { // empty: lo > hi
+            b.lo = glm::vec4(std::numeric_limits<float>::infinity());
+            b.hi = glm::vec4(-std::numeric_limits<float>::infinity());
+        }
+        for (std::uint32_t c = 0; c < layout.boxesPerObject; ++c) {
+            const gpu::GpuBox& leaf = t.boxes[layout.firstBox[o] + c];
+            if (leaf.lo.x > leaf.hi.x) continue; // an empty leaf
+            const std::uint32_t x = (c % n) >> shift, y = (c / n % n) >> shift, z = (c / (n * n)) >> shift;
+            gpu::GpuBox& b = level[x + m * (y + m * z)];
+            b.lo = glm::min(b.lo, leaf.lo);
+            b.hi = glm::max(b.hi, leaf.hi);
+        }
+        for (const gpu::GpuBox& b : level)
+            if (b.lo.x <= b.hi.x) picked.push_back(b);
+    }
+    return toBoxes(picked);
+}
+
 std::vector<std::uint32_t> Engine::bodyFirstFaces() const {
     std::vector<std::uint32_t> first;
     for (const model::ObjectRange& o : m_impl->model.objects) first.push_back(o.firstFace);
@@ -833,9 +1046,9 @@ EnergyReport Engine::energy() const {
 /// response's rules (cpu::contactGeometries) on the last detection's feature pairs, sides from the
 /// positions themselves (decision 0024); and the ground's penalty under implicit Euler. With the
 /// magnitude scale of those terms as energy_guard.comp adds them.
-Engine::Impl::ContactEnergy Engine::Impl::contactEnergy() const {
-    const std::vector<glm::dvec3> x = unpackNodes(buffers.positions, buffers.nodeCount);
-    const std::vector<glm::dvec3> v = unpackNodes(buffers.velocities, buffers.nodeCount);
+std::vector<cpu::ContactGeometry> Engine::Impl::contactsAt(const std::vector<glm::dvec3>& x,
+                                                           const std::vector<glm::dvec3>& v,
+                                                           const cpu::FeaturePairList& pairs) const {
     std::vector<std::uint8_t> faceClosed(model.faceCount());
     const model::OctreeLayout& layout = collision->layout();
     for (std::size_t f = 0; f < faceClosed.size(); ++f) faceClosed[f] = layout.closed[layout.faceObject[f]];
@@ -846,13 +1059,20 @@ Engine::Impl::ContactEnergy Engine::Impl::contactEnergy() const {
     in.faceOwned = &layout.faceOwned;
     in.faceClosed = &faceClosed;
     in.inverseMasses = &model.inverseMasses;
+    ContactParams params = plan.contact;
+    params.substep = 0.0; // sides from x
+    return cpu::contactGeometries(params, in, pairs);
+}
+
+Engine::Impl::ContactEnergy Engine::Impl::contactEnergy() const {
+    const std::vector<glm::dvec3> x = unpackNodes(buffers.positions, buffers.nodeCount);
+    const std::vector<glm::dvec3> v = unpackNodes(buffers.velocities, buffers.nodeCount);
     cpu::FeaturePairList pairs;
     pairs.vertexFace = collision->readVertexFacePairs();
     pairs.edgeEdge = collision->readEdgeEdgePairs();
-    ContactParams params = plan.contact;
-    params.substep = 0.0; // sides from x
+    const ContactParams& params = plan.contact;
     ContactEnergy out;
-    for (const cpu::ContactGeometry& c : cpu::contactGeometries(params, in, pairs)) {
+    for (const cpu::ContactGeometry& c : contactsAt(x, v, pairs)) {
         const double e = 0.5 * params.stiffness * c.depth * c.depth;
         out.energy += e;
         out.magnitude += e + params.stiffness * c.depth * (glm::length(x[c.nodes[0]]) + params.thickness);

@@ -75,6 +75,8 @@ const glm::vec3 kHighlight{0.890f, 0.102f, 0.110f};
 const glm::vec3 kBackground{1.0f, 1.0f, 1.0f};
 const glm::vec3 kBackTint{0.95f, 0.92f, 0.80f}; // a pale warm grey: the back side of a face, halfway
 const glm::vec3 kPairLine{0.0f, 0.75f, 0.2f};   // green: no body's colour and not the highlight red
+const glm::vec3 kContactLine{0.0f, 0.8f, 0.9f}; // cyan: neither a body's colour, the pairs' nor the pull's
+const glm::vec3 kBoxLine{0.5f, 0.2f, 0.8f};     // violet: the broad phase's boxes, behind the rest
 
 struct Box {
     glm::dvec3 lo{std::numeric_limits<double>::infinity()};
@@ -666,7 +668,9 @@ void SceneRenderer::Impl::drawInto(const Engine& engine,
         glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(nodeCount));
         glEnable(GL_DEPTH_TEST);
     }
-    if (!overlays.pairLines.empty()) {
+    // Line sets, each in one colour, through the same stream buffer (re-specified per set).
+    const auto drawLines = [&](const std::vector<std::array<glm::vec3, 2>>& lines, glm::vec3 lineColour) {
+        if (lines.empty()) return;
         if (lineBuffer == 0) {
             glGenBuffers(1, &lineBuffer);
             GLuint vao = 0;
@@ -680,16 +684,18 @@ void SceneRenderer::Impl::drawInto(const Engine& engine,
         }
         glBindVertexArray(lineArray.name());
         glBindBuffer(GL_ARRAY_BUFFER, lineBuffer);
-        glBufferData(GL_ARRAY_BUFFER,
-                     static_cast<GLsizeiptr>(overlays.pairLines.size() * sizeof(overlays.pairLines[0])),
-                     overlays.pairLines.data(), GL_STREAM_DRAW);
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(lines.size() * sizeof(lines[0])), lines.data(),
+                     GL_STREAM_DRAW);
         glProgramUniform1ui(overlay.name(), location(overlay, "u_mode"), 0u);
-        setVec3(overlay, "u_colour", glm::dvec3(kPairLine));
+        setVec3(overlay, "u_colour", glm::dvec3(lineColour));
         glDisable(GL_DEPTH_TEST); // pairs between touching faces lie inside or behind the surfaces
-        glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(2 * overlays.pairLines.size()));
+        glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(2 * lines.size()));
         glEnable(GL_DEPTH_TEST);
         glBindVertexArray(meshArray.name());
-    }
+    };
+    drawLines(overlays.boxLines, kBoxLine);
+    drawLines(overlays.pairLines, kPairLine);
+    drawLines(overlays.contactLines, kContactLine);
     if (overlays.segment) {
         glBindVertexArray(emptyArray.name());
         glProgramUniform1ui(overlay.name(), location(overlay, "u_mode"), 2u);
@@ -735,6 +741,12 @@ glm::vec3 SceneRenderer::backTint() {
 
 glm::vec3 SceneRenderer::pairLineColour() {
     return kPairLine;
+}
+glm::vec3 SceneRenderer::contactLineColour() {
+    return kContactLine;
+}
+glm::vec3 SceneRenderer::boxLineColour() {
+    return kBoxLine;
 }
 
 glm::vec3 SceneRenderer::backgroundColour() {

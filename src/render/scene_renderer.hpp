@@ -91,6 +91,10 @@ struct Overlays {
     std::optional<std::array<glm::dvec3, 2>> segment;
     /// Segments drawn in one colour (the viewer's candidate face pairs: centroid to centroid).
     std::vector<std::array<glm::vec3, 2>> pairLines;
+    /// Segments in a second colour (the viewer's feature contacts: closest point to closest point).
+    std::vector<std::array<glm::vec3, 2>> contactLines;
+    /// Segments in a third colour, drawn first (the viewer's broad-phase boxes: their 12 edges each).
+    std::vector<std::array<glm::vec3, 2>> boxLines;
 };
 
 /// The grid under a scene: at the ground height when the ground effect is on, else just below the
@@ -143,6 +147,9 @@ class SceneRenderer {
     static glm::vec3 backTint();
     /// Colour of Overlays::pairLines.
     static glm::vec3 pairLineColour();
+    /// Colours of Overlays::contactLines and Overlays::boxLines.
+    static glm::vec3 contactLineColour();
+    static glm::vec3 boxLineColour();
     /// Colour where nothing is drawn.
     static glm::vec3 backgroundColour();
 

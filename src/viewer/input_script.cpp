@@ -93,6 +93,9 @@ int keyFromName(const std::string& name) {
     if (name == "escape") return GLFW_KEY_ESCAPE;
     if (name == "[") return GLFW_KEY_LEFT_BRACKET;
     if (name == "]") return GLFW_KEY_RIGHT_BRACKET;
+    if (name == ".") return GLFW_KEY_PERIOD;
+    if (name == "-") return GLFW_KEY_MINUS;
+    if (name == "=") return GLFW_KEY_EQUAL;
     if (name.size() == 1 && name[0] >= 'a' && name[0] <= 'z') return GLFW_KEY_A + (name[0] - 'a');
     if (name.size() == 1 && name[0] >= 'A' && name[0] <= 'Z') return GLFW_KEY_A + (name[0] - 'A');
     if (name.size() == 1 && name[0] >= '0' && name[0] <= '9') return GLFW_KEY_0 + (name[0] - '0');

@@ -46,13 +46,16 @@ void Viewer::panel() {
         ImGui::SameLine();
         if (ImGui::Button("Frame (N)")) key(GLFW_KEY_N, 0);
         ImGui::SameLine();
+        if (ImGui::Button("Substep (.)")) key(GLFW_KEY_PERIOD, 0);
+        ImGui::SameLine();
         if (ImGui::Button("Restart (R)")) key(GLFW_KEY_R, 0);
-        ImGui::TextDisabled("one substep: not in the engine's API (step() is a frame)");
         float speed = static_cast<float>(m_clock.speed);
         if (ImGui::SliderFloat("speed", &speed, 1.0f / 64.0f, 1.0f, "%.3f x", ImGuiSliderFlags_Logarithmic))
             m_clock.speed = speed;
-        ImGui::Text("frame %llu, t = %.3f s (dt %.4g s)", static_cast<unsigned long long>(s.frame), s.time,
+        ImGui::Text("frame %llu, t = %.4f s (dt %.4g s)", static_cast<unsigned long long>(s.frame), s.time,
                     engine.scene().time.dt);
+        if (s.substepInFrame > 0)
+            ImGui::Text("mid-frame: substep %d of %d done", s.substepInFrame, engine.substepInfo().substeps);
         ImGui::Text("%.1f frames/s shown, simulated/wall time %.3f", m_clock.framesPerSecond,
                     m_clock.simulatedRatio);
         const SubstepInfo& sub = engine.substepInfo();
@@ -68,7 +71,16 @@ void Viewer::panel() {
         ImGui::Checkbox("pinned nodes (P)", &m_pinned);
         if (ImGui::Checkbox("smooth shading (S)", &m_smooth)) m_loaded.renderer->setSmooth(m_smooth);
         if (ImGui::Checkbox("candidate face pairs, green (C)", &m_showPairs)) afterStateChange();
-        ImGui::TextDisabled("not built: feature contacts, BVH / octree boxes");
+        if (ImGui::Checkbox("feature contacts, cyan (K)", &m_showContacts)) afterStateChange();
+        if (ImGui::Checkbox("broad-phase boxes, violet (B)", &m_showBoxes)) afterStateChange();
+        if (m_showBoxes) {
+            if (ImGui::SliderInt("box depth (- =)", &m_boxDepth, 0, std::max(m_boxMaxDepth, 0)))
+                afterStateChange();
+            if (!m_boxNote.empty())
+                ImGui::TextWrapped("%s", m_boxNote.c_str());
+            else
+                ImGui::Text("boxes drawn %zu", m_boxLines.size() / 12);
+        }
         float pull = static_cast<float>(m_pullScale);
         if (ImGui::SliderFloat("pull", &pull, 0.01f, 1.0f, "%.2f x", ImGuiSliderFlags_Logarithmic))
             m_pullScale = pull;
@@ -107,6 +119,7 @@ void Viewer::panel() {
             plot("energy", m_energyHistory, overlay);
         }
         if (m_showPairs) ImGui::Text("candidate pairs drawn %zu", m_pairLines.size());
+        if (m_showContacts) ImGui::Text("feature contacts drawn %zu", m_contactLines.size());
         if (s.collisions) {
             const CollisionStats& c = s.collision;
             ImGui::Text("candidates %u, contacts %u", c.candidatePairs, c.contacts);

@@ -109,9 +109,14 @@ void Viewer::key(int key, int mods) {
         break;
     case GLFW_KEY_N:
     case GLFW_KEY_RIGHT:
-        // One frame: the engine's API advances whole frames (there is no single-substep call).
+        // One frame (or the rest of the frame that single substeps began: Engine::step finishes it).
         m_clock.playing = false;
         stepEngine();
+        break;
+    case GLFW_KEY_PERIOD:
+        // One substep (Engine::stepSubstep); S is smooth shading.
+        m_clock.playing = false;
+        stepSubstep();
         break;
     case GLFW_KEY_R:
         restart();
@@ -131,6 +136,22 @@ void Viewer::key(int key, int mods) {
         break;
     case GLFW_KEY_C:
         m_showPairs = !m_showPairs;
+        afterStateChange();
+        break;
+    case GLFW_KEY_B:
+        m_showBoxes = !m_showBoxes;
+        afterStateChange();
+        break;
+    case GLFW_KEY_MINUS: // the boxes one level up the tree
+        m_boxDepth = std::max(m_boxDepth - 1, 0);
+        afterStateChange();
+        break;
+    case GLFW_KEY_EQUAL: // one level down (clamped to the tree's depth when drawn)
+        m_boxDepth = m_boxDepth + 1;
+        afterStateChange();
+        break;
+    case GLFW_KEY_K:
+        m_showContacts = !m_showContacts;
         afterStateChange();
         break;
     case GLFW_KEY_S:
@@ -307,6 +328,21 @@ void Viewer::stepEngine() {
     afterStateChange();
 }
 
+void Viewer::stepSubstep() {
+    Engine& engine = *m_loaded.engine;
+    engine.stepSubstep();
+    m_clock.windowSimulated += engine.substepInfo().substepLength;
+    const StepStats& s = engine.lastStep();
+    if (s.substepInFrame == 0) { // this substep ended a frame: its timings are the frame's
+        ++m_simulatedFrames;
+        for (std::size_t p = 0; p < m_passHistory.size() && p < s.passes.size(); ++p) {
+            m_passHistory[p].push_back(static_cast<float>(s.passes[p].gpuMilliseconds));
+            if (m_passHistory[p].size() > kHistory) m_passHistory[p].pop_front();
+        }
+    }
+    afterStateChange();
+}
+
 void Viewer::afterStateChange() {
     Engine& engine = *m_loaded.engine;
     m_energy = engine.energy();
@@ -314,12 +350,47 @@ void Viewer::afterStateChange() {
     if (m_energyHistory.size() > kHistory) m_energyHistory.pop_front();
     m_intersecting.clear();
     m_pairLines.clear();
+    m_contactLines.clear();
+    m_boxLines.clear();
+    m_boxNote.clear();
     const EffectSet& effects = engine.scene().effects;
     if (!(effects.has(Effect::Collisions) || effects.has(Effect::SelfCollisions))) return;
-    if (!m_showIntersecting && !m_showPairs) return;
+    if (!m_showIntersecting && !m_showPairs && !m_showContacts && !m_showBoxes) return;
     // As `render` does: detect on the drawn positions, so red faces and pairs are this state's.
     engine.detectCollisions();
     if (m_showIntersecting) m_intersecting = engine.readIntersectingPairs();
+    if (m_showBoxes) {
+        // The broad phase's boxes at the chosen depth (clamped to the tree's), their 12 edges each.
+        try {
+            m_boxMaxDepth = engine.broadPhaseDepth();
+            m_boxDepth = std::min(m_boxDepth, m_boxMaxDepth);
+            for (const BroadPhaseBox& b : engine.readBroadPhaseBoxes(m_boxDepth)) {
+                if (m_boxLines.size() + 12 > kMaxPairLines) break;
+                const auto corner = [&](int k) {
+                    return glm::vec3(k & 1 ? b.hi.x : b.lo.x, k & 2 ? b.hi.y : b.lo.y,
+                                     k & 4 ? b.hi.z : b.lo.z);
+                };
+                for (int k = 0; k < 8; ++k)
+                    for (const int bit : {1, 2, 4})
+                        if (!(k & bit)) m_boxLines.push_back({corner(k), corner(k | bit)});
+            }
+        } catch (const Error& e) {
+            m_boxNote = e.what(); // e.g. the all-pairs broad phase keeps no boxes
+        }
+    }
+    if (m_showContacts) {
+        // Feature contacts as lines between their closest points (side A's to side B's).
+        const std::vector<glm::dvec3> x = engine.readPositions();
+        for (const FeatureContact& c : engine.readContacts()) {
+            if (m_contactLines.size() >= kMaxPairLines) break;
+            glm::dvec3 a(0.0), b(0.0);
+            for (int k = 0; k < 4; ++k) {
+                a += std::max(c.weights[k], 0.0) * x[c.nodes[k]];
+                b += std::max(-c.weights[k], 0.0) * x[c.nodes[k]];
+            }
+            m_contactLines.push_back({glm::vec3(a), glm::vec3(b)});
+        }
+    }
     if (!m_showPairs) return;
     // Candidate pairs (faces within the contact thickness) as lines between the faces' centroids.
     const std::vector<std::array<std::uint32_t, 2>> pairs = engine.readCandidatePairs();
@@ -382,6 +453,8 @@ void Viewer::frame(double wallSeconds, int framebufferWidth, int framebufferHeig
     overlays.pinnedNodes = m_pinned;
     if (m_grab) overlays.segment = {{m_loaded.engine->readPositions()[m_grab->node], m_grab->target}};
     overlays.pairLines = m_pairLines;
+    overlays.contactLines = m_contactLines;
+    overlays.boxLines = m_boxLines;
     renderer.draw(*m_loaded.engine, m_intersecting, {0, framebufferWidth, framebufferHeight}, overlays);
 }
 

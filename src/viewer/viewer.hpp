@@ -92,6 +92,7 @@ class Viewer {
   private:
     void resetView(); ///< camera, panel data and overlays for the engine now loaded
     void stepEngine();
+    void stepSubstep();      ///< one substep (Engine::stepSubstep), key '.'
     void afterStateChange(); ///< the overlays' data (intersecting pairs) for the state now drawn
     void frameAll();
     void updatePull();
@@ -113,6 +114,13 @@ class Viewer {
     std::vector<std::array<std::uint32_t, 2>> m_intersecting;
     bool m_showPairs = false;                          ///< candidate face pairs as lines (key C)
     std::vector<std::array<glm::vec3, 2>> m_pairLines; ///< centroid to centroid, at most kMaxPairLines
+    bool m_showContacts = false;                       ///< feature contacts as lines (key K)
+    bool m_showBoxes = false; ///< the broad phase's boxes (key B) at m_boxDepth (keys - and =)
+    int m_boxDepth = 1, m_boxMaxDepth = 0;
+    std::string m_boxNote; ///< why no boxes are drawn (the engine's error), empty otherwise
+    std::vector<std::array<glm::vec3, 2>> m_boxLines; ///< 12 edges per box, at most kMaxPairLines
+    std::vector<std::array<glm::vec3, 2>>
+        m_contactLines; ///< closest point to closest point, at most kMaxPairLines
 
     // The mouse.
     int m_fbWidth = 1, m_fbHeight = 1, m_winWidth = 1, m_winHeight = 1;

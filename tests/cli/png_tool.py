@@ -11,6 +11,8 @@ for the viewer's tests (tests/cli/view_test.sh).
              above red by > 15, which the neutral grey grid and white background never are
       pairs: the candidate-pair overlay's green (0, 191, 51), unlit: within 8 per channel (the
              window's multisampling blends line edges)
+      contacts: the feature-contact overlay's cyan (0, 204, 230), the same way
+      boxes: the broad-phase box overlay's violet (128, 51, 204), the same way
 Rectangles are [X0, X1) x [Y0, Y1) in pixels from the top left.
 """
 import struct
@@ -84,7 +86,13 @@ def main(argv):
             return p[2] > p[0] + 15
         def pairs(p):
             return abs(p[0] - 0) <= 8 and abs(p[1] - 191) <= 8 and abs(p[2] - 51) <= 8
-        test = {"panel": panel, "body": body, "pairs": pairs}[kind]
+        def near(p, c):
+            return all(abs(p[i] - c[i]) <= 8 for i in range(3))
+        def contacts(p):
+            return near(p, (0, 204, 230))
+        def boxes(p):
+            return near(p, (128, 51, 204))
+        test = {"panel": panel, "body": body, "pairs": pairs, "contacts": contacts, "boxes": boxes}[kind]
         hits = sum(test(rows[y][x]) for y in range(y0, y1) for x in range(x0, x1))
         print(f"{hits / ((x1 - x0) * (y1 - y0)):.4f}")
     else:

@@ -101,6 +101,29 @@ printf '1 key space\n' >"$work/nopairs.txt"
 view 2 "$src/tests/data/view/touching_boxes.json" --input "$work/nopairs.txt" --screenshot nopairs.png
 check "pairs: none without the toggle" test "$($png count "$work/nopairs.png" $scene_rect pairs)" = "0.0000"
 
+# Feature contacts (key K) of the same boxes: cyan lines between the closest points (5 mm long).
+printf '1 key space\n1 key k\n' >"$work/contacts.txt"
+view 2 "$src/tests/data/view/touching_boxes.json" --input "$work/contacts.txt" --screenshot contacts.png
+check "contacts: exits 0" test $? -eq 0
+cyan=$($png count "$work/contacts.png" $scene_rect contacts)
+check "contacts: the overlay's cyan lines are drawn ($cyan of the scene)" test "$cyan" != "0.0000"
+check "contacts: none without the toggle" test "$($png count "$work/nopairs.png" $scene_rect contacts)" = "0.0000"
+
+# The broad phase's boxes (key B) of the same boxes: violet edges, the root level (-) and deeper (=).
+printf '1 key space\n1 key b\n1 key -\n2 screenshot root.png\n3 key =\n3 key =\n' >"$work/boxes.txt"
+view 3 "$src/tests/data/view/touching_boxes.json" --input "$work/boxes.txt" --screenshot deep.png
+check "boxes: exits 0" test $? -eq 0
+check "boxes: the overlay's violet edges are drawn" test "$($png count "$work/root.png" $scene_rect boxes)" != "0.0000"
+check "boxes: another depth, another picture" test "$($png diff "$work/root.png" "$work/deep.png" $scene_rect)" -gt 0
+check "boxes: none without the toggle" test "$($png count "$work/nopairs.png" $scene_rect boxes)" = "0.0000"
+
+# One substep (key .): paused, three substeps of a frame, then N finishes that frame: one frame.
+printf '1 key space\n2 screenshot s0.png\n3 key .\n3 screenshot s1.png\n4 key .\n5 key .\n6 key n\n' >"$work/substep.txt"
+view 7 "$swinging" --input "$work/substep.txt"
+check "substeps: exits 0" test $? -eq 0
+check "substeps: one substep changes the picture" test "$($png diff "$work/s0.png" "$work/s1.png" $scene_rect)" -gt 0
+check "substeps then N: the scene at frame 1" grep -q "7 frames shown, 1 simulated (this scene at t = 0.0167 s, frame 1)" "$work/out.txt"
+
 # --broad-phase: every broad phase finds the same candidate pairs, so the BVH's picture is the octree's.
 view 2 "$src/tests/data/view/touching_boxes.json" --broad-phase bvh --input "$work/pairs.txt" --screenshot bvh.png
 check "--broad-phase bvh: exits 0" test $? -eq 0

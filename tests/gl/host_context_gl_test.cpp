@@ -233,6 +233,11 @@ TEST_P(HostBindings, SurviveEveryEngineCall) {
     EXPECT_GT(intersections, 0u);
     EXPECT_GT(contacts, 0u);
 
+    engine->stepSubstep(); // begins a frame (its start's bookkeeping) ...
+    expectSame(m_state, "after stepSubstep");
+    engine->step(); // ... which step() finishes
+    expectSame(m_state, "after step mid-frame");
+
     const CollisionStats detected = engine->detectCollisions();
     EXPECT_GT(detected.candidatePairs, 0u);
     expectSame(m_state, "after detectCollisions");
@@ -244,6 +249,14 @@ TEST_P(HostBindings, SurviveEveryEngineCall) {
     expectSame(m_state, "after readCandidatePairs");
     (void)engine->readIntersectingPairs();
     expectSame(m_state, "after readIntersectingPairs");
+    EXPECT_FALSE(engine->readFeaturePairs().vertexFace.empty());
+    expectSame(m_state, "after readFeaturePairs");
+    (void)engine->readContacts();
+    expectSame(m_state, "after readContacts");
+    if (broadPhase != "all_pairs") {
+        EXPECT_FALSE(engine->readBroadPhaseBoxes(engine->broadPhaseDepth()).empty());
+        expectSame(m_state, "after readBroadPhaseBoxes");
+    }
     EXPECT_TRUE(std::isfinite(engine->energy().total()));
     expectSame(m_state, "after energy");
 
