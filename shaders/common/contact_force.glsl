@@ -29,6 +29,11 @@
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
 layout(std430, binding = GLC_BIND_NODE_VELOCITIES) readonly buffer NodeVelocitiesBuf { vec4 g_velocities[]; };
 layout(std430, binding = GLC_BIND_CONTACT_FORCES) buffer ContactForcesBuf { ivec4 g_contactForces[]; };
+#ifdef GLC_PREDICTED_FORCES
+// The forces at the start of the substep (NodeForce or SpringUpdate): the filter before an implicit
+// solve predicts the solve's velocity change h·w·f from them (ContactParams::predictedForces).
+layout(std430, binding = GLC_BIND_NODE_FORCES) readonly buffer NodeForcesBuf { vec4 g_forces[]; };
+#endif
 
 uniform float u_thickness;   // m
 uniform float u_stiffness;   // N/m
@@ -38,6 +43,7 @@ uniform float u_forceScale;  // fixed-point units per N
 uniform float u_substep;     // s: the substep length dt (0: penalty only, sides from the current positions)
 uniform uint u_velocityResponse; // 1: Bridson's response (below); 0: the penalty alone
 uniform float u_relaxationTime;  // s: Bridson's target speed restores the thickness over at least this
+uniform uint u_repulsion;        // 0: the filter before an implicit solve (below)
 uniform uint u_countPass;    // 1: count acting contacts per node into .w; 0: add the forces
 uniform uint u_previousSides; // 1: sides of open surfaces from x − dt·v; 0: from x (intersection-free response)
 uniform float u_friction;    // Coulomb μ between bodies (0: none)
@@ -96,8 +102,16 @@ uint respond(uvec4 n, vec4 a, vec3 u, float depth) {
     // pairs leave the thickness at metres per second).
     bool bridson = u_velocityResponse != 0u && u_substep > 0.0 && wSum > 0.0;
     bool friction = u_friction > 0.0 && u_substep > 0.0 && wSum > 0.0;
-    float target = bridson ? depth / max(10.0 * u_substep, u_relaxationTime) : 0.0;
-    bool acting = bridson && vn < target;
+    // The filter before an implicit solve (u_repulsion 0; decision 0024, "Velocity filters before
+    // the solve"): the penalty is in the solve's matrix, so the filter does not push; it stops an
+    // approach (inelastic) and applies friction bounded by μ times that impulse plus the penalty
+    // k·depth the solve will apply (a resting contact has friction too), against the relative
+    // tangential velocity after the solve, predicted from the forces at the start
+    // (GLC_PREDICTED_FORCES: a sticking contact does not creep).
+    bool beforeSolve = bridson && u_repulsion == 0u;
+    float target = bridson && !beforeSolve ? depth / max(10.0 * u_substep, u_relaxationTime) : 0.0;
+    float penalty = min(u_stiffness * max(depth, 0.0), u_forceCap);
+    bool acting = beforeSolve ? vn < 0.0 || (friction && penalty > 0.0) : bridson && vn < target;
     float f = normalForce(depth, vn);
     // What the count pass counts: Bridson's acting contacts; with the penalty and friction, the
     // pushing ones (the same f > 0 as below, f ≤ the cap).
@@ -113,6 +127,28 @@ uint respond(uvec4 n, vec4 a, vec3 u, float depth) {
     }
     // N per m/s of relative velocity changed, averaged over the node's contacts (Jacobi).
     float perSpeed = counted ? 1.0 / (wSum * u_substep * float(actingCount(n, share))) : 0.0;
+    if (beforeSolve) {
+        if (!acting) return 0u;
+        float inelastic = max(-vn, 0.0) * perSpeed;
+        vec3 F = inelastic * u;
+        if (friction) {
+            vec3 vAfter = vRel;
+#ifdef GLC_PREDICTED_FORCES
+            // + h Σ a_i w_i f_i: what the solve will add (pinned nodes: w = 0)
+            vAfter += u_substep * (a.x * g_positions[n.x].w * g_forces[n.x].xyz +
+                                   a.y * g_positions[n.y].w * g_forces[n.y].xyz +
+                                   a.z * g_positions[n.z].w * g_forces[n.z].xyz +
+                                   a.w * g_positions[n.w].w * g_forces[n.w].xyz);
+#endif
+            F += frictionForce(vAfter - dot(vAfter, u) * u, inelastic + penalty, perSpeed);
+        }
+        if (F == vec3(0.0)) return 0u;
+        addForce(n.x, a.x * F);
+        addForce(n.y, a.y * F);
+        addForce(n.z, a.z * F);
+        addForce(n.w, a.w * F);
+        return 1u;
+    }
     if (bridson) {
         if (!acting) return 0u;                 // separating at the target speed or faster: no push
         float vAfter = max(vn, 0.0);            // after the inelastic part

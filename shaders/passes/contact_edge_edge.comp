@@ -1,4 +1,5 @@
 #version 430 core
+// glcollide-features: GLC_PREDICTED_FORCES
 // ContactResponse, edge-edge — one invocation per entry (3*fa+e, 3*fb+g) of GLC_LIST_EDGE_EDGE
 // (indirect dispatch from its count; the pairs come from FeaturePairs, feature_pairs.comp; edge e
 // of a face runs from corner e to corner (e+1)%3): two edges closer than the thickness h are

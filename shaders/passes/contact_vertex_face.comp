@@ -1,4 +1,5 @@
 #version 430 core
+// glcollide-features: GLC_PREDICTED_FORCES
 // ContactResponse, vertex-face — one invocation per entry (node p, face) of GLC_LIST_VERTEX_FACE
 // (indirect dispatch from its count; the pairs come from FeaturePairs, feature_pairs.comp): within
 // the thickness h, p is pushed away from its closest point on the face. A vertex whose projection

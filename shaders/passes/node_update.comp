@@ -20,7 +20,9 @@
 // SafeStep cuts the step of an object whose node would cross the ground instead. A node that
 // starts below the ground (input) is still lifted onto it. An approach slower than u_restingSpeed
 // (what gravity adds in two substeps) is resting contact: no restitution, or a resting node would
-// be bounced up every substep (energy into resting piles, decision 0024).
+// be bounced up every substep (energy into resting piles, decision 0024). Under implicit Euler the
+// response runs before the solve, on the start velocity (ContactApply), and not in the NodePredict
+// after it (u_bandResponse 0): a velocity changed after the solve no longer solves its system.
 // Twin: cpu::nodeUpdate.
 #include "common/layout.glsl"
 
@@ -48,10 +50,33 @@ layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) writeonly buffer Predicte
 #if defined(GLC_GROUND_BAND) && defined(GLC_GROUND)
 uniform float u_groundBand; // m: nodes this close above the ground are in contact with it
 uniform float u_restingSpeed; // m/s: slower approaches are resting contact: no restitution
+uniform uint u_bandResponse;  // 0: no velocity response in the band (the NodePredict after an implicit solve)
+uniform float u_groundStiffness; // N/m per node: the implicit solve's ground penalty (0 under symplectic Euler)
+uniform vec3 u_predictedAcceleration; // m/s²: what the solve that follows adds (gravity; 0 under symplectic Euler)
 #endif
 
 uniform uint u_nodeCount;
 #include "common/advance_node.glsl"
+
+#if defined(GLC_GROUND_BAND) && defined(GLC_GROUND)
+// The band's response: an approach faster than u_restingSpeed is reflected with the restitution,
+// a slower one stopped; Coulomb friction bounded by μ times the normal impulse, which is the
+// approach stopped plus, under implicit Euler, the ground penalty's push over the substep
+// (h·w·k_g·depth: what holds a resting node up, so a resting node has friction too). The friction
+// acts on the tangential velocity the solve will leave (u_predictedAcceleration added), so a node
+// that sticks does not creep by one substep of gravity per substep.
+void bandResponse(inout vec3 v, float w, float y) {
+    float normalSpeed = max(-v.y, 0.0);
+    float e = normalSpeed > u_restingSpeed ? u_restitution : 0.0;
+    if (normalSpeed > 0.0) v.y = e * normalSpeed;
+    float push = u_h * w * u_groundStiffness * max(u_groundHeight + u_groundBand - y, 0.0);
+    float impulseSpeed = (1.0 + e) * normalSpeed + push;
+    vec2 predicted = v.xz + u_h * u_predictedAcceleration.xz;
+    float tangentialSpeed = length(predicted);
+    if (tangentialSpeed > 0.0 && impulseSpeed > 0.0)
+        v.xz -= predicted * min(1.0, u_friction * impulseSpeed / tangentialSpeed);
+}
+#endif
 
 #ifdef GLC_PREDICT
 void predictNode(uint i, vec3 f, uint substep) {
@@ -63,7 +88,7 @@ void predictNode(uint i, vec3 f, uint substep) {
     }
     vec3 v = advancedVelocity(g_velocities[i].xyz, p.w, f);
 #if defined(GLC_GROUND_BAND) && defined(GLC_GROUND)
-    if (p.y <= u_groundHeight + u_groundBand) groundResponse(v, -v.y > u_restingSpeed ? u_restitution : 0.0);
+    if (u_bandResponse != 0u && p.y <= u_groundHeight + u_groundBand) bandResponse(v, p.w, p.y);
     vec3 x = advancedPosition(p.xyz, v);
     if (p.y < u_groundHeight) x.y = max(x.y, u_groundHeight);
 #else

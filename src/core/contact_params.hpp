@@ -27,6 +27,17 @@ struct ContactParams {
     /// (decision 0024): its x is intersection-free and v is already this substep's, so the current
     /// side is the one to keep.
     bool sidesFromPrevious = true;
+    /// Bridson's penalty part (raise v_n of a pair within the thickness up to the target speed).
+    /// Off for the intersection-free response under implicit Euler (decision 0024, "Velocity
+    /// filters before the solve"): its iterations run before the solve, on the start velocity,
+    /// as inelastic impulses and friction only, and the penalty is in the solve's matrix.
+    bool repulsion = true;
+    /// Without repulsion: the forces at the start of the substep (gravity, springs, damping, wind:
+    /// the force buffer of NodeForce or SpringUpdate) predict what the solve that follows adds,
+    /// h·w·f per node, and friction stops the relative tangential velocity *after* it, so a
+    /// contact that sticks does not creep by one substep of those forces per substep (decision
+    /// 0024). A program variant (GLC_PREDICTED_FORCES): the force buffer is bound.
+    bool predictedForces = false;
     double relaxationTime = 0.01; ///< s: the thickness is restored over at least this long (0.05 let cloth
                                   ///< sink into a pinned sphere)
     /// Coulomb μ between bodies: each pushing contact also opposes the relative tangential velocity

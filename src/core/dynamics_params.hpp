@@ -42,6 +42,21 @@ struct NodeUpdateParams {
     /// gets no restitution (a node resting in the band approaches by what gravity adds in a
     /// substep; bouncing that back every substep put energy into resting piles: decision 0024).
     double restingSpeed = 0.0;
+    /// With groundBand: apply the ground's velocity response to nodes in the band. Off for the
+    /// NodePredict that follows an implicit solve (decision 0024, "Velocity filters before the
+    /// solve"): a velocity changed after the solve no longer solves its system, and the ground's
+    /// response there put energy into resting bodies; under implicit Euler the response runs
+    /// before the solve (ContactApply), on the start velocity.
+    bool bandResponse = true;
+    /// N/m per node, with groundBand: the implicit solve's ground penalty (ImplicitParams). Its push
+    /// over the substep, h·w·k_g·depth, is the normal impulse of a node resting in the band, which
+    /// bounds the band's Coulomb friction: without it a resting node, not approaching, had no
+    /// friction and a box slid on forever. 0: approaching nodes only (symplectic Euler).
+    double groundStiffness = 0.0;
+    /// m/s², with groundBand: the acceleration the solve that follows adds (gravity; 0 when the
+    /// forces are already in v). The band's friction stops the tangential velocity after it, so a
+    /// node that sticks does not creep (ContactParams::predictedAcceleration).
+    glm::dvec3 predictedAcceleration{0.0};
     bool checkFinite = false; ///< record the first non-finite node in the health buffer (GPU only)
 };
 

@@ -173,8 +173,11 @@ struct Solver {
         const double vn = glm::dot(vRel, u);
         const bool bridson = p.velocityResponse && p.substep > 0.0 && wSum > 0.0;
         const bool friction = p.friction > 0.0 && p.substep > 0.0 && wSum > 0.0;
-        const double target = bridson ? depth / std::max(10.0 * p.substep, p.relaxationTime) : 0.0;
-        const bool active = bridson && vn < target;
+        const bool beforeSolve = bridson && !p.repulsion; // before an implicit solve (contact_force.glsl)
+        const double target =
+            bridson && !beforeSolve ? depth / std::max(10.0 * p.substep, p.relaxationTime) : 0.0;
+        const double penalty = std::min(p.stiffness * std::max(depth, 0.0), p.forceCap);
+        const bool active = beforeSolve ? vn < 0.0 || (friction && penalty > 0.0) : bridson && vn < target;
         double f = normalForce(depth, vn);
         // Bridson's acting contacts; with the penalty and friction, the pushing ones.
         const bool counted = bridson ? active : friction && f > 0.0;
@@ -186,6 +189,25 @@ struct Solver {
         }
         const double perSpeed =
             counted ? 1.0 / (wSum * p.substep * static_cast<double>(actingCount(n, share))) : 0.0;
+        if (beforeSolve) {
+            if (!active) return false;
+            const double inelastic = std::max(-vn, 0.0) * perSpeed;
+            glm::dvec3 F = inelastic * u;
+            if (friction) {
+                glm::dvec3 vAfter = vRel; // + h Σ a_i w_i f_i: what the solve will add
+                if (p.predictedForces && in.predictedForces)
+                    for (std::size_t i = 0; i < 4; ++i)
+                        vAfter += p.substep * a[i] * w(n[i]) * (*in.predictedForces)[n[i]];
+                F += frictionForce(vAfter - glm::dot(vAfter, u) * u, inelastic + penalty, perSpeed);
+            }
+            if (F == glm::dvec3(0.0)) return false;
+            for (std::size_t i = 0; i < 4; ++i) {
+                out.forces[n[i]] += a[i] * F;
+                ++out.contributions[n[i]];
+            }
+            ++out.contacts;
+            return true;
+        }
         if (bridson) {
             if (!active) return false;
             const double vAfter = std::max(vn, 0.0);

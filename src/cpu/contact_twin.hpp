@@ -24,6 +24,8 @@ struct ContactInput {
     const std::vector<std::uint8_t>* faceClosed = nullptr;   ///< 1 when the face's object is closed
     /// 1/kg per node, 0 for pinned nodes (the GPU's positions .w); nullptr: 1 for every node.
     const std::vector<double>* inverseMasses = nullptr;
+    /// N per node: the forces at the start of the substep (ContactParams::predictedForces); nullptr: none.
+    const std::vector<glm::dvec3>* predictedForces = nullptr;
 };
 
 struct ContactResult {

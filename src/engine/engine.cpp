@@ -116,6 +116,9 @@ struct Engine::Impl {
     void allocate();
     void makePass(engine::Stage stage);
     bool newtonSkipped = false; ///< this substep's Newton steps are skipped: its start intersects
+    /// The last detection found intersecting pairs at its start (recovery): the contact iterations
+    /// push (ContactParams::repulsion) even where the plan has them inelastic only.
+    bool lastStartIntersected = false;
     void substep(int index, bool lastOfFrame);
     // Frame bookkeeping, shared by step() and stepSubstep().
     std::uint64_t frameDispatchesBefore = 0;
@@ -334,7 +337,7 @@ void Engine::Impl::makePass(engine::Stage stage) {
                               static_cast<std::uint32_t>(heavyNodes.size()), plan.implicitContacts);
         break;
     case Stage::ContactResponse:
-        contact.emplace();
+        contact.emplace(plan.contact);
         break;
     case Stage::NodeUpdate:
         nodeUpdate.emplace(plan.nodeUpdateParams);
@@ -343,7 +346,8 @@ void Engine::Impl::makePass(engine::Stage stage) {
         nodePredict.emplace(plan.nodePredictParams);
         break;
     case Stage::ContactIterations:
-        contact.emplace();
+    case Stage::RecoveryIterations:
+        contact.emplace(plan.contact);
         contactApply.emplace(plan.contactApplyParams);
         break;
     case Stage::SafeStep:
@@ -487,6 +491,7 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             const passes::CollisionCounts counts =
                 collision->detect(buffers, options.gpuTiming ? &timer : nullptr);
             radialPremise = counts.intersections == 0;
+            lastStartIntersected = counts.intersections > 0;
             addSubstepCounts(counts, stats.collision);
             addRecoveryCounts(counts, tangledSubsteps, reachedIntersectionFree);
             stats.collision.substepsUntilIntersectionFree = tangledSubsteps;
@@ -532,12 +537,28 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             if (lastOfFrame) readContacts();
             break;
         case Stage::ContactIterations:
+        case Stage::RecoveryIterations: {
+            // Recovery (decision 0024): while the last detection found intersecting pairs, the
+            // iterations after an implicit solve push (Bridson's repulsion) as under symplectic
+            // Euler: the solve's penalty, with sides from x0, does not separate a tangled start.
+            ContactParams params = plan.contact;
+            if (stage == Stage::RecoveryIterations) {
+                if (!lastStartIntersected) break;
+                params.repulsion = true;
+            }
+            NodeUpdateParams apply = plan.contactApplyParams;
             for (int k = 0; k < plan.responseIterations; ++k) {
-                run(*contact, contactInputs(), plan.contact);
+                // Before the solve the filter's friction (the contacts' and the ground's) acts in
+                // the first iteration only: it has the whole substep's Coulomb budget, and the later
+                // iterations, which still see every resting contact, would spend it again (four
+                // held a block on a 35° incline at μ = 0.4).
+                if (k == 1 && !params.repulsion) params.friction = apply.friction = 0.0;
+                run(*contact, contactInputs(), params);
                 if (lastOfFrame && k == 0) readContacts(); // the contacts, not their iterations
-                run(*contactApply, plan.contactApplyParams, static_cast<std::uint32_t>(index));
+                run(*contactApply, apply, static_cast<std::uint32_t>(index));
             }
             break;
+        }
         case Stage::NodePredict:
             run(*nodePredict, plan.nodePredictParams, static_cast<std::uint32_t>(index));
             break;

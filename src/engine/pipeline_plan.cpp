@@ -46,13 +46,21 @@ std::vector<Stage> PipelinePlan::safeStepStages() const {
     std::vector<Stage> s;
     if (nodeForce) s.push_back(Stage::NodeForce);
     if (springUpdate) s.push_back(Stage::SpringUpdate);
+    // Under implicit Euler the velocity filters (the contacts' inelastic impulses and friction, the
+    // ground's response) act on the start velocity, before the solve: a velocity changed after the
+    // solve no longer solves its system, and doing so put energy into resting bodies (decision
+    // 0024, "Velocity filters before the solve"). Under symplectic Euler they follow the step.
+    if (implicitSolve) s.push_back(Stage::ContactIterations);
     if (implicitSolve) s.push_back(Stage::ImplicitSolve);
     // Each further Newton step: the last step's end x1 is detected (the contacts it brings into the
     // thickness join the feature-pair lists), then the system is solved again at x1.
     for (int k = 1; implicitSolve && implicitContacts && k < implicitParams.newtonSteps; ++k)
         s.insert(s.end(), {Stage::NodePredict, Stage::NewtonDetection, Stage::ImplicitNewton});
-    s.insert(s.end(),
-             {Stage::NodePredict, Stage::ContactIterations, Stage::CollisionDetection, Stage::SafeStep});
+    s.push_back(Stage::NodePredict);
+    // Recovery from an intersecting start pushes after the step, as under symplectic Euler (the
+    // solve's penalty, with sides from x0, does not separate a tangled start).
+    s.push_back(implicitSolve ? Stage::RecoveryIterations : Stage::ContactIterations);
+    s.insert(s.end(), {Stage::CollisionDetection, Stage::SafeStep});
     if (energyGuard) s.push_back(Stage::EnergyGuard);
     s.push_back(Stage::Commit);
     return s;
@@ -100,6 +108,7 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
         case Stage::Commit:
             break; // a buffer copy: no pass of its own
         case Stage::ContactIterations:
+        case Stage::RecoveryIterations:
             p.push_back(PassId::ContactResponse);
             p.push_back(PassId::ContactApply);
             break;
@@ -172,6 +181,22 @@ void planSafeStep(const Scene& scene, PipelinePlan& plan) {
     np.restitution = nu.restitution;
     np.friction = nu.friction;
     np.groundBand = nu.ground ? plan.contact.thickness : 0.0; // SafeStep cuts ground crossings
+    // Under implicit Euler the ground's and the contacts' velocity responses run before the solve
+    // (ContactIterations on the start velocity), inelastic only: the penalties are in the matrix.
+    np.bandResponse = !plan.implicitSolve;
+    if (plan.implicitSolve) plan.contact.repulsion = false;
+    // Their friction stops the velocity the solve will leave, predicted from the forces at the start
+    // (no creep while sticking): the explicit force stage runs for it, before the filter.
+    if (plan.implicitSolve) {
+        const NodeForceParams& f = plan.nodeForceParams;
+        const bool external = f.gravity || f.damping || f.wind;
+        plan.springUpdate = plan.springs;
+        plan.nodeForce = external && !plan.springUpdate;
+        plan.contact.predictedForces = plan.springUpdate || plan.nodeForce;
+    }
+    // The ground's friction predicts gravity alone (node_update.comp has no room for the forces).
+    const glm::dvec3 predicted =
+        plan.implicitSolve && plan.nodeForceParams.gravity ? scene.gravity : glm::dvec3(0.0);
     if (plan.implicitSolve && nu.ground) {
         // The ground in the solve's matrix, as stiff as a contact (decision 0024).
         ImplicitParams& ip = plan.implicitParams;
@@ -194,6 +219,9 @@ void planSafeStep(const Scene& scene, PipelinePlan& plan) {
     ca = np;
     ca.forces = false;
     ca.contacts = true;
+    ca.bandResponse = true;
+    ca.groundStiffness = plan.implicitParams.groundStiffness; // 0 under symplectic Euler
+    ca.predictedAcceleration = predicted;
     ca.contactForceScale = nu.contactForceScale;
 }
 

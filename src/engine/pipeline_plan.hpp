@@ -32,6 +32,8 @@ enum class Stage : std::uint8_t {
     EnergyGuard,        ///< intersection-free response: a rise of the total energy taken out of v or x1
     Commit,             ///< intersection-free response: the checked x1 becomes the positions
     ContactIterations,  ///< intersection-free response: (ContactResponse, ContactApply) × responseIterations
+    RecoveryIterations, ///< intersection-free response under implicit Euler: ContactIterations with
+                        ///< repulsion after the solve, only while the last start intersected
     NodeUpdate,         ///< velocities and positions, pins, ground
     FrameStep           ///< a whole frame of SpringUpdate + NodeUpdate in one dispatch (once per frame)
 };

@@ -15,8 +15,16 @@ void bindTangled(const gl::ComputeProgram& program, const ContactInputs& inputs,
     }
 }
 
-ContactResponsePass::ContactResponsePass()
-    : m_vertexFace("contact_vertex_face"), m_edgeEdge("contact_edge_edge") {}
+namespace {
+std::vector<std::string> contactDefines(const ContactParams& config) {
+    if (config.predictedForces) return {"GLC_PREDICTED_FORCES"};
+    return {};
+}
+} // namespace
+
+ContactResponsePass::ContactResponsePass(const ContactParams& config)
+    : m_config(config), m_vertexFace("contact_vertex_face", contactDefines(config)),
+      m_edgeEdge("contact_edge_edge", contactDefines(config)) {}
 
 void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& in,
                                    const ContactParams& params) const {
@@ -24,6 +32,7 @@ void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& 
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
     bindRequired(b.faces, GLC_BIND_FACES, kName, "faces");
     bindRequired(b.contactForces, GLC_BIND_CONTACT_FORCES, kName, "contactForces");
+    if (m_config.predictedForces) bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
     if (!in.lists || !in.faceInfo || !in.objects)
         throw Error(std::string(kName) + ": collision buffers missing");
     if (!in.lists->declared(GLC_LIST_VERTEX_FACE) || !in.lists->declared(GLC_LIST_EDGE_EDGE))
@@ -40,6 +49,7 @@ void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& 
         p->set("u_substep", static_cast<float>(params.substep));
         p->set("u_velocityResponse", params.velocityResponse ? 1u : 0u);
         p->set("u_relaxationTime", static_cast<float>(params.relaxationTime));
+        p->set("u_repulsion", params.repulsion ? 1u : 0u);
         p->set("u_previousSides", params.sidesFromPrevious ? 1u : 0u);
         if (p == &m_edgeEdge) bindTangled(*p, in, b.nodeCount);
         p->set("u_friction", static_cast<float>(params.friction));

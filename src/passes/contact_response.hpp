@@ -32,11 +32,13 @@ class ContactResponsePass {
   public:
     static constexpr PassId kId = PassId::ContactResponse;
     static constexpr const char* kName = passName(kId);
-    ContactResponsePass();
+    /// `config.predictedForces` picks the program variant that reads the force buffer.
+    explicit ContactResponsePass(const ContactParams& config = {});
     void dispatch(const DeviceBuffers& buffers, const ContactInputs& inputs,
                   const ContactParams& params) const;
 
   private:
+    ContactParams m_config;
     gl::ComputeProgram m_vertexFace, m_edgeEdge;
 };
 

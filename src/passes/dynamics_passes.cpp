@@ -99,6 +99,9 @@ void bindNodeUpdate(const gl::ComputeProgram& program, const DeviceBuffers& b, c
         if (config.groundBand > 0.0) {
             program.set("u_groundBand", static_cast<float>(params.groundBand));
             program.set("u_restingSpeed", static_cast<float>(params.restingSpeed));
+            program.set("u_bandResponse", params.bandResponse ? 1u : 0u);
+            program.set("u_groundStiffness", static_cast<float>(params.groundStiffness));
+            program.set("u_predictedAcceleration", params.predictedAcceleration);
         }
     }
 }

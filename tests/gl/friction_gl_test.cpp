@@ -199,15 +199,93 @@ TEST(FrictionGl, WhenTheResponseSeesTheSubstepsGravityABlockSticksWithoutCreep) 
     }
 }
 
+// The intersection-free response at the step a user chooses: implicit Euler at ONE substep per
+// frame (h = 1/60 s, 20× the tests above). Its velocity filter runs before the solve (decision
+// 0024, "Velocity filters before the solve"): friction bounded by μ times the penalty k·depth the
+// solve applies, against the tangential velocity after the solve's gravity. In steady contact
+// (depth k d = m g cos θ; the transient of the first substeps, which have no contact list yet, is
+// over by frame 30) every substep is then exactly v ← v − h μ g cos θ, v ← v + h g sin θ while
+// sliding, and v = 0 while sticking: from frame 30 to 120 the speed grows by 90 h a with
+// a = g (sin θ − μ cos θ) (within the float slack), and a sticking block moves by rounding only
+// (the creep of the tests above would be 90 h · h g sin θ = 8.5 mm here).
+Slide slideFromFrame30(double thetaDeg, double mu, Slide& at30) {
+    Scene scene = blockOnIncline(thetaDeg, mu, ContactResponse::IntersectionFree, Integrator::ImplicitEuler,
+                                 Detection::Continuous);
+    scene.time.substeps = 1;
+    const double theta = thetaDeg * std::numbers::pi / 180.0;
+    for (glm::dvec3& x : scene.bodies[1].positions)
+        x.y = kThickness - kNodeMass * kG * std::cos(theta) / kContactStiffness; // no damping in the solve
+    Engine engine(scene);
+    const std::uint32_t first = engine.bodyFirstNodes()[1];
+    const auto measure = [&] {
+        const std::vector<glm::dvec3> x = engine.readPositions(), v = engine.readVelocities();
+        Slide s;
+        for (std::uint32_t i = 0; i < 3; ++i) {
+            s.distance += x[first + i].x / 3.0;
+            s.speed += v[first + i].x / 3.0;
+            s.lift = std::max(s.lift, x[first + i].y);
+        }
+        return s;
+    };
+    for (int f = 0; f < 30; ++f) engine.step();
+    at30 = measure();
+    std::uint32_t guardActed = 0;
+    double lowest = 1.0, highest = 0.0;
+    for (int f = 30; f < 120; ++f) {
+        engine.step();
+        guardActed += engine.lastStep().collision.energyGuardSubsteps;
+        const Slide now = measure();
+        lowest = std::min(lowest, now.lift);
+        highest = std::max(highest, now.lift);
+        EXPECT_EQ(engine.lastStep().collision.maxIntersectingPairs, 0u);
+    }
+    Slide end = measure();
+    std::printf("intersection_free, implicit, 1 substep/frame, theta %.0f, mu %.2f: frame 30 x %.6f v %.6f; "
+                "frame 120 x %.6f v %.6f; block height %.6f..%.6f m; guard acted %u\n",
+                thetaDeg, mu, at30.distance, at30.speed, end.distance, end.speed, lowest, highest,
+                guardActed);
+    EXPECT_EQ(guardActed, 0u) << "sliding and sticking only lose energy";
+    end.lift = highest - lowest;
+    return end;
+}
+
+TEST(FrictionGl, AtOneSubstepPerFrameTheIntersectionFreeBlockSticksOrSlidesByTheAngle) {
+    constexpr double h = 1.0 / 60.0, n = 90.0;
+    for (const auto& [thetaDeg, mu] : {std::pair{25.0, 0.4}, {30.0, 0.4}, {10.0, 0.0}}) {
+        Slide at30;
+        const Slide end = slideFromFrame30(thetaDeg, mu, at30);
+        const double a = kG * (sinDeg(thetaDeg) - mu * cosDeg(thetaDeg));
+        EXPECT_NEAR(end.speed - at30.speed, n * h * a, kFloatSlack) << "theta " << thetaDeg << ", mu " << mu;
+        // x grows by h Σ v_k, v_k = v30 + k h a: n h v30 + h² a n (n + 1)/2.
+        EXPECT_NEAR(end.distance - at30.distance, n * h * at30.speed + h * h * a * n * (n + 1.0) / 2.0,
+                    kFloatSlack)
+            << "theta " << thetaDeg << ", mu " << mu;
+        EXPECT_LT(end.lift, 1e-5) << "the normal contact held its depth";
+    }
+    for (const auto& [thetaDeg, mu] : {std::pair{15.0, 0.4}, {20.0, 0.4}}) {
+        Slide at30;
+        const Slide end = slideFromFrame30(thetaDeg, mu, at30);
+        EXPECT_LT(std::abs(end.distance - at30.distance), 1e-5) << "theta " << thetaDeg << ": it creeps";
+        EXPECT_LT(std::abs(end.speed), 1e-5) << "theta " << thetaDeg;
+    }
+}
+
 // The issue's cloth on a sphere, small: a 0.5 m cloth (12 × 12 nodes, 50 g) dropped 2 cm above a
 // pinned sphere of radius 0.3 centred at the origin, off centre by 4 cm so that more of it hangs on
-// one side; no ground. Bridson's response (the cloth scenes' choice, decision 0019).
-Scene clothOnSphere(double mu) {
+// one side; no ground. Bridson's response (the cloth scenes' choice, decision 0019) at the
+// automatic substeps, or (`implicitIntersectionFree`) the intersection-free response under implicit
+// Euler at 2 substeps per frame (decision 0024: friction in the filter before the solve).
+Scene clothOnSphere(double mu, bool implicitIntersectionFree = false) {
+    const std::string time = implicitIntersectionFree ? R"("integrator": "implicit_euler", "substeps": 2)"
+                                                      : R"("substeps": "auto")";
+    const std::string response = implicitIntersectionFree ? "intersection_free" : "bridson";
     const std::string json = R"({"format_version": 1, "name": "cloth on sphere",
       "effects": ["gravity", "springs", "damping", "collisions"],
-      "time": {"dt": 0.016666666666666666, "substeps": "auto"},
+      "time": {"dt": 0.016666666666666666, )" +
+                             time + R"(},
       "damping": 0.05,
-      "collision": {"broad_phase": "bvh", "response": "bridson", "thickness": 0.02, "stiffness": 100,
+      "collision": {"broad_phase": "bvh", "response": ")" +
+                             response + R"(", "thickness": 0.02, "stiffness": 100,
                     "friction": )" +
                              std::to_string(mu) + R"(},
       "objects": [
@@ -237,17 +315,21 @@ glm::dvec3 clothCentreAfter(Engine& engine, int frames) {
 // where it landed in x (measured 0.3 mm: the creep of docs/collisions.md's limits); at μ = 0 it
 // has slid off, its centre below the sphere's bottom −0.3 m (measured −1.28 m: falling freely).
 TEST(FrictionGl, ClothStaysOnASphereWithFrictionAndSlidesOffWithout) {
-    Engine held(clothOnSphere(0.5));
-    const glm::dvec3 landed = clothCentreAfter(held, 30), stays = clothCentreAfter(held, 30);
-    std::printf("mu 0.5: cloth centre (%.4f, %.4f) at 0.5 s, (%.4f, %.4f) at 1 s, contacts %u\n", landed.x,
-                landed.y, stays.x, stays.y, held.lastStep().collision.contacts);
-    EXPECT_GT(stays.y, 0.0);
-    EXPECT_NEAR(stays.x, landed.x, 0.01);
-    EXPECT_GT(held.lastStep().collision.contacts, 0u);
-    Engine slides(clothOnSphere(0.0));
-    const glm::dvec3 off = clothCentreAfter(slides, 60);
-    std::printf("mu 0: cloth centre (%.4f, %.4f) at 1 s\n", off.x, off.y);
-    EXPECT_LT(off.y, -0.3);
+    for (const bool implicitIntersectionFree : {false, true}) {
+        SCOPED_TRACE(implicitIntersectionFree ? "intersection_free, implicit Euler, 2 substeps per frame"
+                                              : "bridson");
+        Engine held(clothOnSphere(0.5, implicitIntersectionFree));
+        const glm::dvec3 landed = clothCentreAfter(held, 30), stays = clothCentreAfter(held, 30);
+        std::printf("mu 0.5: cloth centre (%.4f, %.4f) at 0.5 s, (%.4f, %.4f) at 1 s, contacts %u\n",
+                    landed.x, landed.y, stays.x, stays.y, held.lastStep().collision.contacts);
+        EXPECT_GT(stays.y, 0.0);
+        EXPECT_NEAR(stays.x, landed.x, 0.01);
+        EXPECT_GT(held.lastStep().collision.contacts, 0u);
+        Engine slides(clothOnSphere(0.0, implicitIntersectionFree));
+        const glm::dvec3 off = clothCentreAfter(slides, 60);
+        std::printf("mu 0: cloth centre (%.4f, %.4f) at 1 s\n", off.x, off.y);
+        EXPECT_LT(off.y, -0.3);
+    }
 }
 } // namespace
 } // namespace glcollide

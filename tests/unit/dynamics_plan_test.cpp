@@ -140,26 +140,40 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     // Sides of open surfaces from x itself: it is intersection-free at the start of every substep.
     EXPECT_FALSE(plan.contact.sidesFromPrevious);
     EXPECT_TRUE(plan.contact.velocityResponse);
+    EXPECT_TRUE(plan.contact.repulsion);
+    EXPECT_TRUE(plan.nodePredictParams.bandResponse);
+    // Under implicit Euler the velocity filters (inelastic impulses, friction, the ground's
+    // response) act on the start velocity before the solve, and nothing changes v after it: the
+    // penalties are in the matrix, so the iterations do not push (no repulsion).
     scene.time.integrator = Integrator::ImplicitEuler;
     scene.time.solver.newtonSteps = 1;
     plan = engine::planPipeline(scene);
-    EXPECT_EQ(plan.stages(), (std::vector<Stage>{Stage::ImplicitSolve, Stage::NodePredict,
-                                                 Stage::ContactIterations, Stage::CollisionDetection,
-                                                 Stage::SafeStep, Stage::EnergyGuard, Stage::Commit}));
+    // (RecoveryIterations push after the step only while the last start intersected.) The forces at
+    // the start (SpringUpdate) predict what the solve adds, for the filter's friction.
+    EXPECT_EQ(plan.stages(),
+              (std::vector<Stage>{Stage::SpringUpdate, Stage::ContactIterations, Stage::ImplicitSolve,
+                                  Stage::NodePredict, Stage::RecoveryIterations, Stage::CollisionDetection,
+                                  Stage::SafeStep, Stage::EnergyGuard, Stage::Commit}));
+    EXPECT_FALSE(plan.contact.repulsion);
+    EXPECT_TRUE(plan.contact.predictedForces);
+    EXPECT_FALSE(plan.nodePredictParams.bandResponse);
+    EXPECT_TRUE(plan.contactApplyParams.bandResponse);
+    // The band's friction is bounded by the solve's ground penalty too (a resting node has some).
+    EXPECT_EQ(plan.contactApplyParams.groundStiffness, plan.implicitParams.groundStiffness);
     // Automatic Newton steps with the contacts in the solve: 2. The second detects the first's end
     // and solves again there; each pass is listed once.
     scene.time.solver.newtonSteps = 0;
     plan = engine::planPipeline(scene);
     EXPECT_EQ(plan.implicitParams.newtonSteps, 2);
-    EXPECT_EQ(
-        plan.stages(),
-        (std::vector<Stage>{Stage::ImplicitSolve, Stage::NodePredict, Stage::NewtonDetection,
-                            Stage::ImplicitNewton, Stage::NodePredict, Stage::ContactIterations,
-                            Stage::CollisionDetection, Stage::SafeStep, Stage::EnergyGuard, Stage::Commit}));
+    EXPECT_EQ(plan.stages(),
+              (std::vector<Stage>{Stage::SpringUpdate, Stage::ContactIterations, Stage::ImplicitSolve,
+                                  Stage::NodePredict, Stage::NewtonDetection, Stage::ImplicitNewton,
+                                  Stage::NodePredict, Stage::RecoveryIterations, Stage::CollisionDetection,
+                                  Stage::SafeStep, Stage::EnergyGuard, Stage::Commit}));
     EXPECT_EQ(plan.passes(),
-              (std::vector<std::string>{"ImplicitSolve", "NodePredict", "BBUpdate", "BBCollision", "TriTri",
-                                        "FeaturePairs", "Ccd", "ContactResponse", "ContactApply", "SafeStep",
-                                        "EnergyGuard"}));
+              (std::vector<std::string>{"SpringUpdate", "ContactResponse", "ContactApply", "ImplicitSolve",
+                                        "NodePredict", "BBUpdate", "BBCollision", "TriTri", "FeaturePairs",
+                                        "Ccd", "SafeStep", "EnergyGuard"}));
     scene.time.solver.newtonSteps = 3;
     EXPECT_EQ(engine::planPipeline(scene).stages().size(), plan.stages().size() + 3);
     EXPECT_FALSE(plan.nodePredictParams.forces); // the solve set v
