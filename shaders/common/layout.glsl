@@ -286,6 +286,10 @@ struct GpuEnergyGuard {
     uint pad1;
     uint pad2;
     vec4 partials[GLC_ENERGY_GROUPS];
+    // Per group, the contacts' energy and its magnitude as exact 128-bit fixed-point sums (units of
+    // 2⁻⁶⁴ J, four 32-bit words, least significant first): the feature-pair lists are filled in an
+    // order that changes from run to run, and only an exact sum does not depend on it.
+    uvec4 contactPartials[2 * GLC_ENERGY_GROUPS];
 };
 
 struct GpuHealth {

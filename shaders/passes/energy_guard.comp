@@ -16,7 +16,10 @@
 //    ground's ½·k_g·depth² below its band), the springs (½·k·(|xa − xb| − L)²) and the feature pairs
 //    of the last detection (½·k·depth² of every contact, the response's own geometry,
 //    common/contact_pair.glsl, sides from x itself); each group's sums go to g_guard.partials in a
-//    fixed tree: deterministic, no float atomics.
+//    fixed tree: deterministic, no float atomics. The lists' order changes from run to run (their
+//    entries are appended by many invocations), so the contacts' terms are summed exactly instead,
+//    in 128-bit fixed point (2⁻⁶⁴ J units) into g_guard.contactPartials: a float sum in list order
+//    made the guard's decision, and with it the whole run, depend on that order.
 //  u_mode = 1 (decide, one group): sums the partials in a fixed order and decides (above).
 //    u_record = 1 only records the total as the start (a frame's start: the host may have moved
 //    nodes since the last substep).
@@ -63,6 +66,64 @@ vec3 previousPosition(uint n) { return g_positions[n].xyz; }
 #include "common/contact_pair.glsl"
 
 shared vec4 s_sum[GLC_WORKGROUP_SIZE];
+shared uvec4 s_exact[2 * GLC_WORKGROUP_SIZE];
+
+// Exact unsigned 128-bit arithmetic in four 32-bit words (least significant first): addition is
+// associative, so the sum of the contact terms does not depend on their order in the lists.
+uvec4 add128(uvec4 a, uvec4 b) {
+    uvec4 carry;
+    uvec4 sum = uaddCarry(a, b, carry);
+    uint c1;
+    sum.y = uaddCarry(sum.y, carry.x, c1);
+    carry.y += c1;
+    sum.z = uaddCarry(sum.z, carry.y, c1);
+    carry.z += c1;
+    sum.w = sum.w + carry.z; // beyond 2⁶⁴ J: never reached
+    return sum;
+}
+
+// A non-negative float as 128-bit fixed point in units of 2⁻⁶⁴: exact down to 2⁻⁶⁴ (the bits below
+// are dropped: the same for every run), 0 for NaN, infinity, subnormals and negatives (none occur:
+// the terms are energies and magnitudes).
+uvec4 toFixed128(float value) {
+    uint bits = floatBitsToUint(value);
+    uint biased = (bits >> 23u) & 0xFFu;
+    if ((bits >> 31u) != 0u || biased == 0u || biased == 0xFFu) return uvec4(0u);
+    uint mantissa = (bits & 0x7FFFFFu) | 0x800000u; // value = mantissa · 2^(biased − 150)
+    int shift = int(biased) - 150 + 64;              // bit position of the mantissa's lowest bit
+    if (shift <= -24) return uvec4(0u);
+    if (shift < 0) return uvec4(mantissa >> uint(-shift), 0u, 0u, 0u);
+    if (shift > 104) return uvec4(0xFFFFFFFFu); // saturate: above 2⁶⁴ J
+    uint word = uint(shift) / 32u, bit = uint(shift) % 32u;
+    uint low = mantissa << bit, high = bit == 0u ? 0u : mantissa >> (32u - bit);
+    uvec4 r = uvec4(0u);
+    r[word] = low;
+    if (word < 3u) r[word + 1u] = high;
+    return r;
+}
+
+// The 128-bit fixed-point sum as a float (J): the same rounding for the same sum.
+float fromFixed128(uvec4 v) {
+    return ldexp(float(v.w), 32) + float(v.z) + ldexp(float(v.y), -32) + ldexp(float(v.x), -64);
+}
+
+// Exact fixed-order tree sum of two 128-bit values per invocation; invocation 0 gets the totals.
+void groupExactTotal(inout uvec4 a, inout uvec4 b) {
+    uint i = gl_LocalInvocationID.x;
+    s_exact[2u * i] = a;
+    s_exact[2u * i + 1u] = b;
+    barrier();
+    for (uint half_ = GLC_WORKGROUP_SIZE / 2u; half_ > 0u; half_ /= 2u) {
+        if (i < half_) {
+            s_exact[2u * i] = add128(s_exact[2u * i], s_exact[2u * (i + half_)]);
+            s_exact[2u * i + 1u] = add128(s_exact[2u * i + 1u], s_exact[2u * (i + half_) + 1u]);
+        }
+        barrier();
+    }
+    a = s_exact[0];
+    b = s_exact[1];
+    barrier();
+}
 
 // Fixed-order tree sum of one vec4 per invocation; every invocation gets the group's total.
 vec4 groupTotal(vec4 v) {
@@ -131,20 +192,38 @@ void sumTerms() {
     vec4 acc = vec4(0.0);
     for (uint i = first; i < u_nodeCount; i += stride) acc += nodeTerms(i);
     for (uint s = first; s < u_springCount; s += stride) acc += springTerms(s);
+    // The contacts' energy and magnitude, exactly (the lists' order varies between runs).
+    uvec4 contactEnergy = uvec4(0u), contactMagnitude = uvec4(0u);
     if (u_contacts != 0u) {
         uint vertexFace = storedCount(GLC_LIST_VERTEX_FACE), edgeEdge = storedCount(GLC_LIST_EDGE_EDGE);
-        for (uint k = first; k < vertexFace; k += stride) acc += vertexFaceTerms(k);
-        for (uint k = first; k < edgeEdge; k += stride) acc += edgeEdgeTerms(k);
+        for (uint k = first; k < vertexFace + edgeEdge; k += stride) {
+            vec4 t = k < vertexFace ? vertexFaceTerms(k) : edgeEdgeTerms(k - vertexFace);
+            contactEnergy = add128(contactEnergy, toFixed128(t.x));
+            contactMagnitude = add128(contactMagnitude, toFixed128(t.y));
+        }
     }
     vec4 total = groupTotal(acc);
-    if (gl_LocalInvocationID.x == 0u) g_guard.partials[gl_WorkGroupID.x] = total;
+    groupExactTotal(contactEnergy, contactMagnitude);
+    if (gl_LocalInvocationID.x == 0u) {
+        g_guard.partials[gl_WorkGroupID.x] = total;
+        g_guard.contactPartials[2u * gl_WorkGroupID.x] = contactEnergy;
+        g_guard.contactPartials[2u * gl_WorkGroupID.x + 1u] = contactMagnitude;
+    }
 }
 
 void decide() {
     vec4 acc = vec4(0.0);
-    for (uint k = gl_LocalInvocationID.x; k < GLC_ENERGY_GROUPS; k += GLC_WORKGROUP_SIZE) acc += g_guard.partials[k];
+    uvec4 contactEnergy = uvec4(0u), contactMagnitude = uvec4(0u);
+    for (uint k = gl_LocalInvocationID.x; k < GLC_ENERGY_GROUPS; k += GLC_WORKGROUP_SIZE) {
+        acc += g_guard.partials[k];
+        contactEnergy = add128(contactEnergy, g_guard.contactPartials[2u * k]);
+        contactMagnitude = add128(contactMagnitude, g_guard.contactPartials[2u * k + 1u]);
+    }
     vec4 total = groupTotal(acc);
+    groupExactTotal(contactEnergy, contactMagnitude);
     if (gl_LocalInvocationID.x != 0u) return;
+    float contact = fromFixed128(contactEnergy);
+    total += vec4(contact, fromFixed128(contactMagnitude), 0.0, contact);
     float energy = total.x, magnitude = total.y, kinetic = total.z;
     g_guard.lastKinetic = kinetic;
     g_guard.lastContact = total.w;

@@ -55,7 +55,7 @@ static_assert(sizeof(GpuCollisionCounters) == 8 * GLC_LIST_COUNT + 4 * GLC_STAT_
 static_assert(offsetof(GpuCollisionCounters, lists) == 0);
 static_assert(offsetof(GpuCollisionCounters, stats) == 8 * GLC_LIST_COUNT);
 static_assert(offsetof(GpuEnergyGuard, partials) == 64);
-static_assert(sizeof(GpuEnergyGuard) == 64 + 16 * GLC_ENERGY_GROUPS);
+static_assert(sizeof(GpuEnergyGuard) == 64 + 16 * GLC_ENERGY_GROUPS + 32 * GLC_ENERGY_GROUPS);
 static_assert(sizeof(GpuHealth) == 16);
 static_assert(offsetof(GpuHealth, firstBadNode) == 0);
 static_assert(offsetof(GpuHealth, badSubstep) == 4);
