@@ -249,7 +249,8 @@ TEST(IntersectionFreeGl, TheSameSceneRunsTheSameTwice) {
         ASSERT_EQ(first.readPositions(), second.readPositions()) << "frame " << frame;
         if (a.energyGuardContact > 0.0) ++framesWithContactEnergy;
     }
-    EXPECT_GT(framesWithContactEnergy, 10u) << "the cloth must lie in contact with itself: the sums must have terms";
+    EXPECT_GT(framesWithContactEnergy, 10u)
+        << "the cloth must lie in contact with itself: the sums must have terms";
 }
 
 // Randomised drops: small tet boxes and a cloth thrown at each other fast (6 m/s), onto the
