@@ -2,6 +2,13 @@
 
 #include "cpu/radial_library.hpp"
 
+#include <glcollide/error.hpp>
+
+#include <glm/vector_relational.hpp>
+
+#include <algorithm>
+#include <string>
+
 namespace glcollide::cpu {
 
 std::vector<std::uint32_t> radialPositiveMask(const std::vector<std::uint32_t>& faceIndices,
@@ -48,6 +55,45 @@ std::vector<std::uint8_t> radialFreeFaces(const std::vector<std::uint32_t>& face
         free[f] = meets ? 0 : 1;
     }
     return free;
+}
+
+std::vector<RadialFacePair> radialViolatedPairs(const std::vector<std::uint32_t>& faceIndices,
+                                                std::size_t realFaces,
+                                                const std::vector<glm::vec3>& positions) {
+    const std::size_t faces = faceIndices.size() / 3;
+    const auto corner = [&](std::size_t f, int k) {
+        return faceIndices[3 * f + static_cast<std::size_t>(k)];
+    };
+    const auto sharesNode = [&](std::size_t f, std::size_t g) {
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                if (corner(f, i) == corner(g, j)) return true;
+        return false;
+    };
+    // Closed boxes: a pair whose boxes do not touch cannot intersect (touching counts).
+    std::vector<glm::vec3> lo(faces), hi(faces);
+    for (std::size_t f = 0; f < faces; ++f) {
+        lo[f] = hi[f] = positions[corner(f, 0)];
+        for (int k = 1; k < 3; ++k) {
+            lo[f] = glm::min(lo[f], positions[corner(f, k)]);
+            hi[f] = glm::max(hi[f], positions[corner(f, k)]);
+        }
+    }
+    std::vector<RadialFacePair> violated;
+    for (std::size_t g = realFaces; g < faces; ++g) // a ghost face against every face before it
+        for (std::size_t f = 0; f < g; ++f) {
+            if (glm::any(glm::lessThan(hi[f], lo[g])) || glm::any(glm::lessThan(hi[g], lo[f]))) continue;
+            if (sharesNode(f, g)) continue;
+            const bool hit = shader::glcTriTriExact(positions[corner(f, 0)], positions[corner(f, 1)],
+                                                    positions[corner(f, 2)], positions[corner(g, 0)],
+                                                    positions[corner(g, 1)], positions[corner(g, 2)]);
+            if (shader::glcExactFailed)
+                throw Error("radialViolatedPairs: the exact test could not decide faces " +
+                            std::to_string(f) + " and " + std::to_string(g));
+            if (hit) violated.push_back({static_cast<std::uint32_t>(f), static_cast<std::uint32_t>(g)});
+        }
+    std::sort(violated.begin(), violated.end());
+    return violated;
 }
 
 } // namespace glcollide::cpu

@@ -5,6 +5,7 @@
 #include <glm/vec3.hpp>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -28,5 +29,22 @@ std::vector<std::uint8_t> radialFreeFaces(const std::vector<std::uint32_t>& face
                                           const std::vector<glm::vec3>& x0, const std::vector<glm::vec3>& x1,
                                           const std::vector<std::uint32_t>& faceObserver,
                                           const std::vector<glm::vec3>& observers);
+
+/// A face pair of a closed surface made of real and ghost faces: indices into the concatenation of
+/// the real faces and then the ghost faces (face f >= realFaces is ghost face f - realFaces).
+using RadialFacePair = std::array<std::uint32_t, 2>;
+
+/// Violated pairs (issue 24; decision 0025, "The premise without a winding-number pass"): at one
+/// state, the pairs of a real and a ghost face, or of two ghost faces, of one surface closed by
+/// ghost triangles that intersect (the engine's exact test, glcTriTriExact) and share no node. The
+/// theorem's premise needs the closed surface embedded at the start of the substep; the engine's
+/// TriTri checks the real pairs, and this the pairs with a ghost face. One such pair and the
+/// surface's observer must not cull in that substep. `faceIndices`: 3 per face, real faces first
+/// (`realFaces` of them), then the ghost faces; `positions`: real nodes, then ghost nodes. Brute
+/// force with a box test first; sorted, each pair (lower, higher) once. Throws glcollide::Error
+/// when the exact test cannot decide a pair (glcExactFailed).
+std::vector<RadialFacePair> radialViolatedPairs(const std::vector<std::uint32_t>& faceIndices,
+                                                std::size_t realFaces,
+                                                const std::vector<glm::vec3>& positions);
 
 } // namespace glcollide::cpu
