@@ -64,6 +64,15 @@ void addForce(uint node, vec3 f) {
     if (q.z != 0) atomicAdd(g_contactForces[node].z, q.z);
 }
 
+// A contact's force F on side A, spread over its four nodes by their signed weights. Returns 1.
+uint addContactForce(uvec4 n, vec4 a, vec3 F) {
+    addForce(n.x, a.x * F);
+    addForce(n.y, a.y * F);
+    addForce(n.z, a.z * F);
+    addForce(n.w, a.w * F);
+    return 1u;
+}
+
 // Normal force magnitude: penalty on the depth, damping on the normal speed (separating > 0),
 // never pulling, never above the cap.
 float normalForce(float depth, float normalSpeed) {
@@ -143,11 +152,7 @@ uint respond(uvec4 n, vec4 a, vec3 u, float depth) {
             F += frictionForce(vAfter - dot(vAfter, u) * u, inelastic + penalty, perSpeed);
         }
         if (F == vec3(0.0)) return 0u;
-        addForce(n.x, a.x * F);
-        addForce(n.y, a.y * F);
-        addForce(n.z, a.z * F);
-        addForce(n.w, a.w * F);
-        return 1u;
+        return addContactForce(n, a, F);
     }
     if (bridson) {
         if (!acting) return 0u;                 // separating at the target speed or faster: no push
@@ -158,11 +163,7 @@ uint respond(uvec4 n, vec4 a, vec3 u, float depth) {
     if (!(f > 0.0)) return 0u;
     vec3 F = f * u;
     if (friction) F += frictionForce(vRel - vn * u, f, perSpeed);
-    addForce(n.x, a.x * F);
-    addForce(n.y, a.y * F);
-    addForce(n.z, a.z * F);
-    addForce(n.w, a.w * F);
-    return 1u;
+    return addContactForce(n, a, F);
 }
 
 #endif

@@ -159,6 +159,17 @@ struct Solver {
         return vt * (-magnitude / speed);
     }
 
+    // contact_force.glsl's addContactForce: F on side A, spread by the signed weights.
+    bool addContactForce(const std::array<std::uint32_t, 4>& n, const std::array<double, 4>& a,
+                         const glm::dvec3& F) {
+        for (std::size_t i = 0; i < 4; ++i) {
+            out.forces[n[i]] += a[i] * F;
+            ++out.contributions[n[i]];
+        }
+        ++out.contacts;
+        return true;
+    }
+
     // contact_force.glsl's respond.
     bool respond(const std::array<std::uint32_t, 4>& n, const std::array<double, 4>& a, const glm::dvec3& u,
                  double depth) {
@@ -201,12 +212,7 @@ struct Solver {
                 F += frictionForce(vAfter - glm::dot(vAfter, u) * u, inelastic + penalty, perSpeed);
             }
             if (F == glm::dvec3(0.0)) return false;
-            for (std::size_t i = 0; i < 4; ++i) {
-                out.forces[n[i]] += a[i] * F;
-                ++out.contributions[n[i]];
-            }
-            ++out.contacts;
-            return true;
+            return addContactForce(n, a, F);
         }
         if (bridson) {
             if (!active) return false;
@@ -217,12 +223,7 @@ struct Solver {
         if (!(f > 0.0)) return false;
         glm::dvec3 F = f * u;
         if (friction) F += frictionForce(vRel - vn * u, f, perSpeed);
-        for (std::size_t i = 0; i < 4; ++i) {
-            out.forces[n[i]] += a[i] * F;
-            ++out.contributions[n[i]];
-        }
-        ++out.contacts;
-        return true;
+        return addContactForce(n, a, F);
     }
 };
 

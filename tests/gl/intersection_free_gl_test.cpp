@@ -161,6 +161,23 @@ TEST(IntersectionFreeGl, AnIntersectingStartIsPushedApart) {
     EXPECT_EQ(exactIntersectingPairs(engine), 0u);
 }
 
+// Steps `frames` frames checking that no frame gains energy; counts the substeps in which the
+// energy guard acted after frame `restFrom` (the bodies should be at rest by then).
+struct RestingRun {
+    std::uint32_t guardActionsAtRest = 0;
+    EnergyReport end;
+};
+RestingRun runToRest(Engine& engine, int frames, int restFrom) {
+    RestingRun run;
+    run.end = engine.energy();
+    for (int frame = 1; frame <= frames; ++frame) {
+        engine.step();
+        run.end = expectNoEnergyGain(engine, run.end, frame);
+        if (frame > restFrom) run.guardActionsAtRest += engine.lastStep().collision.energyGuardSubsteps;
+    }
+    return run;
+}
+
 // Restitution is for impacts, not for resting contact (decision 0024): a tet box landing on a
 // bouncy ground (e = 0.5) under implicit Euler at one substep per frame bounces, then rests; once
 // at rest the energy guard has nothing to take out. The band's response acts before the solve, on
@@ -177,15 +194,9 @@ TEST(IntersectionFreeGl, RestingOnABouncyGroundNeedsNoGuard) {
         {"name": "box", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]},
          "transform": {"translate": [0, 0.07, 0]}, "mass": 0.5, "springs": {"stiffness": 300}}]})";
     Engine engine(parseScene(json, ".", "bouncy ground"));
-    EnergyReport energy = engine.energy();
-    std::uint32_t actedAtRest = 0;
-    for (int frame = 1; frame <= 120; ++frame) {
-        engine.step();
-        energy = expectNoEnergyGain(engine, energy, frame);
-        if (frame > 60) actedAtRest += engine.lastStep().collision.energyGuardSubsteps;
-    }
-    EXPECT_EQ(actedAtRest, 0u) << "the guard acted in the last 60 frames, with the boxes at rest";
-    EXPECT_LT(energy.kinetic, 1e-6) << "at rest after 2 s";
+    const RestingRun run = runToRest(engine, 120, 60);
+    EXPECT_EQ(run.guardActionsAtRest, 0u) << "the guard acted in the last 60 frames, with the boxes at rest";
+    EXPECT_LT(run.end.kinetic, 1e-6) << "at rest after 2 s";
 }
 
 // Under implicit Euler nothing may change the velocity after the solve (decision 0024, "Velocity
@@ -207,15 +218,10 @@ TEST(IntersectionFreeGl, ABoxRestingUnderImplicitEulerNeedsNoGuard) {
          "transform": {"translate": [0, 0.2, 0], "rotate_deg": [0, 10, 0]}, "mass": 0.5,
          "springs": {"stiffness": 2000, "damping": 0.01}}]})";
     Engine engine(parseScene(json, ".", "box at rest"));
-    EnergyReport energy = engine.energy();
-    std::uint32_t actedAtRest = 0;
-    for (int frame = 1; frame <= 60; ++frame) {
-        engine.step();
-        energy = expectNoEnergyGain(engine, energy, frame);
-        if (frame > 20) actedAtRest += engine.lastStep().collision.energyGuardSubsteps;
-    }
-    EXPECT_EQ(actedAtRest, 0u) << "the guard acted in frames 21-60, with the box at rest on the ground";
-    EXPECT_LT(energy.kinetic, 1e-4) << "at rest after 1 s";
+    const RestingRun run = runToRest(engine, 60, 20);
+    EXPECT_EQ(run.guardActionsAtRest, 0u)
+        << "the guard acted in frames 21-60, with the box at rest on the ground";
+    EXPECT_LT(run.end.kinetic, 1e-4) << "at rest after 1 s";
 }
 
 // The same scene runs the same twice (decision 0024, "Energy guard": deterministic). The feature

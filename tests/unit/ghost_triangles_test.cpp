@@ -6,6 +6,7 @@
 
 #include "model/ghost_triangles.hpp"
 #include "scene/scene_detail.hpp"
+#include "tube_mesh.hpp"
 
 #include <gtest/gtest.h>
 
@@ -139,33 +140,6 @@ std::size_t pieces(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& e
     return roots.size();
 }
 
-/// A tube (a cylinder without caps) around +Z: `ring` nodes per ring, `rings` rings from z = 0 to
-/// `length`, radius `radius`; node (i, j) = j · ring + i. Faces outward (or inward when `inward`).
-detail::SurfaceMesh tube(std::uint32_t ring, std::uint32_t rings, double radius, double length, bool inward) {
-    detail::SurfaceMesh m;
-    for (std::uint32_t j = 0; j < rings; ++j)
-        for (std::uint32_t i = 0; i < ring; ++i) {
-            const double angle = 2.0 * std::numbers::pi * i / ring;
-            m.positions.emplace_back(radius * std::cos(angle), radius * std::sin(angle),
-                                     length * j / (rings - 1));
-        }
-    for (std::uint32_t j = 0; j + 1 < rings; ++j)
-        for (std::uint32_t i = 0; i < ring; ++i) {
-            // (i, j) -> (i + 1, j) runs along +angle, (i, j) -> (i, j + 1) along +Z: their cross
-            // product points away from the axis.
-            const std::uint32_t a = j * ring + i, b = j * ring + (i + 1) % ring;
-            const std::uint32_t c = b + ring, d = a + ring;
-            if (inward) {
-                m.faces.push_back({a, c, b});
-                m.faces.push_back({a, d, c});
-            } else {
-                m.faces.push_back({a, b, c});
-                m.faces.push_back({a, c, d});
-            }
-        }
-    return m;
-}
-
 /// The n × n cloth of side 1 m without the faces inside the square [lo, hi]² (a hole of whole cells).
 detail::SurfaceMesh clothWithSquareHole(int n, double lo, double hi) {
     const Body cloth = detail::generateCloth(1.0, 1.0, n, n, false, false);
@@ -256,7 +230,7 @@ TEST(GhostLoops, IndependentOfFaceOrderAndFirstCorner) {
 TEST(GhostTriangles, TubeIsClosedAndOrientedAfterFilling) {
     const std::uint32_t ring = 12, rings = 5;
     const double radius = 0.3, length = 1.1;
-    const detail::SurfaceMesh m = tube(ring, rings, radius, length, false);
+    const detail::SurfaceMesh m = test::tube(ring, rings, radius, length, false);
     const GhostTriangles g = model::ghostTriangles(m.faces, m.positions, {kInf, kInf});
     ASSERT_EQ(g.loops.size(), 2u);
     for (const BoundaryLoop& loop : g.loops) {
@@ -298,7 +272,7 @@ TEST(GhostTriangles, InwardTubeEnclosesNegativeVolume) {
     // surface encloses minus the prism's volume (the ghosts follow the real faces, never a fixed
     // direction).
     const std::uint32_t ring = 9, rings = 3;
-    const detail::SurfaceMesh m = tube(ring, rings, 0.5, 0.7, true);
+    const detail::SurfaceMesh m = test::tube(ring, rings, 0.5, 0.7, true);
     const GhostTriangles g = model::ghostTriangles(m.faces, m.positions, {kInf, kInf});
     ASSERT_EQ(g.faces.size(), 2u * ring);
     const auto all = withGhostFaces(m.faces, g);

@@ -7,6 +7,7 @@
 #include "cpu/oracle/exact_tri_tri.hpp"
 #include "cpu/radial_twin.hpp"
 #include "model/ghost_triangles.hpp"
+#include "tube_mesh.hpp"
 
 #include <gtest/gtest.h>
 
@@ -37,19 +38,9 @@ struct ClosedTube {
 
 ClosedTube closedTube(std::uint32_t ring, std::uint32_t rings, double radius, double length) {
     ClosedTube t;
-    std::vector<model::Triangle> faces;
-    for (std::uint32_t j = 0; j < rings; ++j)
-        for (std::uint32_t i = 0; i < ring; ++i) {
-            const double angle = 2.0 * std::numbers::pi * i / ring;
-            t.realPositions.emplace_back(radius * std::cos(angle), radius * std::sin(angle),
-                                         length * j / (rings - 1));
-        }
-    for (std::uint32_t j = 0; j + 1 < rings; ++j)
-        for (std::uint32_t i = 0; i < ring; ++i) {
-            const std::uint32_t a = j * ring + i, b = j * ring + (i + 1) % ring, c = b + ring, d = a + ring;
-            faces.push_back({a, b, c});
-            faces.push_back({a, c, d});
-        }
+    const detail::SurfaceMesh m = test::tube(ring, rings, radius, length);
+    t.realPositions = m.positions;
+    std::vector<model::Triangle> faces(m.faces.begin(), m.faces.end());
     model::GhostSettings fillAll;
     fillAll.maxPerimeter = std::numeric_limits<double>::infinity();
     t.ghosts = model::ghostTriangles(faces, t.realPositions, fillAll);
