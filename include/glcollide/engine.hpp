@@ -149,9 +149,13 @@ struct CollisionStats {
     /// Radial culling (collision.culling "radial", decision 0025): substeps of the frame that culled
     /// (their start was known intersection-free); of the last substep that culled, the faces with an
     /// observer, those not proven positive, the free ones, and the candidate pairs TriTri and the
-    /// feature pairs the CCD left out; over the frame, the pairs left out.
+    /// feature pairs the CCD left out; over the frame, the pairs left out. Ghost triangles
+    /// (docs/culling.md): the ghost faces that close observed open surfaces; of the last substep
+    /// that culled, the surfaces a ghost face crossed at its start (nothing of them freed), and
+    /// the frame's substeps with such a surface.
     std::uint32_t radialSubsteps = 0;
     std::uint32_t radialObservedFaces = 0, radialNonPositiveFaces = 0, radialFreeFaces = 0;
+    std::uint32_t radialGhostFaces = 0, radialViolatedSurfaces = 0, radialSubstepsViolated = 0;
     std::uint32_t radialCulledTriTri = 0, radialCulledCcd = 0;
     std::uint64_t radialCulledTriTriInFrame = 0, radialCulledCcdInFrame = 0;
 };

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <filesystem>
 #include <string_view>
 #include <optional>
@@ -150,6 +151,13 @@ struct CollisionSettings {
     Detection detection = Detection::Discrete;
     CcdSettings ccd; ///< used by Detection::Continuous
     Culling culling = Culling::None;
+    /// Radial culling (docs/culling.md, "Ghost triangles"): an object whose surface is open gets an
+    /// observer when fans of ghost triangles over its boundary loops close it; a loop is closed when
+    /// its perimeter (m) is at most this. Ghosts only take part in the classification (they never
+    /// collide), so a large fan costs culling, never answers. Range >= 0 (0: no ghosts, open objects
+    /// are not culled); default +infinity (every closed, manifold, unpinched loop). Suggested: about
+    /// 1.5 × the perimeter of the largest opening that should be closed (a cuff, an ear hole).
+    double ghostMaxPerimeter = std::numeric_limits<double>::infinity();
 };
 
 /// How a substep advances the nodes (docs/integration.md).

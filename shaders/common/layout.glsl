@@ -99,13 +99,25 @@
                                           // committed end (the host moved it between frames; RadialHostCheck)
 #define GLC_BIND_CCD_VERTEX_FACE_TESTS 64 // uint[]: GLC_LIST_CCD_VERTEX_FACE_TESTS
 #define GLC_BIND_CCD_EDGE_EDGE_TESTS 65   // uint[]: GLC_LIST_CCD_EDGE_EDGE_TESTS
+// Ghost triangles of radial culling (docs/culling.md, "Ghost triangles"): classified faces past the
+// real ones. A classified face f >= the real face count is ghost face f - real faces; a node index
+// >= the node count is ghost node index - nodes.
+#define GLC_BIND_RADIAL_GHOST_FACES 66     // uint[3 * ghost faces]: each ghost face's three node indices
+#define GLC_BIND_RADIAL_GHOST_LOOPS 67     // uint[ghost nodes + 1 + loop nodes]: CSR offsets of each ghost
+                                           // node's loop (counted from the list's start), then the list
+#define GLC_BIND_RADIAL_GHOST_POSITIONS 68 // vec4[2 * ghost nodes]: each ghost node at t = 0, then at t = 1
+                                           // (the mean of its loop's nodes; RadialGhostNodes)
+#define GLC_BIND_RADIAL_OBSERVER_FACES 69  // uvec4[observers]: first real face, real faces, first ghost face
+                                           // (classified index), ghost faces of each observer's surface
+#define GLC_BIND_RADIAL_VIOLATED 70        // uint[observers]: 1 when a ghost face of the surface crosses
+                                           // another of its faces at x0 (RadialViolated): nothing is free
 #define GLC_RADIAL_NO_OBSERVER 0xffffffffu
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 66
+#define GLC_BINDING_COUNT 71
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -236,7 +248,8 @@ struct GpuListCounter {
 #define GLC_STAT_RADIAL_CULLED_CCD 14     // radial culling: feature pairs the CCD left out (a face is free)
 #define GLC_STAT_RADIAL_NON_POSITIVE 15  // radial culling: observed faces not proven positive over the substep
 #define GLC_STAT_RADIAL_FREE 16          // radial culling: free faces (positive, footprint meets no non-positive one)
-#define GLC_STAT_COUNT 17
+#define GLC_STAT_RADIAL_VIOLATED 17      // radial culling: surfaces whose ghost faces cross their faces at x0
+#define GLC_STAT_COUNT 18
 
 struct GpuCollisionCounters {
     GpuListCounter lists[GLC_LIST_COUNT]; // indexed by GLC_LIST_*

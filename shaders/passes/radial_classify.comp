@@ -6,7 +6,9 @@
 // bound that holds whatever the compiler does (shaders/common/radial_sign.glsl); not proven means
 // "may collide", never "negative". Output: bit f % 32 of word f / 32 of GLC_BIND_RADIAL_POSITIVE,
 // set by atomicOr (the host clears the mask first): the result does not depend on the order.
-// A face without an observer (GLC_RADIAL_NO_OBSERVER) is never positive.
+// A face without an observer (GLC_RADIAL_NO_OBSERVER) is never positive. The classified faces are
+// the real faces, then the ghost faces that close observed surfaces' holes (common/radial_ghost.glsl):
+// one invocation each, ghost nodes read from RadialGhostNodes' positions.
 // Also, for RadialFree, every observed face's footprint cone (common/radial_footprint.glsl) and
 // the list of observed faces not proven positive (appended in any order: RadialFree only asks
 // whether some listed cone meets a face's, which does not depend on the order).
@@ -26,16 +28,18 @@ layout(std430, binding = GLC_BIND_RADIAL_POSITIVE) buffer RadialPositiveBuf { ui
 layout(std430, binding = GLC_BIND_RADIAL_CONES) writeonly buffer RadialConesBuf { vec4 g_cones[]; };
 layout(std430, binding = GLC_BIND_RADIAL_NONPOSITIVE) buffer RadialNonPositiveBuf { uint g_nonPositive[]; };
 
-uniform uint u_faceCount;
+#include "common/radial_ghost.glsl"
+
+uniform uint u_faceCount; // classified faces: real, then ghost
 
 void main() {
     uint face = globalIndex();
     if (face >= u_faceCount) return;
     uint observer = g_faceObserver[face];
     if (observer == GLC_RADIAL_NO_OBSERVER) return;
-    uvec3 n = faceNodes(face);
-    vec3 p0 = g_start[n.x].xyz, p1 = g_start[n.y].xyz, p2 = g_start[n.z].xyz;
-    vec3 p0End = g_end[n.x].xyz, p1End = g_end[n.y].xyz, p2End = g_end[n.z].xyz;
+    uvec3 n = glcRadialFaceNodes(face);
+    vec3 p0 = glcRadialStart(n.x), p1 = glcRadialStart(n.y), p2 = glcRadialStart(n.z);
+    vec3 p0End = glcRadialEnd(n.x), p1End = glcRadialEnd(n.y), p2End = glcRadialEnd(n.z);
     vec3 q = g_observers[2u * observer].xyz, qEnd = g_observers[2u * observer + 1u].xyz;
     g_cones[face] = glcRadialFootprint(p0, p1, p2, q, p0End, p1End, p2End, qEnd);
     if (glcRadialPositive(p0, p1, p2, q, p0End, p1End, p2End, qEnd))

@@ -6,7 +6,9 @@
 // observer's surface during the substep; common/radial_cull.glsl leaves its pairs out of the exact
 // tests. Brute force over the non-positive list (its length is the culling's cost; a bin of cone
 // axes would bound it). Sets bit f of words 1.. of the free mask (atomicOr into a cleared mask) and
-// word 0 = 1: the mask holds for this substep. CPU twin: cpu::radialFreeFaces.
+// word 0 = 1: the mask holds for this substep. Ghost faces are in the list (they bound where the
+// surface may fold) but are never free themselves; a surface that RadialViolated marked frees
+// nothing. CPU twin: cpu::radialFreeFaces.
 #include "common/layout.glsl"
 #include "common/lists.glsl" // g_counters: the statistics
 
@@ -19,8 +21,9 @@ layout(std430, binding = GLC_BIND_RADIAL_POSITIVE) readonly buffer RadialPositiv
 layout(std430, binding = GLC_BIND_RADIAL_CONES) readonly buffer RadialConesBuf { vec4 g_cones[]; };
 layout(std430, binding = GLC_BIND_RADIAL_NONPOSITIVE) readonly buffer RadialNonPositiveBuf { uint g_nonPositive[]; };
 layout(std430, binding = GLC_BIND_RADIAL_FREE) buffer RadialFreeBuf { uint g_free[]; };
+layout(std430, binding = GLC_BIND_RADIAL_VIOLATED) readonly buffer RadialViolatedBuf { uint g_violated[]; };
 
-uniform uint u_faceCount;
+uniform uint u_faceCount; // real faces (the non-positive list may hold ghost faces past them)
 
 void main() {
     uint face = globalIndex();
@@ -31,6 +34,7 @@ void main() {
     if (face >= u_faceCount) return;
     if ((g_positive[face / 32u] & (1u << (face % 32u))) == 0u) return;
     uint observer = g_faceObserver[face];
+    if (g_violated[observer] != 0u) return; // a ghost crosses the surface at x0: no premise
     vec4 cone = g_cones[face];
     uint count = g_nonPositive[0];
     for (uint k = 0u; k < count; ++k) {

@@ -14,7 +14,6 @@
 #include "gl/program.hpp"
 #include "gl/setup_stats_sink.hpp"
 #include "model/flat_model.hpp"
-#include "model/radial_surfaces.hpp"
 #include "passes/collision_detection.hpp"
 #include "passes/contact_response.hpp"
 #include "passes/dynamics_passes.hpp"
@@ -57,19 +56,6 @@ std::vector<glm::dvec3> unpackNodes(const gl::Buffer& buffer, std::uint32_t coun
     return out;
 }
 
-/// Radial culling's observers (decision 0025): one per object whose surface is closed, consistently
-/// oriented and connected (the theorem's premise); the other objects' faces are never culled.
-passes::RadialCullingConfig radialCullingConfig(const model::FlatModel& model) {
-    passes::RadialCullingConfig config;
-    config.faceObserver.assign(model.faceCount(), passes::kNoRadialObserver);
-    for (const model::ObjectRange& r : model.objects) {
-        if (!model::isClosedOrientedConnected(model.faceIndices, r.firstFace, r.faceCount)) continue;
-        const auto observer = static_cast<std::uint32_t>(config.surfaces.size());
-        config.surfaces.push_back({r.firstNode, r.nodeCount});
-        for (std::uint32_t f = 0; f < r.faceCount; ++f) config.faceObserver[r.firstFace + f] = observer;
-    }
-    return config;
-}
 } // namespace
 
 struct Engine::Impl {
@@ -380,7 +366,8 @@ void Engine::Impl::makePass(engine::Stage stage) {
         config.selfCollisions = plan.selfCollisions;
         config.settings = plan.collision;
         config.substepsPerFrame = static_cast<std::uint32_t>(substeps.substeps);
-        if (plan.collision.culling == Culling::Radial) config.radial = radialCullingConfig(model);
+        if (plan.collision.culling == Culling::Radial)
+            config.radial = passes::radialCullingConfig(model, plan.collision.ghostMaxPerimeter);
         collision.emplace(config, model);
         // Robust precision promises the oracle's answers; check that this device delivers them
         // before relying on it (once per device, driver and shader; docs/narrow-phase.md).
@@ -440,10 +427,13 @@ void addSubstepCounts(const passes::CollisionCounts& counts, CollisionStats& c) 
     c.substepsWithIntersections += counts.intersections > 0 ? 1u : 0u;
     c.ccdTangledPairs = counts.ccdTangled;
     c.radialObservedFaces = counts.radialObserved;
+    c.radialGhostFaces = counts.radialGhostFaces;
     if (counts.radialOn) {
         c.radialSubsteps += 1;
         c.radialNonPositiveFaces = counts.radialNonPositive;
         c.radialFreeFaces = counts.radialFree;
+        c.radialViolatedSurfaces = counts.radialViolated;
+        c.radialSubstepsViolated += counts.radialViolated > 0 ? 1u : 0u;
         c.radialCulledTriTri = counts.radialCulledTriTri;
         c.radialCulledCcd = counts.radialCulledCcd;
         c.radialCulledTriTriInFrame += counts.radialCulledTriTri;

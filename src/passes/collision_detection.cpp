@@ -199,10 +199,14 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
     m_counts.ccdEarliestToi = std::bit_cast<float>(l.stat(GLC_STAT_CCD_EARLIEST_TOI));
     m_counts.ccdTangled = l.stat(GLC_STAT_CCD_TANGLED);
     m_counts.radialOn = m_radialOn;
-    if (m_radial) m_counts.radialObserved = m_radial->observedFaces();
+    if (m_radial) {
+        m_counts.radialObserved = m_radial->observedFaces();
+        m_counts.radialGhostFaces = m_radial->ghostFaces();
+    }
     if (m_radialOn) {
         m_counts.radialNonPositive = l.stat(GLC_STAT_RADIAL_NON_POSITIVE);
         m_counts.radialFree = l.stat(GLC_STAT_RADIAL_FREE);
+        m_counts.radialViolated = l.stat(GLC_STAT_RADIAL_VIOLATED);
         m_counts.radialCulledTriTri = l.stat(GLC_STAT_RADIAL_CULLED_TRI_TRI);
         m_counts.radialCulledCcd = l.stat(GLC_STAT_RADIAL_CULLED_CCD);
     }

@@ -83,6 +83,7 @@ struct CollisionCounts {
     /// proven positive and the free ones; candidate pairs TriTri and feature pairs the CCD left out.
     bool radialOn = false;
     std::uint32_t radialObserved = 0, radialNonPositive = 0, radialFree = 0;
+    std::uint32_t radialGhostFaces = 0, radialViolated = 0;
     std::uint32_t radialCulledTriTri = 0, radialCulledCcd = 0;
 };
 

@@ -11,20 +11,50 @@
 
 namespace glcollide::passes {
 
+namespace {
+/// The ghost faces, checked against the classified faces and the ghost nodes.
+const std::vector<std::uint32_t>& checkedGhostFaces(const std::vector<std::uint32_t>& faceObserver,
+                                                    const RadialGhostFaces& ghosts) {
+    const std::string kName = RadialClassifyPass::kName;
+    if (ghosts.faces.size() % 3 != 0 || ghosts.faces.size() / 3 > faceObserver.size())
+        throw Error(kName + ": " + std::to_string(ghosts.faces.size()) + " ghost face indices for " +
+                    std::to_string(faceObserver.size()) + " classified faces");
+    const std::uint64_t nodes = std::uint64_t{ghosts.nodeCount} + ghosts.ghostNodeCount;
+    for (std::size_t i = 0; i < ghosts.faces.size(); ++i)
+        if (ghosts.faces[i] >= nodes)
+            throw Error(kName + ": ghost face " + std::to_string(i / 3) + " names node " +
+                        std::to_string(ghosts.faces[i]) + " of " + std::to_string(nodes));
+    return ghosts.faces;
+}
+} // namespace
+
 RadialClassifyPass::RadialClassifyPass(const std::vector<std::uint32_t>& faceObserver,
-                                       std::uint32_t observerCount)
-    : m_faceCount(static_cast<std::uint32_t>(faceObserver.size())), m_observerCount(observerCount),
+                                       std::uint32_t observerCount, const RadialGhostFaces& ghosts)
+    : m_faceCount(static_cast<std::uint32_t>(faceObserver.size())),
+      m_realFaceCount(static_cast<std::uint32_t>(faceObserver.size() -
+                                                 checkedGhostFaces(faceObserver, ghosts).size() / 3)),
+      m_observerCount(observerCount),
+      // Without ghosts no node index may read the ghost positions, whatever the node count.
+      m_nodeLimit(ghosts.faces.empty() ? 0xffffffffu : ghosts.nodeCount),
       m_faceObserver(gl::makeBuffer("radialFaceObserver", faceObserver)),
       m_observers("radialObservers", std::size_t{2} * observerCount * sizeof(glm::vec4)),
       m_mask("radialPositive", ((m_faceCount + 31u) / 32u) * sizeof(std::uint32_t)),
       m_cones("radialCones", std::size_t{m_faceCount} * sizeof(glm::vec4)),
       m_nonPositive("radialNonPositive", (std::size_t{m_faceCount} + 1) * sizeof(std::uint32_t)),
+      m_ghostFaces(gl::makeBuffer("radialGhostFaces", ghosts.faces)),
+      m_ghostPositions("radialGhostPositions", std::size_t{2} * ghosts.ghostNodeCount * sizeof(glm::vec4)),
       m_program("radial_classify") {
     for (std::size_t f = 0; f < faceObserver.size(); ++f)
         if (faceObserver[f] != kNoRadialObserver && faceObserver[f] >= observerCount)
             throw Error(std::string(kName) + ": face " + std::to_string(f) + " names observer " +
                         std::to_string(faceObserver[f]) + " of " + std::to_string(observerCount));
     m_program.set("u_faceCount", m_faceCount);
+    setGhostUniforms(m_program);
+}
+
+void RadialClassifyPass::setGhostUniforms(const gl::ComputeProgram& program) const {
+    program.set("u_realFaceCount", m_realFaceCount);
+    program.set("u_nodeCount", m_nodeLimit);
 }
 
 void RadialClassifyPass::setObservers(const std::vector<RadialObserver>& observers) {
@@ -40,8 +70,8 @@ void RadialClassifyPass::setObservers(const std::vector<RadialObserver>& observe
 }
 
 void RadialClassifyPass::dispatch(const DeviceBuffers& b) {
-    if (b.faceCount != m_faceCount)
-        throw Error(std::string(kName) + ": built for " + std::to_string(m_faceCount) + " faces, given " +
+    if (b.faceCount != m_realFaceCount)
+        throw Error(std::string(kName) + ": built for " + std::to_string(m_realFaceCount) + " faces, given " +
                     std::to_string(b.faceCount));
     bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, kName, "predictedPositions");
@@ -52,6 +82,8 @@ void RadialClassifyPass::dispatch(const DeviceBuffers& b) {
 void RadialClassifyPass::dispatchOnBoundPositions() {
     m_faceObserver.bindStorage(GLC_BIND_RADIAL_FACE_OBSERVER);
     m_observers.bindStorage(GLC_BIND_RADIAL_OBSERVERS);
+    m_ghostFaces.bindStorage(GLC_BIND_RADIAL_GHOST_FACES);
+    m_ghostPositions.bindStorage(GLC_BIND_RADIAL_GHOST_POSITIONS);
     m_mask.fill32(0u);
     const std::uint32_t zero = 0;
     m_nonPositive.upload(0, sizeof zero, &zero);

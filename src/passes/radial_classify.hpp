@@ -25,20 +25,32 @@ struct RadialObserver {
 /// A face that no observer classifies (never positive): GLC_RADIAL_NO_OBSERVER.
 inline constexpr std::uint32_t kNoRadialObserver = 0xffffffffu;
 
+/// Ghost triangles classified after the real faces (docs/culling.md, "Ghost triangles"): the
+/// classified faces are the model's faces, then these. A node index >= `nodeCount` names ghost node
+/// (index - nodeCount), whose positions RadialGhostNodes writes into ghostPositions().
+struct RadialGhostFaces {
+    std::uint32_t nodeCount = 0;      ///< nodes of the model
+    std::uint32_t ghostNodeCount = 0; ///< ghost nodes
+    std::vector<std::uint32_t> faces; ///< 3 node indices per ghost face, in winding order
+};
+
 class RadialClassifyPass {
   public:
     static constexpr const char* kName = "RadialClassify";
-    /// `faceObserver`: per face, the index of its observer among `observerCount`, or
-    /// kNoRadialObserver. Throws Error for an index out of range.
-    RadialClassifyPass(const std::vector<std::uint32_t>& faceObserver, std::uint32_t observerCount);
+    /// `faceObserver`: per classified face (the model's faces, then the ghost faces), the index of
+    /// its observer among `observerCount`, or kNoRadialObserver. Throws Error for an index out of
+    /// range, fewer entries than ghost faces, or a ghost face naming a node past the ghost nodes.
+    RadialClassifyPass(const std::vector<std::uint32_t>& faceObserver, std::uint32_t observerCount,
+                       const RadialGhostFaces& ghosts = {});
 
     /// The observers' positions for the next dispatch (exactly `observerCount` of them).
     void setObservers(const std::vector<RadialObserver>& observers);
     /// Clears the mask and classifies every face over [positions, predictedPositions].
     void dispatch(const DeviceBuffers& buffers);
-    /// The same over the positions, predicted positions and faces bound now.
+    /// The same over the positions, predicted positions and faces bound now (and the ghost
+    /// positions RadialGhostNodes wrote).
     void dispatchOnBoundPositions();
-    /// Bit f % 32 of word f / 32: face f is proven positive.
+    /// Bit f % 32 of word f / 32: classified face f is proven positive.
     [[nodiscard]] std::vector<std::uint32_t> readMask() const;
     [[nodiscard]] const gl::Buffer& mask() const { return m_mask; }
     /// vec4 per face: the footprint cone (valid for observed faces).
@@ -48,11 +60,19 @@ class RadialClassifyPass {
     /// vec4[2 * observers]: start and end of each observer (setObservers or a GPU pass writes it).
     [[nodiscard]] const gl::Buffer& observers() const { return m_observers; }
     [[nodiscard]] const gl::Buffer& faceObserver() const { return m_faceObserver; }
+    /// uint[3 * ghost faces] (GLC_BIND_RADIAL_GHOST_FACES).
+    [[nodiscard]] const gl::Buffer& ghostFaces() const { return m_ghostFaces; }
+    /// vec4[2 * ghost nodes]: each ghost node at t = 0 and t = 1 (RadialGhostNodes writes it).
+    [[nodiscard]] const gl::Buffer& ghostPositions() const { return m_ghostPositions; }
+    /// Classified faces: the model's, then the ghosts.
     [[nodiscard]] std::uint32_t faceCount() const { return m_faceCount; }
+    [[nodiscard]] std::uint32_t realFaceCount() const { return m_realFaceCount; }
+    /// The uniforms of common/radial_ghost.glsl for `program`.
+    void setGhostUniforms(const gl::ComputeProgram& program) const;
 
   private:
-    std::uint32_t m_faceCount = 0, m_observerCount = 0;
-    gl::Buffer m_faceObserver, m_observers, m_mask, m_cones, m_nonPositive;
+    std::uint32_t m_faceCount = 0, m_realFaceCount = 0, m_observerCount = 0, m_nodeLimit = 0;
+    gl::Buffer m_faceObserver, m_observers, m_mask, m_cones, m_nonPositive, m_ghostFaces, m_ghostPositions;
     gl::ComputeProgram m_program;
 };
 

@@ -1,8 +1,10 @@
 #pragma once
 // RadialCulling — radial view-based culling (issue 24, decision 0025, docs/culling.md "Culling"):
-// the first stage of a substep's collision detection when the scene asks for it. Three
-// dispatches: RadialObservers (each observer is the centroid of its surface's nodes at x0 and at
-// x1), RadialClassify (positive faces, footprint cones, the non-positive list) and RadialFree (a
+// the first stage of a substep's collision detection when the scene asks for it. Its dispatches:
+// RadialObservers (each observer is the centroid of its surface's nodes at x0 and at x1), with
+// ghost triangles RadialGhostNodes (each ghost node the mean of its loop) and, after the
+// classification, RadialViolated (a ghost face crossing its surface at x0 voids the premise),
+// RadialClassify (positive faces, footprint cones, the non-positive list) and RadialFree (a
 // positive face whose cone meets no non-positive cone of its observer is free). TriTri and the
 // CCD at zero separation then leave out the pairs of a surface with a free face
 // (common/radial_cull.glsl): by the decision's theorem such a pair cannot intersect, so culling
@@ -10,28 +12,54 @@
 
 #include "gl/handles.hpp"
 #include "gl/program.hpp"
+#include "model/flat_model.hpp"
 #include "passes/collision/append_lists.hpp"
 #include "passes/device_buffers.hpp"
 #include "passes/pass_id.hpp"
 #include "passes/radial_classify.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace glcollide::passes {
 
-/// The nodes of one observer's surface: [firstNode, firstNode + nodeCount).
+/// One observer's surface: its real nodes [firstNode, firstNode + nodeCount) (their centroid is
+/// the observer), its real faces [firstFace, firstFace + faceCount) and its ghost faces
+/// [firstGhostFace, firstGhostFace + ghostFaceCount) (indices into the ghost faces, 0-based).
 struct RadialSurface {
     std::uint32_t firstNode = 0, nodeCount = 0;
+    std::uint32_t firstFace = 0, faceCount = 0;
+    std::uint32_t firstGhostFace = 0, ghostFaceCount = 0;
+};
+
+/// Ghost nodes and faces that close the observed surfaces' holes (docs/culling.md, "Ghost
+/// triangles"; model::ghostTriangles builds them). Ghost node g is the mean of its loop's nodes
+/// loopNodes[loopOffsets[g] .. loopOffsets[g + 1]); a ghost face's node index >= the model's node
+/// count names ghost node (index - node count).
+struct RadialGhosts {
+    std::uint32_t nodeCount = 0;            ///< the model's nodes
+    std::vector<std::uint32_t> loopOffsets; ///< ghost nodes + 1 entries (empty: no ghosts)
+    std::vector<std::uint32_t> loopNodes;
+    std::vector<std::uint32_t> faces;        ///< 3 per ghost face
+    std::vector<std::uint32_t> faceObserver; ///< per ghost face
 };
 
 /// Which faces culling may consider: per face its observer's index or kNoRadialObserver, and per
-/// observer its surface's nodes. The surface of an observer must be closed and consistently
-/// oriented (the theorem's premise); the engine gives one observer to each closed object.
+/// observer its surface. The surface of an observer — its real faces and ghost faces — must be
+/// closed, consistently oriented and connected (the theorem's premise); the engine gives one
+/// observer to each object so closed.
 struct RadialCullingConfig {
     std::vector<std::uint32_t> faceObserver;
     std::vector<RadialSurface> surfaces;
+    RadialGhosts ghosts;
 };
+
+/// The engine's observers (decision 0025): one per object of `model` whose surface is closed,
+/// consistently oriented and connected (the theorem's premise) by itself, or once fans of ghost
+/// triangles (model::ghostTriangles, at the model's positions) close its boundary loops of perimeter
+/// <= `ghostMaxPerimeter` m; the other objects' faces get no observer and are never culled.
+RadialCullingConfig radialCullingConfig(const model::FlatModel& model, double ghostMaxPerimeter);
 
 class RadialCullingPass {
   public:
@@ -44,9 +72,10 @@ class RadialCullingPass {
     /// Binds what the consumers read: the face → observer table, the surfaces' node ranges and
     /// the free mask (word 0: whether it holds for this substep).
     void bindForConsumers() const;
-    /// Observers, classification and free faces over [positions, predictedPositions] (bound at
-    /// GLC_BIND_NODE_POSITIONS, GLC_BIND_PREDICTED_POSITIONS, GLC_BIND_FACES); the free mask then
-    /// holds for this substep. Counts in `lists`' statistics (GLC_STAT_RADIAL_*).
+    /// Observers, ghost nodes, classification, violated surfaces and free faces over [positions,
+    /// predictedPositions] (bound at GLC_BIND_NODE_POSITIONS, GLC_BIND_PREDICTED_POSITIONS,
+    /// GLC_BIND_FACES); the free mask then holds for this substep. Counts in `lists`' statistics
+    /// (GLC_STAT_RADIAL_*).
     void run(AppendLists& lists) const;
     /// This substep culls nothing: the mask's word 0 is cleared.
     void switchOff() const;
@@ -59,15 +88,23 @@ class RadialCullingPass {
     [[nodiscard]] std::vector<std::uint32_t> readFreeMask() const;
     /// The observers of the last run(): start and end of each.
     [[nodiscard]] std::vector<RadialObserver> readObservers() const;
+    /// The ghost nodes of the last run(): start and end of each.
+    [[nodiscard]] std::vector<RadialObserver> readGhostNodes() const;
+    /// Per observer, 1 when the last run() found a ghost face crossing its surface at x0.
+    [[nodiscard]] std::vector<std::uint32_t> readViolated() const;
     [[nodiscard]] std::uint32_t observedFaces() const { return m_observedFaces; }
+    [[nodiscard]] std::uint32_t ghostFaces() const { return m_ghostFaceCount; }
 
   private:
     std::uint32_t m_faceCount = 0, m_observerCount = 0, m_observedFaces = 0;
+    std::uint32_t m_ghostNodeCount = 0, m_ghostFaceCount = 0;
     mutable RadialClassifyPass m_classify;
-    gl::Buffer m_surfaces;
-    mutable gl::Buffer m_free;  ///< word 0: the mask holds for this substep; then one bit per face
-    mutable gl::Buffer m_moved; ///< uint: RadialHostCheck's flag
+    gl::Buffer m_surfaces, m_observerFaces, m_ghostLoops;
+    mutable gl::Buffer m_free;     ///< word 0: the mask holds for this substep; then one bit per face
+    mutable gl::Buffer m_moved;    ///< uint: RadialHostCheck's flag
+    mutable gl::Buffer m_violated; ///< uint per observer: RadialViolated's flag
     gl::ComputeProgram m_observers, m_freeProgram, m_hostCheck;
+    std::optional<gl::ComputeProgram> m_ghostNodes, m_violatedProgram; ///< only with ghosts
 };
 
 } // namespace glcollide::passes

@@ -1,4 +1,4 @@
-// Procedural bodies: cloth grid, tet box, tetrahedral ball under an icosphere. Built in the body's
+// Procedural bodies: cloth grid, tube, tet box, tetrahedral ball under an icosphere. Built in the body's
 // local frame.
 #include "scene/scene_detail.hpp"
 
@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <utility>
 
 namespace glcollide::detail {
@@ -76,6 +77,27 @@ Body generateCloth(double width, double height, int nx, int ny, bool withShear, 
                 if (j + 2 < ny)
                     body.springs.push_back(springBetween(idx(i, j), idx(i, j + 2), SpringKind::Bend));
             }
+    fillNodeDefaults(body);
+    return body;
+}
+
+Body generateTube(double radius, double length, int around, int along) {
+    Body body;
+    const auto idx = [around](int i, int j) { return u32(j * around + (i % around)); };
+    for (int j = 0; j < along; ++j)
+        for (int i = 0; i < around; ++i) {
+            const double angle = 2.0 * std::numbers::pi * i / around;
+            body.positions.emplace_back(radius * std::cos(angle), 0.5 * length - length * j / (along - 1),
+                                        radius * std::sin(angle));
+        }
+    // Along a ring (i -> i + 1) the tangent is (-sin, 0, cos); down the tube (j -> j + 1) it is -Y;
+    // their cross product (cos, 0, sin) points away from the axis: (a, b, c) and (a, c, d) face out.
+    for (int j = 0; j + 1 < along; ++j)
+        for (int i = 0; i < around; ++i) {
+            const std::uint32_t a = idx(i, j), b = idx(i + 1, j), c = idx(i + 1, j + 1), d = idx(i, j + 1);
+            body.faces.push_back({a, b, c});
+            body.faces.push_back({a, c, d});
+        }
     fillNodeDefaults(body);
     return body;
 }

@@ -123,6 +123,13 @@ void setRestLengths(Body& body);
 /// nodes apart along rows and columns).
 Body generateCloth(double width, double height, int nx, int ny, bool withShear, bool withBend);
 
+/// A tube (a sleeve: a cylinder without caps) of `radius` m around the local Y axis, `length` m long
+/// and centred at the origin: `along` rings of `around` nodes, ring j = 0 at the top (y = +length/2);
+/// node (i, j) has index j·around + i, node i of a ring at angle 2πi/around from +X towards +Z.
+/// Faces face away from the axis; two boundary loops (the rings at both ends). No springs: the
+/// scene gives it a surface's edge and bend springs, as for a surface mesh.
+Body generateTube(double radius, double length, int around, int along);
+
 /// A box of `size` m centred at the origin, `cells` cubes per axis, each split into 6 tets along
 /// its main diagonal (the Freudenthal split, conforming between neighbour cells). Springs: unique
 /// tet edges; faces: the boundary.

@@ -235,8 +235,9 @@ Shape generatorShape(const Ctx& c, const json& g, const Ptr& p) {
     if (!g.is_object()) c.fail(p, "expected an object, got " + shown(g));
     const std::string type = string(c, require(c, g, p, "type"), p / "type");
     if (type == "cloth") return Shape::Cloth;
+    if (type == "tube") return Shape::Surface;
     if (type == "tet_box" || type == "sphere") return Shape::Volume;
-    c.fail(p / "type", "unknown generator '" + type + "'; known generators: cloth, tet_box, sphere");
+    c.fail(p / "type", "unknown generator '" + type + "'; known generators: cloth, tube, tet_box, sphere");
 }
 
 Body generate(const Ctx& c, const json& g, const Ptr& p, const SpringParams& springs) {
@@ -253,6 +254,17 @@ Body generate(const Ctx& c, const json& g, const Ptr& p, const SpringParams& spr
         const double w = positive(c, size[0], ps / 0), h = positive(c, size[1], ps / 1);
         const int nx = integer(c, res[0], pr / 0, 2, 4096), ny = integer(c, res[1], pr / 1, 2, 4096);
         return detail::generateCloth(w, h, nx, ny, springs.shear > 0.0, springs.bend > 0.0);
+    }
+    if (type == "tube") {
+        checkObject(c, g, p, {"type", "radius", "length", "resolution"});
+        const Ptr pr = p / "resolution";
+        const double radius = positive(c, require(c, g, p, "radius"), p / "radius");
+        const double length = positive(c, require(c, g, p, "length"), p / "length");
+        const json& res = require(c, g, p, "resolution");
+        if (!res.is_array() || res.size() != 2)
+            c.fail(pr, "expected [around, along] node counts (per ring, rings), got " + shown(res));
+        const int around = integer(c, res[0], pr / 0, 3, 4096), along = integer(c, res[1], pr / 1, 2, 4096);
+        return detail::generateTube(radius, length, around, along);
     }
     if (type == "tet_box") {
         checkObject(c, g, p, {"type", "size", "resolution"});
@@ -505,7 +517,8 @@ CcdSettings parseCcd(const Ctx& c, const json& j, const Ptr& p) {
 CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p,
                 {"broad_phase", "octree_depth", "precision", "response", "thickness", "stiffness", "damping",
-                 "friction", "initial_capacity", "bvh", "detection", "ccd", "energy_guard", "culling"});
+                 "friction", "initial_capacity", "bvh", "detection", "ccd", "energy_guard", "culling",
+                 "ghost_max_perimeter"});
     CollisionSettings s;
     if (const json* v = find(j, "broad_phase")) {
         const std::optional<BroadPhase> kind = broadPhaseFromName(string(c, *v, p / "broad_phase"));
@@ -565,6 +578,12 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
             c.fail(p / "culling",
                    "radial culling needs \"response\": \"intersection_free\" (its premise is a "
                    "substep that starts intersection-free, which only that response keeps; decision 0025)");
+    }
+    if (const json* v = find(j, "ghost_max_perimeter")) {
+        if (s.culling != Culling::Radial)
+            c.fail(p / "ghost_max_perimeter",
+                   "ghost triangles close holes for radial culling only: add \"culling\": \"radial\"");
+        s.ghostMaxPerimeter = nonNegative(c, *v, p / "ghost_max_perimeter");
     }
     if (const json* v = find(j, "energy_guard")) {
         if (!v->is_boolean()) c.fail(p / "energy_guard", "expected true or false, got " + shown(*v));

@@ -100,6 +100,11 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"RadialMovedBuf", GLC_BIND_RADIAL_MOVED},
     {"CcdVertexFaceTestsBuf", GLC_BIND_CCD_VERTEX_FACE_TESTS},
     {"CcdEdgeEdgeTestsBuf", GLC_BIND_CCD_EDGE_EDGE_TESTS},
+    {"RadialGhostFacesBuf", GLC_BIND_RADIAL_GHOST_FACES},
+    {"RadialGhostLoopsBuf", GLC_BIND_RADIAL_GHOST_LOOPS},
+    {"RadialGhostPositionsBuf", GLC_BIND_RADIAL_GHOST_POSITIONS},
+    {"RadialObserverFacesBuf", GLC_BIND_RADIAL_OBSERVER_FACES},
+    {"RadialViolatedBuf", GLC_BIND_RADIAL_VIOLATED},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {

@@ -1,4 +1,5 @@
 // Generators: exact counts, orientation, volumes.
+#include "model/ghost_triangles.hpp"
 #include "scene/scene_detail.hpp"
 
 #include <gtest/gtest.h>
@@ -133,6 +134,32 @@ TEST(GeneratorCloth, CountsAndLayout) {
     }
     const Body plain = generateCloth(1.0, 1.0, 4, 4, false, false);
     EXPECT_EQ(plain.springs.size(), countKind(plain, SpringKind::Structural));
+}
+
+// The sleeve of issue 24: a tube around Y, faces away from the axis, its two end rings the only
+// boundary loops (model::boundaryLoops, independent of the generator's indexing).
+TEST(GeneratorTube, CountsOrientationAndTwoOpenEnds) {
+    for (auto [around, along] : {std::pair{3, 2}, std::pair{16, 12}}) {
+        const Body b = generateTube(0.1, 0.4, around, along);
+        const auto ua = static_cast<std::size_t>(around), ul = static_cast<std::size_t>(along);
+        EXPECT_EQ(b.positions.size(), ua * ul);
+        EXPECT_EQ(b.faces.size(), 2 * ua * (ul - 1));
+        EXPECT_TRUE(b.springs.empty());                       // the scene adds a surface's springs
+        EXPECT_EQ(b.positions[0], glm::dvec3(0.1, 0.2, 0.0)); // ring 0 at the top, node 0 on +X
+        EXPECT_NEAR(b.positions.back().y, -0.2, 1e-15);
+        for (const Face& f : b.faces) {
+            const glm::dvec3 a = b.positions[f[0]],
+                             n = glm::cross(b.positions[f[1]] - a, b.positions[f[2]] - a);
+            const glm::dvec3 centre = (a + b.positions[f[1]] + b.positions[f[2]]) / 3.0;
+            EXPECT_GT(glm::dot(n, glm::dvec3(centre.x, 0.0, centre.z)), 0.0); // away from the axis
+        }
+        const auto loops = model::boundaryLoops(b.faces, b.positions.size());
+        ASSERT_EQ(loops.size(), 2u);
+        for (const auto& loop : loops) {
+            EXPECT_TRUE(loop.closed);
+            EXPECT_EQ(loop.nodes.size(), ua);
+        }
+    }
 }
 
 TEST(GeneratorTetBox, BoundaryVolumeAndOrientation) {

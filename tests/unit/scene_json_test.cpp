@@ -415,6 +415,22 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
                 HasSubstr("/collision/ccd/min_separation"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"ccd": {"tolerance": 1}})", collide)),
                 HasSubstr("/collision/ccd/tolerance: unknown key"));
+    const char* self = R"(["springs", "self_collisions"])";
+    EXPECT_THAT(
+        errorOf(scene(kCloth, R"("collision": {"ghost_max_perimeter": 1})", self)),
+        HasSubstr("/collision/ghost_max_perimeter: ghost triangles close holes for radial culling only"));
+    EXPECT_THAT(errorOf(scene(kCloth,
+                              R"("collision": {"response": "intersection_free", "culling": "radial",
+                                               "ghost_max_perimeter": -1})",
+                              self)),
+                HasSubstr("/collision/ghost_max_perimeter: expected a number >= 0, got -1"));
+    EXPECT_THAT(
+        errorOf(scene(R"({"generator": {"type": "tube", "radius": 0.1, "length": 1, "resolution": [2, 4]},
+        "mass": 1, "springs": {"stiffness": 1}})")),
+        HasSubstr("/objects/0/generator/resolution/0"));
+    EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "tube", "radius": 0.1, "resolution": [8, 4]},
+        "mass": 1, "springs": {"stiffness": 1}})")),
+                HasSubstr("/objects/0/generator/length: required key is missing"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"octree_depth": 4})", collide)),
                 HasSubstr("/collision/octree_depth: expected an integer 1, 2 or 3"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"precision": "exact"})", collide)),
@@ -449,7 +465,7 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
                 HasSubstr("/objects/0/generator/resolution/0: expected an integer in [2, 4096], got 1"));
     EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "donut"}, "mass": 1, "springs": {"stiffness": 1}})")),
                 HasSubstr("/objects/0/generator/type: unknown generator 'donut'; known generators: cloth, "
-                          "tet_box, sphere"));
+                          "tube, tet_box, sphere"));
     EXPECT_THAT(errorOf(scene(R"({"mesh": "x.stl", "mass": 1, "springs": {"stiffness": 1}})")),
                 HasSubstr("/objects/0/mesh: unsupported mesh file 'x.stl'"));
     EXPECT_THAT(errorOf(scene(R"({"generator": {"type": "sphere", "radius": 1}, "mass": 1,

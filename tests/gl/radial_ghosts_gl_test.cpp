@@ -1,0 +1,234 @@
+// Radial view-based culling on an open surface (issue 24, items 2 and 4; docs/culling.md, "Ghost
+// triangles" and "Violated triangles"): a sleeve (the tube generator) is closed by a fan of ghost
+// triangles over each opening, and the culling pass runs over the real and the ghost faces.
+// Against independent answers: the ghost nodes against the double-precision mean of their loops
+// (model::ghostNodePositions), the free mask against the twin (cpu::radialFreeFaces over the same
+// real and ghost faces, bit for bit where the GPU evaluates the GLSL as written), the free faces
+// against the exact TriTri oracle along the motion (a free face intersects nothing), and the
+// violated check against cpu::radialViolatedPairs (exact): a real face that crosses a ghost fan at
+// the start of the substep voids the theorem's premise, and then nothing may be freed.
+
+#include "cpu/collision_twin.hpp"
+#include "cpu/radial_twin.hpp"
+#include "model/flat_model.hpp"
+#include "model/ghost_triangles.hpp"
+#include "passes/collision/append_lists.hpp"
+#include "passes/radial_culling.hpp"
+#include "support/collision_buffers.hpp"
+#include "support/glsl_as_written.hpp"
+
+#include <glcollide/error.hpp>
+#include <glcollide/scene.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace glcollide {
+namespace {
+
+constexpr std::uint32_t kAround = 24, kAlong = 10;
+
+/// The tube generator's sleeve: radius 0.1 m, 0.4 m long around Y, 24 × 10 nodes (432 faces).
+model::FlatModel sleeveModel() {
+    const std::string json =
+        R"({"format_version": 1, "effects": ["gravity"], "time": {"dt": 0.01, "frames": 1},
+      "objects": [{"name": "sleeve", "generator": {"type": "tube", "radius": 0.1, "length": 0.4,
+                   "resolution": [24, 10]}, "mass": 1}]})";
+    return model::flatten(parseScene(json, ".", "sleeve"));
+}
+
+std::vector<glm::vec3> floats(const std::vector<glm::dvec3>& xs) {
+    return {xs.begin(), xs.end()};
+}
+
+struct CullingRun {
+    std::vector<std::uint8_t> free; ///< per real face, from the GPU
+    std::uint32_t freeCount = 0;
+    std::vector<std::uint32_t> violated; ///< per observer
+    std::uint32_t violatedStat = 0;
+    std::vector<passes::RadialObserver> observers, ghostNodes;
+};
+
+/// One run of the culling pass over x0 -> x1 with the engine's configuration for `model`.
+CullingRun runCulling(const model::FlatModel& model, const passes::RadialCullingConfig& config,
+                      const std::vector<glm::vec3>& x0, const std::vector<glm::vec3>& x1) {
+    passes::DeviceBuffers b = test::collisionBuffers(x0, model.faceIndices);
+    b.predictedPositions = gl::makeBuffer("predictedPositions", test::positionsWithUnitW(x1));
+    passes::RadialCullingPass pass(config);
+    passes::AppendLists lists(0);
+    lists.bind();
+    b.positions.bindStorage(GLC_BIND_NODE_POSITIONS);
+    b.predictedPositions.bindStorage(GLC_BIND_PREDICTED_POSITIONS);
+    b.faces.bindStorage(GLC_BIND_FACES);
+    pass.run(lists);
+    lists.readCounters();
+    CullingRun r;
+    const std::vector<std::uint32_t> mask = pass.readFreeMask();
+    for (std::size_t f = 0; f < model.faceCount(); ++f) {
+        r.free.push_back(static_cast<std::uint8_t>(mask[f / 32] >> (f % 32) & 1u));
+        r.freeCount += r.free.back();
+    }
+    EXPECT_EQ(lists.stat(GLC_STAT_RADIAL_FREE), r.freeCount);
+    r.violated = pass.readViolated();
+    r.violatedStat = lists.stat(GLC_STAT_RADIAL_VIOLATED);
+    r.observers = pass.readObservers();
+    r.ghostNodes = pass.readGhostNodes();
+    return r;
+}
+
+/// Real positions followed by the GPU's ghost nodes at one end of the substep.
+std::vector<glm::vec3> withGhosts(std::vector<glm::vec3> x, const std::vector<passes::RadialObserver>& ghosts,
+                                  bool end) {
+    for (const passes::RadialObserver& g : ghosts) x.push_back(end ? g.end : g.start);
+    return x;
+}
+
+/// The ghost nodes against the double mean of their loops. A fixed-order float sum of n terms of
+/// size <= m is within n * 2^-24 * m of the exact sum (Higham §4.2), the division adds one more
+/// rounding of the mean: (n + 2) * 2^-24 * m bounds the error of the mean.
+void expectGhostNodesAreLoopMeans(const passes::RadialCullingConfig& config,
+                                  const std::vector<passes::RadialObserver>& gpu,
+                                  const std::vector<glm::vec3>& x, bool end) {
+    const passes::RadialGhosts& g = config.ghosts;
+    ASSERT_EQ(gpu.size() + 1, g.loopOffsets.size());
+    for (std::size_t k = 0; k < gpu.size(); ++k) {
+        glm::dvec3 mean(0.0);
+        double largest = 0.0;
+        const std::uint32_t first = g.loopOffsets[k], last = g.loopOffsets[k + 1];
+        for (std::uint32_t i = first; i < last; ++i) {
+            const glm::dvec3 p(x[g.loopNodes[i]]);
+            mean += p;
+            largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+        }
+        mean /= static_cast<double>(last - first);
+        const double bound = (last - first + 2.0) * std::ldexp(1.0, -24) * largest;
+        const glm::vec3 got = end ? gpu[k].end : gpu[k].start;
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(got[c], mean[c], bound) << "ghost node " << k << ", axis " << c;
+    }
+}
+
+TEST(RadialGhostsGl, ASleeveClosedByGhostsFreesWhatTheTwinFreesAndNothingThatIntersects) {
+    const model::FlatModel model = sleeveModel();
+    const auto faces = static_cast<std::uint32_t>(model.faceCount());
+    const passes::RadialCullingConfig config =
+        passes::radialCullingConfig(model, std::numeric_limits<double>::infinity());
+    // Both openings are closed: one observer, two ghost nodes, a fan of 24 ghost faces over each.
+    ASSERT_EQ(config.surfaces.size(), 1u);
+    EXPECT_EQ(config.ghosts.loopOffsets.size(), 3u);
+    EXPECT_EQ(config.ghosts.faceObserver.size(), 2 * kAround);
+    // Without ghosts the open sleeve gets no observer at all.
+    EXPECT_TRUE(passes::radialCullingConfig(model, 0.0).surfaces.empty());
+    // A threshold between the perimeter (2π · 0.1 m ≈ 0.63 m) and nothing leaves both open.
+    EXPECT_TRUE(passes::radialCullingConfig(model, 0.6).surfaces.empty());
+
+    // The motion: every ring twisted about the axis by up to 0.6 rad, and a patch of one side near
+    // the top shoved 0.26 m through the axis and out through the far wall (it crosses the far
+    // side's faces late in the substep). The patch passes above the observer (the centroid, near
+    // the middle): one through the observer would void condition (b) and free nothing.
+    const std::vector<glm::vec3> x0 = floats(model.positions);
+    std::vector<glm::vec3> x1 = x0;
+    for (std::size_t i = 0; i < x1.size(); ++i) {
+        const float angle = 0.6f * static_cast<float>(i / kAround) / (kAlong - 1);
+        const float c = std::cos(angle), s = std::sin(angle);
+        x1[i] = {c * x0[i].x - s * x0[i].z, x0[i].y, s * x0[i].x + c * x0[i].z};
+        if (x0[i].x > 0.06f && x0[i].y > 0.08f && x0[i].y < 0.18f) x1[i].x -= 0.26f;
+    }
+    const CullingRun run = runCulling(model, config, x0, x1);
+    expectGhostNodesAreLoopMeans(config, run.ghostNodes, x0, false);
+    expectGhostNodesAreLoopMeans(config, run.ghostNodes, x1, true);
+    ASSERT_EQ(run.violated, std::vector<std::uint32_t>{0u});
+    EXPECT_EQ(run.violatedStat, 0u);
+
+    // The twin over the same real and ghost faces, with the GPU's ghost nodes and observer.
+    std::vector<std::uint32_t> allFaces = model.faceIndices;
+    allFaces.insert(allFaces.end(), config.ghosts.faces.begin(), config.ghosts.faces.end());
+    std::vector<std::uint32_t> allObservers = config.faceObserver;
+    allObservers.insert(allObservers.end(), config.ghosts.faceObserver.begin(),
+                        config.ghosts.faceObserver.end());
+    const std::vector<glm::vec3> g0 = withGhosts(x0, run.ghostNodes, false),
+                                 g1 = withGhosts(x1, run.ghostNodes, true);
+    EXPECT_TRUE(cpu::radialViolatedPairs(allFaces, faces, g0).empty());
+    const std::vector<std::uint8_t> twin =
+        cpu::radialFreeFaces(allFaces, g0, g1, allObservers, {run.observers[0].start, run.observers[0].end});
+    const std::vector<std::uint8_t> twinReal(twin.begin(), twin.begin() + faces);
+    if (test::deviceEvaluatesGlslAsWritten()) {
+        EXPECT_EQ(run.free, twinReal);
+    }
+    EXPECT_GT(run.freeCount, faces / 4) << "the ghosts must let culling free most of the sleeve";
+    EXPECT_LT(run.freeCount, faces) << "the shoved patch must leave faces that are not free";
+
+    // On every device: no face the GPU calls free intersects another face of the sleeve at any of
+    // eight times of the substep (exact oracle), and the motion really does intersect.
+    const std::vector<std::uint32_t> faceObject(faces, 0u);
+    std::size_t intersecting = 0, k = 0;
+    for (const auto& pairs : cpu::twinIntersectionsAlongMotion(model.faceIndices, faceObject, x0, x1,
+                                                               cpu::PairRules{false, true}, 8)) {
+        ++k;
+        intersecting = std::max(intersecting, pairs.size());
+        for (const cpu::FacePair& p : pairs)
+            EXPECT_FALSE(run.free[p[0]] || run.free[p[1]])
+                << "faces " << p[0] << " and " << p[1] << " intersect at t = " << k << "/8, one of them free";
+    }
+    EXPECT_GT(intersecting, 0u) << "the shove must really intersect, or the test shows nothing";
+}
+
+// A real face that crosses a ghost fan at the start of the substep: the closed surface is not
+// embedded, the winding argument fails, and culling must free nothing of it — although every
+// face stays positive and no real faces intersect (so without the violated check all would be
+// free). Node 0 of the second ring is pulled up over the centre of the top opening: the faces
+// from it down to the third ring pierce the top fan.
+TEST(RadialGhostsGl, AGhostCrossedByARealFaceAtTheStartFreesNothing) {
+    const model::FlatModel model = sleeveModel();
+    const auto faces = static_cast<std::uint32_t>(model.faceCount());
+    const passes::RadialCullingConfig config =
+        passes::radialCullingConfig(model, std::numeric_limits<double>::infinity());
+    std::vector<glm::vec3> x0 = floats(model.positions);
+    x0[kAround] = {0.01f, 0.23f, 0.005f};
+
+    // The start has no intersecting real faces (the engine's invariant; exact oracle) ...
+    const std::vector<std::uint32_t> faceObject(faces, 0u);
+    const auto atStart = cpu::twinIntersectionsAlongMotion(model.faceIndices, faceObject, x0, x0,
+                                                           cpu::PairRules{false, true}, 1);
+    ASSERT_TRUE(atStart.at(0).empty()) << atStart[0].size() << " real pairs intersect at the start";
+
+    const CullingRun run = runCulling(model, config, x0, x0);
+    // ... but real faces cross the ghost fan: the exact twin finds the pairs, the GPU the surface.
+    std::vector<std::uint32_t> allFaces = model.faceIndices;
+    allFaces.insert(allFaces.end(), config.ghosts.faces.begin(), config.ghosts.faces.end());
+    const std::vector<cpu::RadialFacePair> violated =
+        cpu::radialViolatedPairs(allFaces, faces, withGhosts(x0, run.ghostNodes, false));
+    ASSERT_FALSE(violated.empty());
+    for (const cpu::RadialFacePair& p : violated)
+        EXPECT_GE(p[1], faces) << "a violated pair has a ghost face";
+    EXPECT_EQ(run.violated, std::vector<std::uint32_t>{1u});
+    EXPECT_EQ(run.violatedStat, 1u);
+    EXPECT_EQ(run.freeCount, 0u) << "a violated surface freed faces";
+
+    // The same start without the pulled node: nothing violated, and culling frees faces.
+    const CullingRun straight = runCulling(model, config, floats(model.positions), floats(model.positions));
+    EXPECT_EQ(straight.violated, std::vector<std::uint32_t>{0u});
+    EXPECT_EQ(straight.freeCount, faces);
+}
+
+TEST(RadialGhostsGl, InconsistentGhostTablesAreRefused) {
+    const model::FlatModel model = sleeveModel();
+    passes::RadialCullingConfig config =
+        passes::radialCullingConfig(model, std::numeric_limits<double>::infinity());
+    passes::RadialCullingConfig badNode = config;
+    badNode.ghosts.loopNodes[0] = static_cast<std::uint32_t>(model.nodeCount());
+    EXPECT_THROW(passes::RadialCullingPass{badNode}, Error);
+    passes::RadialCullingConfig badFace = config;
+    badFace.ghosts.faces[2] = static_cast<std::uint32_t>(model.nodeCount() + 2); // only 2 ghost nodes
+    EXPECT_THROW(passes::RadialCullingPass{badFace}, Error);
+    passes::RadialCullingConfig badCount = config;
+    badCount.ghosts.faceObserver.pop_back();
+    EXPECT_THROW(passes::RadialCullingPass{badCount}, Error);
+}
+
+} // namespace
+} // namespace glcollide
