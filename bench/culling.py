@@ -1,15 +1,18 @@
 #!/usr/bin/env python3
 """Radial view-based culling's benchmark (issue 24, item 6; docs/culling.md, "Measured").
 
-Runs scenes/cloth_ball.json (a soft ball of cloth crumpling on the ground) at several sizes, with
-"culling": "none" and "radial", through `glcollide run --stats`, and reports per size the medians
+Runs scenes/cloth_ball.json (a soft ball of cloth crumpling on the ground) at several sizes, and
+the open surfaces that ghost triangles close — scenes/sleeve.json (a twisting tube) at several
+resolutions and scenes/mask_fold.json (DEDO's mask folding over a ball) — with "culling": "none"
+and "radial", through `glcollide run --stats`, and reports per size the medians
 over the frames after the first (whose start is not yet known to be intersection-free, so it never
 culls): triangles certified positive, free triangles, CCD feature pairs and TriTri candidate pairs
 tested with and without culling, and the GPU time of each detection stage. The detection time is
 RadialCulling + BvhBuild + BvhRefit + BvhTraverse + TriTri + FeaturePairs + Ccd. The cost exponent
 is the slope of log(detection time) against log(faces) between the smallest and largest size.
 
-usage: bench/culling.py [--glcollide build/src/glcollide] [--frames 45] [--subdivisions 3,4,5]
+usage: bench/culling.py [--glcollide build/src/glcollide] [--frames 45] [--scenes ball,sleeve,mask]
+                        [--subdivisions 3,4,5] [--sleeve-resolutions 32x20,64x40]
                         [--out bench/results/<device>/culling_<commit>]
        bench/culling.py --write-scenes DIR ...   (only writes the scene variants, for a machine without
                                                 python: run each with `glcollide run X.json --stats X_stats.json`)
@@ -31,9 +34,38 @@ DETECTION = ["RadialCulling", "BvhBuild", "BvhRefit", "BvhTraverse", "TriTri", "
 
 
 def load_scene(path):
-    # Scene files allow whole-line // comments (docs/scene-format.md); cloth_ball.json has only those.
+    # Scene files allow // comments (docs/scene-format.md); the shipped ones put them on lines of
+    # their own, or after a value at the end of a line (never inside a string holding "//").
     with open(path) as f:
-        return json.loads("".join(line for line in f if not line.lstrip().startswith("//")))
+        return json.loads("".join(line.split("//")[0] + "\n" for line in f))
+
+
+def variants(args):
+    """(scene name, tag, scene) of every size to run."""
+    out = []
+    for name in args.scenes.split(","):
+        if name == "ball":
+            base = load_scene(os.path.join(ROOT, "scenes", "cloth_ball.json"))
+            for sub in [int(s) for s in args.subdivisions.split(",")]:
+                scene = json.loads(json.dumps(base))
+                scene["objects"][0]["generator"]["subdivisions"] = sub
+                out.append(("cloth_ball", f"ball{sub}", scene))
+        elif name == "sleeve":
+            base = load_scene(os.path.join(ROOT, "scenes", "sleeve.json"))
+            for res in args.sleeve_resolutions.split(","):
+                around, along = (int(v) for v in res.split("x"))
+                scene = json.loads(json.dumps(base))
+                scene["objects"][0]["generator"]["resolution"] = [around, along]
+                out.append(("sleeve", f"sleeve{around}x{along}", scene))
+        elif name == "mask":
+            scene = load_scene(os.path.join(ROOT, "scenes", "mask_fold.json"))
+            for obj in scene["objects"]:
+                if "mesh" in obj:  # the scene is written elsewhere: name its mesh by absolute path
+                    obj["mesh"] = os.path.join(ROOT, "scenes", obj["mesh"])
+            out.append(("mask_fold", "mask", scene))
+        else:
+            sys.exit(f"culling.py: unknown scene {name!r}; expected ball, sleeve or mask")
+    return out
 
 
 def run(binary, scene, frames, workdir, tag, stats_dir=None, write_only=False):
@@ -96,6 +128,8 @@ def summarize(none_stats, radial_stats, first_frame):
                          for c, fs in [("none", n), ("radial", r)]},
             "wall_ms": {"none": median(n, lambda f: f["wall_ms"]), "radial": median(r, lambda f: f["wall_ms"])},
         }
+    out["culled_substeps"] = sum(f["radial_culling"]["substeps_culled"] for f in radial_stats["frames"])
+    out["violated_substeps"] = sum(f["radial_culling"].get("substeps_violated", 0) for f in radial_stats["frames"])
     out["min_positive_fraction"] = min(1 - f["radial_culling"]["non_positive_faces"] / observed
                                        for f in radial_frames.values())
     return out
@@ -109,61 +143,68 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--glcollide", default=os.path.join(ROOT, "build", "src", "glcollide"))
     ap.add_argument("--frames", type=int, default=45)
+    ap.add_argument("--scenes", default="ball")
     ap.add_argument("--subdivisions", default="3,4,5")
+    ap.add_argument("--sleeve-resolutions", default="32x20,64x40")
     ap.add_argument("--out", default=None)
     ap.add_argument("--write-scenes", default=None)
     ap.add_argument("--stats-dir", default=None)
     args = ap.parse_args()
-    base = load_scene(os.path.join(ROOT, "scenes", "cloth_ball.json"))
-    results = {"scene": "scenes/cloth_ball.json", "frames": args.frames, "sizes": []}
+    results = {"scenes": args.scenes, "frames": args.frames, "sizes": []}
     with tempfile.TemporaryDirectory() as temp:
         work = args.write_scenes or temp
-        for sub in [int(s) for s in args.subdivisions.split(",")]:
+        for scene_name, tag, base in variants(args):
             runs = {}
             for culling in ["none", "radial"]:
                 scene = json.loads(json.dumps(base))
-                scene["objects"][0]["generator"]["subdivisions"] = sub
                 scene["collision"]["culling"] = culling
-                runs[culling] = run(args.glcollide, scene, args.frames, work, f"ball{sub}_{culling}", args.stats_dir,
+                runs[culling] = run(args.glcollide, scene, args.frames, work, f"{tag}_{culling}", args.stats_dir,
                                     args.write_scenes is not None)
             if args.write_scenes:
                 continue
             results.setdefault("device", runs["none"]["device"])
             results.setdefault("gl_renderer", runs["none"]["gl_renderer"])
             size = summarize(runs["none"], runs["radial"], 2)
-            print(f"subdivisions {sub} ({size['faces']} faces): detection {size['all']['detection_ms']}", file=sys.stderr)
+            size["scene"], size["variant"] = scene_name, tag
+            print(f"{tag} ({size['faces']} faces): detection {size['all']['detection_ms']}", file=sys.stderr)
             results["sizes"].append(size)
     if args.write_scenes:
         return
     sizes = results["sizes"]
-    if len(sizes) >= 2:
+    for scene_name in dict.fromkeys(s["scene"] for s in sizes):
+        mine = [s for s in sizes if s["scene"] == scene_name]
+        if len(mine) < 2:
+            continue
         for culling in ["none", "radial"]:
-            a, b = sizes[0]["all"]["detection_ms"][culling], sizes[-1]["all"]["detection_ms"][culling]
-            results[f"cost_exponent_{culling}"] = math.log(b / a) / math.log(sizes[-1]["faces"] / sizes[0]["faces"])
+            a, b = mine[0]["all"]["detection_ms"][culling], mine[-1]["all"]["detection_ms"][culling]
+            results[f"cost_exponent_{scene_name}_{culling}"] = math.log(b / a) / math.log(mine[-1]["faces"] / mine[0]["faces"])
     commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
     results["commit"] = commit
     lines = [f"Radial culling on {results['gl_renderer']} ({results['device']}), commit {commit}, "
              f"{args.frames} frames; medians over frames 2..{args.frames} (all) and over the frames in which some "
              "face was not proven positive (folded):", "",
-             "| faces | frames | positive (min) | free | CCD pairs none → radial | TriTri pairs none → radial "
-             "| detection ms none → radial (culling stage) | speed-up | same answers |",
-             "|---:|---|---:|---:|---:|---:|---:|---:|---|"]
+             "| scene | faces | frames | positive (min) | free | violated substeps | CCD pairs none → radial "
+             "| TriTri pairs none → radial | detection ms none → radial (culling stage) | speed-up | same answers |",
+             "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---|"]
     for s in sizes:
         for name in ["all", "folded"]:
             x = s[name]
             if x["frames"] == 0:
-                lines.append(f"| {s['faces']} | {name}: 0 | | | | | | | |")
+                lines.append(f"| {s['variant']} | {s['faces']} | {name}: 0 | | | | | | | | |")
                 continue
             c, t, d = x["ccd_pairs"], x["tri_tri_pairs"], x["detection_ms"]
-            lines.append(f"| {s['faces']} | {name}: {x['frames']} | {100 * x['positive_fraction']:.1f} % "
+            lines.append(f"| {s['variant']} | {s['faces']} | {name}: {x['frames']} | {100 * x['positive_fraction']:.1f} % "
                          f"({100 * s['min_positive_fraction']:.1f} %) | {100 * x['free_fraction']:.1f} % "
+                         f"| {s['violated_substeps']} of {s['culled_substeps']} "
                          f"| {c['none']:.0f} → {c['radial']:.0f} ({ratio(c['none'], c['radial'])}) "
                          f"| {t['none']:.0f} → {t['radial']:.0f} ({ratio(t['none'], t['radial'])}) "
                          f"| {d['none']:.2f} → {d['radial']:.2f} ({x['stage_ms']['radial']['RadialCulling']:.2f}) "
                          f"| {d['none'] / d['radial']:.2f}× | {'yes' if s['same_ccd_answers'] else 'NO'} |")
-    if "cost_exponent_none" in results:
-        lines += ["", f"Cost exponent of the detection time in faces (all frames): none {results['cost_exponent_none']:.2f}, "
-                      f"radial {results['cost_exponent_radial']:.2f}."]
+    for scene_name in dict.fromkeys(s["scene"] for s in sizes):
+        if f"cost_exponent_{scene_name}_none" in results:
+            lines += ["", f"Cost exponent of the detection time in faces ({scene_name}, all frames): "
+                          f"none {results[f'cost_exponent_{scene_name}_none']:.2f}, "
+                          f"radial {results[f'cost_exponent_{scene_name}_radial']:.2f}."]
     table = "\n".join(lines)
     print(table)
     if args.out:

@@ -381,8 +381,8 @@ class Engine {
     /// collision effects. Waits for the GPU (one counter readback).
     CollisionStats detectCollisions();
     /// The feature pairs of the last detection (the last substep's, or detectCollisions()'): the
-    /// device's lists, read back and sorted, without the entries only continuous detection tests
-    /// (the response skips them). Throws Error for a scene without collision effects.
+    /// device's lists, read back and sorted (under continuous detection with the orphans that
+    /// ownership loses, each once). Throws Error for a scene without collision effects.
     [[nodiscard]] FeaturePairs readFeaturePairs() const;
     /// The contacts among readFeaturePairs(), vertex-face first: the response's rules evaluated in
     /// double precision (the CPU twin, src/cpu/contact_twin.hpp) at the current positions, which

@@ -44,12 +44,11 @@ float startDistance(vec3 s0, vec3 s1, vec3 s2, vec3 s3) {
 // The pair's four nodes in the order of glcVertexFaceCcd / glcEdgeEdgeCcd.
 uvec4 pairNodes(uint i) {
     if (u_edgeEdge == 0u) {
-        uvec2 item = g_vertexFace[i]; // (node, face), the face maybe marked GLC_PAIR_CCD_ONLY: tested too
-        uvec3 f = faceNodes(item.y & ~GLC_PAIR_CCD_ONLY);
+        uvec2 item = g_vertexFace[i]; // (node, face)
+        uvec3 f = faceNodes(item.y);
         return uvec4(item.x, f.x, f.y, f.z);
     }
     uvec2 item = g_edgeEdge[i]; // (3*fa+e, 3*fb+g): edge e from corner e to corner (e+1)%3
-    item.y &= ~GLC_PAIR_CCD_ONLY; // continuous detection's completion: tested like the others
     uvec3 a = faceNodes(item.x / 3u), b = faceNodes(item.y / 3u);
     uint e = item.x % 3u, g = item.y % 3u;
     return uvec4(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]);
@@ -59,10 +58,10 @@ uvec4 pairNodes(uint i) {
 bool radialCulled(uint i) {
     if (u_edgeEdge == 0u) {
         uvec2 item = g_vertexFace[i]; // (node, face)
-        return glcRadialCulledVertexFace(item.x, item.y & ~GLC_PAIR_CCD_ONLY);
+        return glcRadialCulledVertexFace(item.x, item.y);
     }
     uvec2 item = g_edgeEdge[i]; // (3*fa+e, 3*fb+g)
-    return glcRadialCulled(item.x / 3u, (item.y & ~GLC_PAIR_CCD_ONLY) / 3u);
+    return glcRadialCulled(item.x / 3u, item.y / 3u);
 }
 
 // Whether pair i has a marked node or face (vertex-face) or a marked face (edge-edge): to come
@@ -71,11 +70,11 @@ bool radialCulled(uint i) {
 bool tangledPair(uint i) {
     if (u_edgeEdge == 0u) {
         uvec2 item = g_vertexFace[i];
-        return g_tangled[item.x] != 0u || g_tangled[u_nodeCount + (item.y & ~GLC_PAIR_CCD_ONLY)] != 0u;
+        return g_tangled[item.x] != 0u || g_tangled[u_nodeCount + item.y] != 0u;
     }
     uvec2 item = g_edgeEdge[i];
     return g_tangled[u_nodeCount + item.x / 3u] != 0u ||
-           g_tangled[u_nodeCount + (item.y & ~GLC_PAIR_CCD_ONLY) / 3u] != 0u;
+           g_tangled[u_nodeCount + item.y / 3u] != 0u;
 }
 
 // What the Ccd stage does with pair i: test it, or leave it out — its faces intersect at x0

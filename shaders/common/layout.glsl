@@ -88,8 +88,9 @@
 #define GLC_BIND_RADIAL_FACE_OBSERVER 57  // uint[faces]: the face's observer, or GLC_RADIAL_NO_OBSERVER
 #define GLC_BIND_RADIAL_POSITIVE 58       // uint[(faces + 31) / 32]: bit f % 32 of word f / 32 set when face f
                                           // is proven positive for its observer over the substep
-#define GLC_BIND_RADIAL_OBSERVER_NODES 59 // uvec2[observers]: the first node and node count whose centroid is the
-                                          // observer (RadialObservers)
+#define GLC_BIND_RADIAL_OBSERVER_NODES 59 // uvec4[observers]: the first node and node count whose centroid is the
+                                          // observer (RadialObservers), 1 when the surface's faces wind
+                                          // inward (classified the other way round), unused
 #define GLC_BIND_RADIAL_CONES 60          // vec4[faces]: each observed face's footprint cone (unit axis, cosine)
 #define GLC_BIND_RADIAL_NONPOSITIVE 61    // uint[1 + faces]: a count, then the observed faces not proven positive
 #define GLC_BIND_RADIAL_FREE 62           // uint[1 + (faces + 31) / 32]: word 0 is 1 when the mask holds for this
@@ -111,13 +112,17 @@
                                            // (classified index), ghost faces of each observer's surface
 #define GLC_BIND_RADIAL_VIOLATED 70        // uint[observers]: 1 when a ghost face of the surface crosses
                                            // another of its faces at x0 (RadialViolated): nothing is free
+// Continuous detection's orphan feature pairs (FeaturePairs, decision 0018 addendum): the faces
+// around each node, to find the one candidate that carries a pair whose owner faces share a node.
+#define GLC_BIND_FEATURE_NODE_FACES 71     // uint[nodes + 1 + 3 * faces]: CSR offsets (counted from the
+                                           // buffer's start), then each node's faces in increasing order
 #define GLC_RADIAL_NO_OBSERVER 0xffffffffu
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 71
+#define GLC_BINDING_COUNT 72
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -160,13 +165,6 @@
 #define GLC_LIST_INTERSECTIONS 3u // uvec2 face pairs whose closed triangles intersect
 #define GLC_LIST_VERTEX_FACE 4u   // uvec2 (node, face) feature pairs of the candidates (R-Triangles)
 #define GLC_LIST_EDGE_EDGE 5u     // uvec2 (edge, edge) feature pairs of the candidates (R-Triangles)
-// With continuous detection FeaturePairs also appends the feature pairs whose owner faces make no
-// valid pair (they share a node), so the CCD sees every feature pair of every candidate whose
-// features may touch (decision 0018, addendum). Those entries carry this bit in the second word
-// (the face of a vertex-face pair, the second edge of an edge-edge pair): the CCD clears it and
-// tests them; every kernel that computes forces skips them, since the owner rule already finds or
-// excludes their contacts and a second copy would double the force.
-#define GLC_PAIR_CCD_ONLY 0x80000000u
 #define GLC_LIST_CCD_VERTEX_FACE_TESTS 6u // uint indices into GLC_LIST_VERTEX_FACE the CCD tests (CcdFilter, radial culling)
 #define GLC_LIST_CCD_EDGE_EDGE_TESTS 7u   // uint indices into GLC_LIST_EDGE_EDGE the CCD tests (CcdFilter, radial culling)
 #define GLC_LIST_COUNT 8

@@ -11,7 +11,7 @@
 
 layout(std430, binding = GLC_BIND_RADIAL_FACE_OBSERVER) readonly buffer RadialFaceObserverBuf { uint g_radialFaceObserver[]; };
 layout(std430, binding = GLC_BIND_RADIAL_FREE) readonly buffer RadialFreeBuf { uint g_radialFree[]; };
-layout(std430, binding = GLC_BIND_RADIAL_OBSERVER_NODES) readonly buffer RadialObserverNodesBuf { uvec2 g_radialObserverNodes[]; };
+layout(std430, binding = GLC_BIND_RADIAL_OBSERVER_NODES) readonly buffer RadialObserverNodesBuf { uvec4 g_radialObserverNodes[]; };
 
 bool glcRadialFree(uint face) {
     return (g_radialFree[1u + face / 32u] & (1u << (face % 32u))) != 0u;
@@ -31,7 +31,7 @@ bool glcRadialCulledVertexFace(uint node, uint face) {
     if (g_radialFree[0] == 0u) return false;
     uint observer = g_radialFaceObserver[face];
     if (observer == GLC_RADIAL_NO_OBSERVER || !glcRadialFree(face)) return false;
-    uvec2 range = g_radialObserverNodes[observer];
+    uvec4 range = g_radialObserverNodes[observer];
     return node >= range.x && node - range.x < range.y;
 }
 

@@ -30,7 +30,6 @@ void main() {
     uint i = globalIndex();
     if (i >= storedCount(GLC_LIST_EDGE_EDGE)) return;
     uvec2 item = g_edgeEdge[i]; // (3*fa+e, 3*fb+g)
-    if ((item.y & GLC_PAIR_CCD_ONLY) != 0u) return; // for the CCD only: its contact is found, or excluded, by its owners
     if (faceTangled(item.x / 3u) || faceTangled(item.y / 3u)) return; // intersecting at x0 (tangled.glsl)
     uvec3 a = faceNodes(item.x / 3u), b = faceNodes(item.y / 3u);
     uint e = item.x % 3u, g = item.y % 3u;

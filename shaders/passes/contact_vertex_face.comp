@@ -38,7 +38,6 @@ void main() {
     uint i = globalIndex();
     if (i >= storedCount(GLC_LIST_VERTEX_FACE)) return;
     uvec2 item = g_vertexFace[i]; // (node, face)
-    if ((item.y & GLC_PAIR_CCD_ONLY) != 0u) return; // for the CCD only: its contact is found, or excluded, by its owner
     GpuFaceInfo info = g_faceInfo[item.y];
     bool closed = g_objects[info.object].closed != 0u;
     if (vertexFace(item.x, faceNodes(item.y), info.owned, closed) != 0u) atomicAdd(g_counters.stats[GLC_STAT_CONTACTS], 1u);

@@ -173,14 +173,12 @@ vec4 contactTerms(ContactPair c) {
 
 vec4 vertexFaceTerms(uint k) {
     uvec2 item = g_vertexFace[k]; // (node, face)
-    if ((item.y & GLC_PAIR_CCD_ONLY) != 0u) return vec4(0.0); // its contact belongs to its owner
     GpuFaceInfo info = g_faceInfo[item.y];
     return contactTerms(vertexFaceContact(item.x, faceNodes(item.y), info.owned, g_objects[info.object].closed != 0u));
 }
 
 vec4 edgeEdgeTerms(uint k) {
     uvec2 item = g_edgeEdge[k]; // (3*fa+e, 3*fb+g)
-    if ((item.y & GLC_PAIR_CCD_ONLY) != 0u) return vec4(0.0);
     uvec3 a = faceNodes(item.x / 3u), b = faceNodes(item.y / 3u);
     uint e = item.x % 3u, g = item.y % 3u;
     return contactTerms(edgeEdgeContact(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]));

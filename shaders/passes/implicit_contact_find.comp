@@ -40,12 +40,10 @@ vec3 previousPosition(uint n) { return g_positions[n].xyz - u_substep * g_veloci
 ContactPair contactOf(uint i) {
     if (u_edgeEdge == 0u) {
         uvec2 item = g_vertexFace[i]; // (node, face)
-        if ((item.y & GLC_PAIR_CCD_ONLY) != 0u) return noContact(); // for the CCD only (layout.glsl)
         GpuFaceInfo info = g_faceInfo[item.y];
         return vertexFaceContact(item.x, faceNodes(item.y), info.owned, g_objects[info.object].closed != 0u);
     }
     uvec2 item = g_edgeEdge[i]; // (3*fa+e, 3*fb+g)
-    if ((item.y & GLC_PAIR_CCD_ONLY) != 0u) return noContact(); // for the CCD only (layout.glsl)
     if (faceTangled(item.x / 3u) || faceTangled(item.y / 3u)) return noContact(); // tangled.glsl
     uvec3 a = faceNodes(item.x / 3u), b = faceNodes(item.y / 3u);
     uint e = item.x % 3u, g = item.y % 3u;

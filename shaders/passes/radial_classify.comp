@@ -41,6 +41,16 @@ void main() {
     vec3 p0 = glcRadialStart(n.x), p1 = glcRadialStart(n.y), p2 = glcRadialStart(n.z);
     vec3 p0End = glcRadialEnd(n.x), p1End = glcRadialEnd(n.y), p2End = glcRadialEnd(n.z);
     vec3 q = g_observers[2u * observer].xyz, qEnd = g_observers[2u * observer + 1u].xyz;
+    // A surface whose faces wind inward (w < 0, decision 0025 "Orientation") is classified with
+    // every face turned round: its winding number around an inside observer is then +1.
+    if (g_observers[2u * observer].w < 0.0) {
+        vec3 t = p1;
+        p1 = p2;
+        p2 = t;
+        t = p1End;
+        p1End = p2End;
+        p2End = t;
+    }
     g_cones[face] = glcRadialFootprint(p0, p1, p2, q, p0End, p1End, p2End, qEnd);
     if (glcRadialPositive(p0, p1, p2, q, p0End, p1End, p2End, qEnd))
         atomicOr(g_positive[face / 32u], 1u << (face % 32u));

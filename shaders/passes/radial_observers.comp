@@ -3,7 +3,8 @@
 // docs/culling.md "Observers"): the centroid of its surface's nodes, at the start of the substep
 // (the positions x0) and at its end (the predicted positions x1); it moves linearly between them,
 // as the classification assumes. One work group per observer; a fixed-order tree sum, so the
-// point does not depend on scheduling. Nothing here needs to be exact: an observer in a poor place
+// point does not depend on scheduling. The start's w carries the surface's orientation (decision
+// 0025, "Orientation"). Nothing here needs to be exact: an observer in a poor place
 // only culls less (a surface that does not wind once around it frees no face, decision 0025).
 #include "common/layout.glsl"
 
@@ -11,7 +12,7 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_start[]; };
 layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) readonly buffer PredictedPositionsBuf { vec4 g_end[]; };
-layout(std430, binding = GLC_BIND_RADIAL_OBSERVER_NODES) readonly buffer RadialObserverNodesBuf { uvec2 g_observerNodes[]; };
+layout(std430, binding = GLC_BIND_RADIAL_OBSERVER_NODES) readonly buffer RadialObserverNodesBuf { uvec4 g_observerNodes[]; };
 layout(std430, binding = GLC_BIND_RADIAL_OBSERVERS) writeonly buffer RadialObserversBuf { vec4 g_observers[]; };
 
 shared vec3 s_start[GLC_WORKGROUP_SIZE];
@@ -19,7 +20,7 @@ shared vec3 s_end[GLC_WORKGROUP_SIZE];
 
 void main() {
     uint observer = gl_WorkGroupID.x, i = gl_LocalInvocationID.x;
-    uvec2 range = g_observerNodes[observer];
+    uvec4 range = g_observerNodes[observer];
     vec3 start = vec3(0.0), end = vec3(0.0);
     for (uint k = i; k < range.y; k += GLC_WORKGROUP_SIZE) {
         start += g_start[range.x + k].xyz;
@@ -37,7 +38,8 @@ void main() {
     }
     if (i == 0u) {
         float count = float(max(range.y, 1u));
-        g_observers[2u * observer] = vec4(s_start[0] / count, 1.0);
+        // w: the surface's orientation for RadialClassify (-1: its faces wind inward).
+        g_observers[2u * observer] = vec4(s_start[0] / count, range.z != 0u ? -1.0 : 1.0);
         g_observers[2u * observer + 1u] = vec4(s_end[0] / count, 1.0);
     }
 }

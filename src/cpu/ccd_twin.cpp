@@ -34,8 +34,7 @@ std::vector<FacePair> twinSweptCandidates(const std::vector<std::uint32_t>& face
 
 std::array<std::uint32_t, 4> vertexFaceNodes(const std::vector<std::uint32_t>& faceIndices,
                                              const IndexPair& vf) {
-    // An entry marked GLC_PAIR_CCD_ONLY (continuous detection's completion) is a pair like the others.
-    const std::size_t f = 3 * static_cast<std::size_t>(unmarked(vf)[1]);
+    const std::size_t f = 3 * static_cast<std::size_t>(vf[1]);
     return {vf[0], faceIndices[f], faceIndices[f + 1], faceIndices[f + 2]};
 }
 
@@ -44,8 +43,7 @@ std::array<std::uint32_t, 4> edgeEdgeNodes(const std::vector<std::uint32_t>& fac
     const auto corner = [&](std::uint32_t edge, std::uint32_t k) {
         return faceIndices[3 * static_cast<std::size_t>(edge / 3) + (edge % 3 + k) % 3];
     };
-    const IndexPair e = unmarked(ee);
-    return {corner(e[0], 0), corner(e[0], 1), corner(e[1], 0), corner(e[1], 1)};
+    return {corner(ee[0], 0), corner(ee[0], 1), corner(ee[1], 0), corner(ee[1], 1)};
 }
 
 FeatureCcdResult featureCcd(const std::vector<std::uint32_t>& faceIndices, const std::vector<glm::vec3>& x0,

@@ -109,7 +109,6 @@ void forEachContact(const ContactParams& params, const ContactInput& in, const F
     const Geometry geometry{params, in};
     const std::vector<std::uint32_t>& idx = *in.faceIndices;
     for (const IndexPair& vf : pairs.vertexFace) {
-        if (ccdOnly(vf)) continue; // the owner rule finds its contact, or excludes it, elsewhere
         const auto [node, face] = vf;
         const std::array<std::uint32_t, 3> nodes{idx[3 * face], idx[3 * face + 1], idx[3 * face + 2]};
         if (const auto c =
@@ -117,7 +116,6 @@ void forEachContact(const ContactParams& params, const ContactInput& in, const F
             f(*c);
     }
     for (const IndexPair& ee : pairs.edgeEdge) {
-        if (ccdOnly(ee)) continue;
         const auto [edgeA, edgeB] = ee;
         const auto a = model::faceEdge(idx, edgeA / 3, static_cast<int>(edgeA % 3));
         const auto b = model::faceEdge(idx, edgeB / 3, static_cast<int>(edgeB % 3));
@@ -312,6 +310,13 @@ FeaturePairList featurePairs(const std::vector<std::uint32_t>& faceIndices,
 
 namespace {
 
+constexpr std::uint32_t kNoFace = 0xffffffffu;
+
+std::size_t nodeCountOf(const std::vector<std::uint32_t>& faceIndices) {
+    return faceIndices.empty() ? 0
+                               : std::size_t{*std::max_element(faceIndices.begin(), faceIndices.end())} + 1;
+}
+
 bool sharesNode(const std::vector<std::uint32_t>& faceIndices, std::uint32_t f, std::uint32_t g) {
     for (std::uint32_t i = 0; i < 3; ++i)
         for (std::uint32_t j = 0; j < 3; ++j)
@@ -332,17 +337,42 @@ FeaturePairList ccdFeaturePairs(const std::vector<std::uint32_t>& faceIndices,
     const auto edgeOwner = [&](std::uint32_t f, std::uint32_t k) {
         return featureOwners[6 * std::size_t{f} + 3 + k];
     };
+    // Each node's faces, in increasing order (model::nodeFaceTable, as the GPU reads them).
+    const std::vector<std::uint32_t> around = model::nodeFaceTable(faceIndices, nodeCountOf(faceIndices));
+    const auto corner = [&](std::uint32_t f, std::uint32_t k) { return faceIndices[3 * std::size_t{f} + k]; };
+    const auto hasNode = [&](std::uint32_t f, std::uint32_t n) {
+        return corner(f, 0) == n || corner(f, 1) == n || corner(f, 2) == n;
+    };
+    const auto lowestFaceApart = [&](std::uint32_t node, std::uint32_t other) {
+        for (std::uint32_t k = around[node]; k < around[node + 1]; ++k)
+            if (!sharesNode(faceIndices, around[k], other)) return around[k];
+        return kNoFace;
+    };
+    const auto lowestFacePairApart = [&](std::uint32_t edgeA, std::uint32_t edgeB) {
+        const auto a = model::faceEdge(faceIndices, edgeA / 3, static_cast<int>(edgeA % 3));
+        const auto b = model::faceEdge(faceIndices, edgeB / 3, static_cast<int>(edgeB % 3));
+        IndexPair best{kNoFace, kNoFace};
+        for (std::uint32_t i = around[a[0]]; i < around[a[0] + 1]; ++i)
+            for (std::uint32_t j = around[b[0]]; j < around[b[0] + 1]; ++j) {
+                const std::uint32_t f = around[i], g = around[j];
+                if (!hasNode(f, a[1]) || !hasNode(g, b[1]) || sharesNode(faceIndices, f, g)) continue;
+                best = std::min(best, IndexPair{std::min(f, g), std::max(f, g)});
+            }
+        return best;
+    };
     for (const auto& [a, b] : candidates) {
         for (std::uint32_t k = 0; k < 3; ++k) {
-            if (sharesNode(faceIndices, vertexOwner(a, k), b))
-                out.vertexFace.push_back({faceIndices[3 * a + k], b | GLC_PAIR_CCD_ONLY});
-            if (sharesNode(faceIndices, vertexOwner(b, k), a))
-                out.vertexFace.push_back({faceIndices[3 * b + k], a | GLC_PAIR_CCD_ONLY});
+            if (sharesNode(faceIndices, vertexOwner(a, k), b) && lowestFaceApart(corner(a, k), b) == a)
+                out.vertexFace.push_back({corner(a, k), b});
+            if (sharesNode(faceIndices, vertexOwner(b, k), a) && lowestFaceApart(corner(b, k), a) == b)
+                out.vertexFace.push_back({corner(b, k), a});
         }
+        const IndexPair key{std::min(a, b), std::max(a, b)};
         for (std::uint32_t e = 0; e < 3; ++e)
             for (std::uint32_t g = 0; g < 3; ++g)
-                if (sharesNode(faceIndices, edgeOwner(a, e), edgeOwner(b, g)))
-                    out.edgeEdge.push_back({3 * a + e, (3 * b + g) | GLC_PAIR_CCD_ONLY});
+                if (sharesNode(faceIndices, edgeOwner(a, e), edgeOwner(b, g)) &&
+                    lowestFacePairApart(3 * a + e, 3 * b + g) == key)
+                    out.edgeEdge.push_back({3 * a + e, 3 * b + g});
     }
     std::sort(out.vertexFace.begin(), out.vertexFace.end());
     std::sort(out.edgeEdge.begin(), out.edgeEdge.end());

@@ -51,23 +51,16 @@ FeaturePairList featurePairs(const std::vector<std::uint32_t>& faceIndices,
                              const std::vector<std::uint32_t>& faceOwned,
                              const std::vector<IndexPair>& candidates);
 
-/// Continuous detection's expansion (feature_pairs.comp with GLC_CCD_COMPLETE): featurePairs plus,
-/// marked GLC_PAIR_CCD_ONLY in the second word, for each candidate (fa, fb) every corner of one
-/// face not owned by it whose owner face (model::featureOwners) shares a node with the other face,
-/// against the other face, and every edge pair (e of fa, g of fb) whose owner faces share a node.
+/// Continuous detection's expansion (feature_pairs.comp with GLC_CCD_COMPLETE): featurePairs plus
+/// the orphans, each once. For each candidate (fa, fb): every corner p of one face not owned by it
+/// whose owner face (model::featureOwners) shares a node with the other face G, when that face is
+/// the lowest face around p sharing no node with G; every edge pair (e of fa, g of fb) whose owner
+/// faces share a node, when (min(fa, fb), max(fa, fb)) is the lowest such face pair around the two
+/// edges whose faces share no node.
 FeaturePairList ccdFeaturePairs(const std::vector<std::uint32_t>& faceIndices,
                                 const std::vector<std::uint32_t>& faceOwned,
                                 const std::vector<std::uint32_t>& featureOwners,
                                 const std::vector<IndexPair>& candidates);
-
-/// True for an entry that only the CCD tests (GLC_PAIR_CCD_ONLY); the response skips it.
-constexpr bool ccdOnly(const IndexPair& pair) {
-    return (pair[1] & GLC_PAIR_CCD_ONLY) != 0u;
-}
-/// The entry without its GLC_PAIR_CCD_ONLY mark.
-constexpr IndexPair unmarked(const IndexPair& pair) {
-    return {pair[0], pair[1] & ~GLC_PAIR_CCD_ONLY};
-}
 
 /// One contact (shaders/common/contact_pair.glsl): four nodes with signed weights (side A: +,
 /// summing to 1; side B: −, summing to −1), the unit normal from B to A and the depth inside the

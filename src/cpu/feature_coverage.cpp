@@ -98,10 +98,12 @@ CcdCoverage ccdCoverage(const std::vector<std::uint32_t>& faceIndices,
         const auto [a, b] = model::faceEdge(faceIndices, edge / 3, static_cast<int>(edge % 3));
         return model::edgeKey(a, b);
     };
-    for (const IndexPair& vf : pairs.vertexFace) seenVertexFace.insert(unmarked(vf));
+    std::uint64_t vertexFaceRepeated = 0, edgeEdgeRepeated = 0;
+    for (const IndexPair& vf : pairs.vertexFace)
+        vertexFaceRepeated += seenVertexFace.insert(vf).second ? 0u : 1u;
     for (const IndexPair& ee : pairs.edgeEdge) {
-        const std::uint64_t a = edgeKeyOf(unmarked(ee)[0]), b = edgeKeyOf(unmarked(ee)[1]);
-        seenEdgeEdge.insert({std::min(a, b), std::max(a, b)});
+        const std::uint64_t a = edgeKeyOf(ee[0]), b = edgeKeyOf(ee[1]);
+        edgeEdgeRepeated += seenEdgeEdge.insert({std::min(a, b), std::max(a, b)}).second ? 0u : 1u;
     }
     std::vector<FloatBox> boxes(faces);
     for (std::uint32_t f = 0; f < faces; ++f) boxes[f] = sweptFaceBox(faceIndices, x0, x1, f, half);
@@ -129,6 +131,8 @@ CcdCoverage ccdCoverage(const std::vector<std::uint32_t>& faceIndices,
             }
     }
     CcdCoverage c;
+    c.vertexFaceRepeated = vertexFaceRepeated;
+    c.edgeEdgeRepeated = edgeEdgeRepeated;
     c.vertexFaceNeeded = neededVertexFace.size();
     c.edgeEdgeNeeded = neededEdgeEdge.size();
     for (const IndexPair& p : neededVertexFace) c.vertexFaceMissing += seenVertexFace.count(p) ? 0u : 1u;

@@ -45,14 +45,17 @@ struct CcdCoverage {
     /// (edge e, edge g) without a common node: faces A around e and B around g with (A, B) valid
     /// and overlapping, and the edges' swept boxes overlapping.
     std::uint64_t edgeEdgeNeeded = 0, edgeEdgeMissing = 0;
+    /// Entries of the list that name a feature pair an earlier entry named (edge pairs in either
+    /// order): a contact the response would count twice.
+    std::uint64_t vertexFaceRepeated = 0, edgeEdgeRepeated = 0;
 };
 
 /// Brute force over every valid face pair whose swept boxes (cpu::sweptFaceBox) overlap: every
 /// vertex of one face against the other face and every edge pair, kept when the features' own
 /// swept boxes overlap (a feature's box lies inside every face box around it, same float
 /// operations, so a pair whose feature boxes do not overlap cannot touch within the thickness);
-/// counts those absent from `pairs` (entries marked GLC_PAIR_CCD_ONLY count, unmarked; edge pairs
-/// in either order). Independent of ownership.
+/// counts those absent from `pairs` (edge pairs in either order), and the entries of `pairs` that
+/// repeat one. Independent of ownership.
 CcdCoverage ccdCoverage(const std::vector<std::uint32_t>& faceIndices,
                         const std::vector<std::uint32_t>& faceObject, const std::vector<glm::vec3>& x0,
                         const std::vector<glm::vec3>& x1, double thickness, const PairRules& rules,

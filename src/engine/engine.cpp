@@ -858,9 +858,6 @@ FeaturePairs Engine::readFeaturePairs() const {
     FeaturePairs out;
     out.vertexFace = m_impl->collision->readVertexFacePairs();
     out.edgeEdge = m_impl->collision->readEdgeEdgePairs();
-    // Continuous detection's completion entries are tested by the CCD only (GLC_PAIR_CCD_ONLY).
-    for (auto* list : {&out.vertexFace, &out.edgeEdge})
-        list->erase(std::remove_if(list->begin(), list->end(), cpu::ccdOnly), list->end());
     return out;
 }
 

@@ -1,6 +1,7 @@
 #include "model/features.hpp"
 
 #include <algorithm>
+#include <vector>
 #include <unordered_map>
 
 namespace glcollide::model {
@@ -59,6 +60,26 @@ bool isClosedSurface(const std::vector<std::uint32_t>& faceIndices, std::uint32_
             ++edgeFaces[edgeKey(a, b)];
         }
     return std::all_of(edgeFaces.begin(), edgeFaces.end(), [](const auto& e) { return e.second == 2; });
+}
+
+std::vector<std::uint32_t> nodeFaceTable(const std::vector<std::uint32_t>& faceIndices,
+                                         std::size_t nodeCount) {
+    std::vector<std::vector<std::uint32_t>> around(nodeCount);
+    for (std::size_t f = 0; f < faceIndices.size() / 3; ++f)
+        for (std::size_t k = 0; k < 3; ++k) {
+            std::vector<std::uint32_t>& faces = around.at(faceIndices[3 * f + k]);
+            if (faces.empty() || faces.back() != f)
+                faces.push_back(static_cast<std::uint32_t>(f)); // faces in order
+        }
+    std::vector<std::uint32_t> table(nodeCount + 1);
+    std::size_t next = nodeCount + 1;
+    for (std::size_t n = 0; n < nodeCount; ++n) {
+        table[n] = static_cast<std::uint32_t>(next);
+        table.insert(table.end(), around[n].begin(), around[n].end());
+        next += around[n].size();
+    }
+    table[nodeCount] = static_cast<std::uint32_t>(next);
+    return table;
 }
 
 } // namespace glcollide::model

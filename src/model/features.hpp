@@ -49,6 +49,12 @@ std::vector<std::uint32_t> ownedFeatures(const std::vector<std::uint32_t>& faceI
 /// (0..2) of face f, [6f + 3 + k] the owner of edge k; the same owners as ownedFeatures.
 std::vector<std::uint32_t> featureOwners(const std::vector<std::uint32_t>& faceIndices);
 
+/// Each node's faces for FeaturePairs' orphans (GLC_BIND_FEATURE_NODE_FACES): words [0, nodeCount]
+/// are offsets counted from the table's start, node n's faces in increasing order (each once) at
+/// [table[n], table[n + 1]). Throws std::out_of_range for a node index >= nodeCount.
+std::vector<std::uint32_t> nodeFaceTable(const std::vector<std::uint32_t>& faceIndices,
+                                         std::size_t nodeCount);
+
 /// 1 when every edge of faces [firstFace, firstFace + faceCount) has exactly two of those faces;
 /// 0 otherwise, and for an object without faces (it bounds no volume).
 bool isClosedSurface(const std::vector<std::uint32_t>& faceIndices, std::uint32_t firstFace,

@@ -44,14 +44,18 @@ CollisionTables::CollisionTables(const model::FlatModel& model, const model::Oct
                          layout.firstBox[o], layout.closed[o]});
     }
     objects = gl::makeBuffer("objects", table);
-    if (withFeatureOwners)
+    if (withFeatureOwners) {
         featureOwners = gl::makeBuffer("featureOwners", model::featureOwners(model.faceIndices));
+        nodeFaces =
+            gl::makeBuffer("featureNodeFaces", model::nodeFaceTable(model.faceIndices, model.nodeCount()));
+    }
 }
 
 void CollisionTables::bind() const {
     faceInfo.bindStorage(GLC_BIND_FACE_INFO);
     objects.bindStorage(GLC_BIND_OBJECTS);
     if (featureOwners) featureOwners.bindStorage(GLC_BIND_FEATURE_OWNERS);
+    if (nodeFaces) nodeFaces.bindStorage(GLC_BIND_FEATURE_NODE_FACES);
 }
 
 CollisionDetection::CollisionDetection(const CollisionConfig& config, const model::FlatModel& model)
@@ -249,6 +253,7 @@ const gl::Buffer& CollisionDetection::broadPhaseBuffer(const std::string& label)
 std::vector<const gl::Buffer*> CollisionDetection::allBuffers() const {
     std::vector<const gl::Buffer*> all = {&m_tables.faceInfo, &m_tables.objects};
     if (m_tables.featureOwners) all.push_back(&m_tables.featureOwners);
+    if (m_tables.nodeFaces) all.push_back(&m_tables.nodeFaces);
     for (const gl::Buffer* b : m_broadPhase->buffers()) all.push_back(b);
     for (const gl::Buffer* b : m_lists->buffers()) all.push_back(b);
     if (m_ccd) all.push_back(&m_ccd->nodeToi());

@@ -95,10 +95,10 @@ struct CollisionTables {
     void bind() const;
     gl::Buffer faceInfo; ///< GpuFaceInfo per face (object, leaf box, owned features)
     gl::Buffer objects;  ///< GpuObject per object
-    /// Owner face of every corner and edge (model::featureOwners, GLC_BIND_FEATURE_OWNERS): read by
-    /// FeaturePairs under continuous detection only, to complete the CCD's feature pairs; none
-    /// (no GL name) otherwise.
-    gl::Buffer featureOwners;
+    /// Owner face of every corner and edge (model::featureOwners, GLC_BIND_FEATURE_OWNERS) and each
+    /// node's faces (model::nodeFaceTable, GLC_BIND_FEATURE_NODE_FACES): read by FeaturePairs under
+    /// continuous detection only, to append the orphan feature pairs; none (no GL name) otherwise.
+    gl::Buffer featureOwners, nodeFaces;
 };
 
 class CollisionDetection {

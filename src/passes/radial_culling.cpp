@@ -7,6 +7,7 @@
 #include <glcollide/error.hpp>
 
 #include <epoxy/gl.h>
+#include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
 #include <algorithm>
@@ -20,10 +21,10 @@ std::vector<std::uint32_t> surfaceRanges(const std::vector<RadialSurface>& surfa
         if (surfaces[o].nodeCount == 0)
             throw Error(std::string(RadialCullingPass::kName) + ": observer " + std::to_string(o) +
                         " has a surface with no nodes");
-        ranges.push_back(surfaces[o].firstNode);
-        ranges.push_back(surfaces[o].nodeCount);
+        ranges.insert(ranges.end(),
+                      {surfaces[o].firstNode, surfaces[o].nodeCount, surfaces[o].inward ? 1u : 0u, 0u});
     }
-    if (ranges.empty()) ranges = {0u, 0u}; // a buffer the consumers can bind
+    if (ranges.empty()) ranges = {0u, 0u, 0u, 0u}; // a buffer the consumers can bind
     return ranges;
 }
 
@@ -87,11 +88,24 @@ RadialGhostFaces checkedGhosts(const RadialCullingConfig& config) {
     return {g.nodeCount, nodes, g.faces};
 }
 
+/// Six times the volume a closed surface bounds, signed: positive when its faces wind outward
+/// (faces[3k .. 3k + 2] index `positions`). Decides only which way the classification turns the
+/// faces (decision 0025, "Orientation").
+double signedVolume6(const std::vector<std::uint32_t>& faces, std::uint32_t firstFace,
+                     std::uint32_t faceCount, const std::vector<glm::dvec3>& positions) {
+    double sum = 0.0;
+    for (std::size_t f = firstFace; f < std::size_t{firstFace} + faceCount; ++f)
+        sum += glm::dot(positions[faces[3 * f]],
+                        glm::cross(positions[faces[3 * f + 1]], positions[faces[3 * f + 2]]));
+    return sum;
+}
+
 /// The ghost closure of one object (docs/culling.md, "Ghost triangles"), in the object's own node
 /// indices (ghost node g is nodeCount + g); empty when no loop is filled or the closed surface is
-/// not one closed, consistently oriented, connected surface.
+/// not one closed, consistently oriented, connected surface. `inward`: the closed surface winds
+/// inward at the model's positions.
 model::GhostTriangles objectGhosts(const model::FlatModel& model, const model::ObjectRange& r,
-                                   double maxPerimeter, std::vector<std::uint32_t>& localFaces) {
+                                   double maxPerimeter, bool& inward) {
     std::vector<model::Triangle> faces;
     for (std::uint32_t f = 0; f < r.faceCount; ++f) {
         const std::uint32_t* n = &model.faceIndices[3 * std::size_t{r.firstFace + f}];
@@ -100,11 +114,14 @@ model::GhostTriangles objectGhosts(const model::FlatModel& model, const model::O
     const std::vector<glm::dvec3> positions(model.positions.begin() + r.firstNode,
                                             model.positions.begin() + r.firstNode + r.nodeCount);
     model::GhostTriangles ghosts = model::ghostTriangles(faces, positions, {maxPerimeter});
-    localFaces.clear();
-    for (const model::Triangle& t : faces) localFaces.insert(localFaces.end(), t.begin(), t.end());
-    for (const model::Triangle& t : ghosts.faces) localFaces.insert(localFaces.end(), t.begin(), t.end());
-    const auto all = static_cast<std::uint32_t>(localFaces.size() / 3);
-    if (ghosts.faces.empty() || !model::isClosedOrientedConnected(localFaces, 0, all)) return {};
+    std::vector<std::uint32_t> closed;
+    for (const model::Triangle& t : faces) closed.insert(closed.end(), t.begin(), t.end());
+    for (const model::Triangle& t : ghosts.faces) closed.insert(closed.end(), t.begin(), t.end());
+    const auto all = static_cast<std::uint32_t>(closed.size() / 3);
+    if (ghosts.faces.empty() || !model::isClosedOrientedConnected(closed, 0, all)) return {};
+    std::vector<glm::dvec3> withGhosts = positions;
+    for (const glm::dvec3& p : model::ghostNodePositions(ghosts, positions)) withGhosts.push_back(p);
+    inward = signedVolume6(closed, 0, all, withGhosts) < 0.0;
     return ghosts;
 }
 
@@ -115,7 +132,6 @@ RadialCullingConfig radialCullingConfig(const model::FlatModel& model, double gh
     config.faceObserver.assign(model.faceCount(), kNoRadialObserver);
     RadialGhosts& g = config.ghosts;
     g.nodeCount = static_cast<std::uint32_t>(model.nodeCount());
-    std::vector<std::uint32_t> localFaces;
     for (const model::ObjectRange& r : model.objects) {
         const auto observer = static_cast<std::uint32_t>(config.surfaces.size());
         RadialSurface surface{r.firstNode,
@@ -126,7 +142,7 @@ RadialCullingConfig radialCullingConfig(const model::FlatModel& model, double gh
                               0};
         if (!model::isClosedOrientedConnected(model.faceIndices, r.firstFace, r.faceCount)) {
             if (!(ghostMaxPerimeter > 0.0)) continue;
-            const model::GhostTriangles ghosts = objectGhosts(model, r, ghostMaxPerimeter, localFaces);
+            const model::GhostTriangles ghosts = objectGhosts(model, r, ghostMaxPerimeter, surface.inward);
             if (ghosts.faces.empty()) continue;
             // Ghost node k of this object is ghost node `base + k` of the model.
             const auto base =
@@ -143,6 +159,9 @@ RadialCullingConfig radialCullingConfig(const model::FlatModel& model, double gh
                 g.faceObserver.push_back(observer);
             }
             surface.ghostFaceCount = static_cast<std::uint32_t>(ghosts.faces.size());
+        } else {
+            surface.inward =
+                signedVolume6(model.faceIndices, r.firstFace, r.faceCount, model.positions) < 0.0;
         }
         config.surfaces.push_back(surface);
         for (std::uint32_t f = 0; f < r.faceCount; ++f) config.faceObserver[r.firstFace + f] = observer;
@@ -164,6 +183,9 @@ RadialCullingPass::RadialCullingPass(const RadialCullingConfig& config)
       m_violated("radialViolated", std::max(m_observerCount, 1u) * sizeof(std::uint32_t)),
       m_observers("radial_observers"), m_freeProgram("radial_free"), m_hostCheck("radial_host_check") {
     for (std::uint32_t o : config.faceObserver) m_observedFaces += o != kNoRadialObserver ? 1u : 0u;
+    for (const RadialSurface& s : config.surfaces)
+        if (s.ghostFaceCount > 0)
+            m_largestSurface = std::max(m_largestSurface, s.faceCount + s.ghostFaceCount);
     m_freeProgram.set("u_faceCount", m_faceCount);
     m_free.fill32(0u);
     m_violated.fill32(0u);
@@ -201,7 +223,13 @@ void RadialCullingPass::run(AppendLists& lists) const {
     if (m_violatedProgram) { // the ghost faces and positions are still bound by the classification
         m_observerFaces.bindStorage(GLC_BIND_RADIAL_OBSERVER_FACES);
         m_violatedProgram->use();
-        m_violatedProgram->dispatch1D(m_ghostFaceCount, GLC_WORKGROUP_SIZE);
+        // One work-group row per ghost face, one invocation per face of its surface; at most
+        // 65,535 rows per dispatch (GL's minimum).
+        const std::uint32_t groups = (m_largestSurface + GLC_WORKGROUP_SIZE - 1) / GLC_WORKGROUP_SIZE;
+        for (std::uint32_t first = 0; first < m_ghostFaceCount; first += 65535u) {
+            m_violatedProgram->set("u_firstGhostFace", first);
+            gl::ComputeProgram::dispatch(groups, std::min(65535u, m_ghostFaceCount - first), 1);
+        }
     }
     m_free.fill32(0u);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

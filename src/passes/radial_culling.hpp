@@ -31,6 +31,10 @@ struct RadialSurface {
     std::uint32_t firstNode = 0, nodeCount = 0;
     std::uint32_t firstFace = 0, faceCount = 0;
     std::uint32_t firstGhostFace = 0, ghostFaceCount = 0;
+    /// The surface's faces (real and ghost) wind inward: its signed volume is negative. The
+    /// classification then turns every face round (decision 0025, "Orientation"); a wrong value
+    /// frees nothing, never a face that may collide.
+    bool inward = false;
 };
 
 /// Ghost nodes and faces that close the observed surfaces' holes (docs/culling.md, "Ghost
@@ -98,6 +102,7 @@ class RadialCullingPass {
   private:
     std::uint32_t m_faceCount = 0, m_observerCount = 0, m_observedFaces = 0;
     std::uint32_t m_ghostNodeCount = 0, m_ghostFaceCount = 0;
+    std::uint32_t m_largestSurface = 0; ///< real + ghost faces of the largest surface with ghosts
     mutable RadialClassifyPass m_classify;
     gl::Buffer m_surfaces, m_observerFaces, m_ghostLoops;
     mutable gl::Buffer m_free;     ///< word 0: the mask holds for this substep; then one bit per face

@@ -467,31 +467,6 @@ TEST(ImplicitContactGlDeterminism, ShuffledListsGiveBitIdenticalVelocities) {
         0);
 }
 
-// Entries marked GLC_PAIR_CCD_ONLY (continuous detection's completion, layout.glsl) are for the CCD
-// only: implicit_contact_find.comp must give them no contact. Here every pair also appears marked,
-// so a kernel that read the marked copies would double every contact: the records hold the same
-// active contacts and the solve gives the same bits as the lists without them.
-TEST(ImplicitContactGlDeterminism, CcdOnlyEntriesAddNoContact) {
-    const ContactScene s = clothOverGround(6, 0.01, false, 15);
-    const ImplicitParams p = solverParams(1.0 / 30.0, true);
-    const ContactParams cp = contactParams(0.01, 1.0e4);
-    cpu::FeaturePairList withMarked = s.pairs;
-    for (const cpu::IndexPair& vf : s.pairs.vertexFace)
-        withMarked.vertexFace.push_back({vf[0], vf[1] | GLC_PAIR_CCD_ONLY});
-    for (const cpu::IndexPair& ee : s.pairs.edgeEdge)
-        withMarked.edgeEdge.push_back({ee[0], ee[1] | GLC_PAIR_CCD_ONLY});
-    const GpuRun plain = runGpu(s, p, cp, s.pairs);
-    const GpuRun marked = runGpu(s, p, cp, withMarked);
-    const cpu::ImplicitContactSet a = gpuContacts(plain, cp.stiffness), b = gpuContacts(marked, cp.stiffness);
-    ASSERT_GT(a.contacts.size(), 20u);
-    EXPECT_EQ(b.contacts.size(), a.contacts.size());
-    EXPECT_EQ(marked.list.size(), plain.list.size());
-    ASSERT_EQ(marked.velocities.size(), plain.velocities.size());
-    EXPECT_EQ(std::memcmp(marked.velocities.data(), plain.velocities.data(),
-                          plain.velocities.size() * sizeof(glm::vec4)),
-              0);
-}
-
 // nullptr: the springs-only solve, the same bits from a pass built with contacts as from one without.
 TEST(ImplicitContactGlDeterminism, WithoutContactsTheSolveIsTheSpringsOnlySolve) {
     const ContactScene s = clothOverGround(6, 0.01, false, 14);

@@ -18,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -222,6 +223,38 @@ TEST(IntersectionFreeGl, ABoxRestingUnderImplicitEulerNeedsNoGuard) {
     EXPECT_EQ(run.guardActionsAtRest, 0u)
         << "the guard acted in frames 21-60, with the box at rest on the ground";
     EXPECT_LT(run.end.kinetic, 1e-4) << "at rest after 1 s";
+}
+
+// Every feature pair that the CCD may stop a step at is a contact the response acts on (decision
+// 0018, addendum "Orphans"): a sleeve (1,216 faces) hung from its top ring and spun at 40 rad/s
+// twists and wraps onto itself; before, the pairs whose owner faces share a node were the CCD's
+// only, nothing pushed them apart, and from frame 9 on the safe step cut every node's step in every
+// substep — the twisted sleeve froze in mid-air (kinetic energy 0, 44 of 60 substeps cut). Now the
+// response pushes those pairs apart like any other: the cut acts in under 5 % of substeps.
+TEST(IntersectionFreeGl, ATwistedSleeveIsNotFrozenByPairsThatNothingPushesApart) {
+    const std::string json =
+        R"({"format_version": 1, "name": "twisted sleeve", "effects": ["gravity", "springs", "self_collisions"],
+      "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 2},
+      "collision": {"broad_phase": "bvh", "thickness": 0.004, "stiffness": 500, "response": "intersection_free"},
+      "objects": [
+        {"name": "sleeve", "generator": {"type": "tube", "radius": 0.08, "length": 0.5, "resolution": [32, 20]},
+         "transform": {"translate": [0, 0.5, 0]}, "mass": 0.05, "springs": {"stiffness": 40, "bend_stiffness": 0.2},
+         "angular_velocity": [0, 40, 0],
+         "pinned": {"inside": {"min": [-0.1, 0.749, -0.1], "max": [0.1, 0.751, 0.1]}}}]})";
+    Engine engine(parseScene(json, ".", "twisted sleeve"));
+    EnergyReport last = engine.energy();
+    std::uint32_t cutSubsteps = 0, maxContacts = 0;
+    const int frames = 30;
+    for (int frame = 1; frame <= frames; ++frame) {
+        engine.step();
+        last = expectNoEnergyGain(engine, last, frame);
+        cutSubsteps += engine.lastStep().collision.safeStepSubsteps;
+        maxContacts = std::max(maxContacts, engine.lastStep().collision.contacts);
+    }
+    EXPECT_GT(maxContacts, 20u) << "the sleeve must wrap onto itself, or the test shows nothing";
+    EXPECT_LE(cutSubsteps, static_cast<std::uint32_t>(2 * frames / 20))
+        << "safe-step cuts in " << 2 * frames << " substeps";
+    EXPECT_EQ(exactIntersectingPairs(engine), 0u);
 }
 
 // The same scene runs the same twice (decision 0024, "Energy guard": deterministic). The feature

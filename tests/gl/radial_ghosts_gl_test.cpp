@@ -26,6 +26,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 namespace glcollide {
 namespace {
@@ -112,6 +113,24 @@ void expectGhostNodesAreLoopMeans(const passes::RadialCullingConfig& config,
     }
 }
 
+/// No face the GPU calls free intersects another face of `model` at t = k/8, k = 1..8, of the
+/// linear motion x0 -> x1 (exact oracle); returns the most pairs intersecting at one of those times.
+std::size_t expectFreeFacesIntersectNothing(const model::FlatModel& model, const std::vector<glm::vec3>& x0,
+                                            const std::vector<glm::vec3>& x1,
+                                            const std::vector<std::uint8_t>& free) {
+    const std::vector<std::uint32_t> faceObject(model.faceCount(), 0u);
+    std::size_t intersecting = 0, k = 0;
+    for (const auto& pairs : cpu::twinIntersectionsAlongMotion(model.faceIndices, faceObject, x0, x1,
+                                                               cpu::PairRules{false, true}, 8)) {
+        ++k;
+        intersecting = std::max(intersecting, pairs.size());
+        for (const cpu::FacePair& p : pairs)
+            EXPECT_FALSE(free[p[0]] || free[p[1]])
+                << "faces " << p[0] << " and " << p[1] << " intersect at t = " << k << "/8, one of them free";
+    }
+    return intersecting;
+}
+
 TEST(RadialGhostsGl, ASleeveClosedByGhostsFreesWhatTheTwinFreesAndNothingThatIntersects) {
     const model::FlatModel model = sleeveModel();
     const auto faces = static_cast<std::uint32_t>(model.faceCount());
@@ -164,17 +183,23 @@ TEST(RadialGhostsGl, ASleeveClosedByGhostsFreesWhatTheTwinFreesAndNothingThatInt
 
     // On every device: no face the GPU calls free intersects another face of the sleeve at any of
     // eight times of the substep (exact oracle), and the motion really does intersect.
-    const std::vector<std::uint32_t> faceObject(faces, 0u);
-    std::size_t intersecting = 0, k = 0;
-    for (const auto& pairs : cpu::twinIntersectionsAlongMotion(model.faceIndices, faceObject, x0, x1,
-                                                               cpu::PairRules{false, true}, 8)) {
-        ++k;
-        intersecting = std::max(intersecting, pairs.size());
-        for (const cpu::FacePair& p : pairs)
-            EXPECT_FALSE(run.free[p[0]] || run.free[p[1]])
-                << "faces " << p[0] << " and " << p[1] << " intersect at t = " << k << "/8, one of them free";
-    }
-    EXPECT_GT(intersecting, 0u) << "the shove must really intersect, or the test shows nothing";
+    EXPECT_GT(expectFreeFacesIntersectNothing(model, x0, x1, run.free), 0u)
+        << "the shove must really intersect, or the test shows nothing";
+
+    // The same sleeve with every face wound the other way round: its closed surface winds inward
+    // (negative signed volume), the classification turns its faces round, and it is culled like
+    // its outward twin (decision 0025, "Orientation"; without the turn nothing would be free).
+    model::FlatModel inward = model;
+    for (std::size_t f = 0; f < inward.faceCount(); ++f)
+        std::swap(inward.faceIndices[3 * f + 1], inward.faceIndices[3 * f + 2]);
+    const passes::RadialCullingConfig inwardConfig =
+        passes::radialCullingConfig(inward, std::numeric_limits<double>::infinity());
+    ASSERT_EQ(inwardConfig.surfaces.size(), 1u);
+    EXPECT_FALSE(config.surfaces[0].inward);
+    EXPECT_TRUE(inwardConfig.surfaces[0].inward);
+    const CullingRun turned = runCulling(inward, inwardConfig, x0, x1);
+    EXPECT_GT(turned.freeCount, faces / 4) << "an inward-wound sleeve must be culled too";
+    EXPECT_GT(expectFreeFacesIntersectNothing(inward, x0, x1, turned.free), 0u);
 }
 
 // A real face that crosses a ghost fan at the start of the substep: the closed surface is not
@@ -213,6 +238,32 @@ TEST(RadialGhostsGl, AGhostCrossedByARealFaceAtTheStartFreesNothing) {
     const CullingRun straight = runCulling(model, config, floats(model.positions), floats(model.positions));
     EXPECT_EQ(straight.violated, std::vector<std::uint32_t>{0u});
     EXPECT_EQ(straight.freeCount, faces);
+}
+
+// Real data we did not make: DEDO's face mask (scenes/meshes/mask_0.obj; a rim and two ear-loop
+// holes, its faces wound inward). All three loops closed by fans, it is one closed surface; at rest
+// no real face crosses a fan (exact twin and GPU agree), the orientation turns it round, and with
+// the observer at its nodes' centroid every face is free.
+TEST(RadialGhostsGl, TheDedoMaskAtRestIsClosedByItsFansAndFree) {
+    const Scene scene = loadScene(std::string(GLCOLLIDE_SOURCE_DIR) + "/scenes/mask_fold.json");
+    const model::FlatModel model = model::flatten(scene);
+    const passes::RadialCullingConfig config =
+        passes::radialCullingConfig(model, std::numeric_limits<double>::infinity());
+    ASSERT_EQ(config.surfaces.size(), 2u); // the ball and the mask
+    const passes::RadialSurface& mask = config.surfaces[1];
+    EXPECT_EQ(config.ghosts.loopOffsets.size(), 4u) << "three loops, three ghost nodes";
+    EXPECT_EQ(mask.ghostFaceCount, 94u + 41u + 41u);
+    EXPECT_TRUE(mask.inward);
+    const std::vector<glm::vec3> x0 = floats(model.positions);
+    const CullingRun run = runCulling(model, config, x0, x0);
+    std::vector<std::uint32_t> allFaces = model.faceIndices;
+    allFaces.insert(allFaces.end(), config.ghosts.faces.begin(), config.ghosts.faces.end());
+    const std::vector<cpu::RadialFacePair> violated =
+        cpu::radialViolatedPairs(allFaces, model.faceCount(), withGhosts(x0, run.ghostNodes, false));
+    for (const cpu::RadialFacePair& p : violated)
+        ADD_FAILURE() << "faces " << p[0] << " and " << p[1] << " cross";
+    EXPECT_EQ(run.violated, (std::vector<std::uint32_t>{0u, 0u}));
+    EXPECT_EQ(run.freeCount, model.faceCount());
 }
 
 TEST(RadialGhostsGl, InconsistentGhostTablesAreRefused) {
