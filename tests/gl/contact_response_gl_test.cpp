@@ -375,7 +375,7 @@ TEST(ContactResponseGl, StripsExpandOnlyOwnedFeaturesOnceAndMatchTheTwin) {
 
 // One crumpled grid cloth of 12 x 12 cells of 0.02 m (every node displaced by up to a cell per
 // axis) with self-collisions: faces a ring or two apart on the mesh are candidates, so continuous
-// detection's expansion adds CCD-only entries.
+// detection's expansion adds orphans.
 Soup crumpledClothSoup(std::uint32_t seed, double thickness) {
     const std::uint32_t n = 12;
     const float cell = 0.02f;

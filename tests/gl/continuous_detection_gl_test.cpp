@@ -204,7 +204,7 @@ TEST_P(ContinuousDetectionGl, SweptCandidatesAndTimesOfImpactMatchTheTwinAndMiss
     const Pairs expected = cpu::twinSweptCandidates(m.model.faceIndices, detection.layout().faceObject, m.x0,
                                                     m.x1, m.thickness, rules);
     ASSERT_EQ(detection.readCandidates(), expected);
-    // Continuous detection's expansion: the owned pairs plus the CCD-only ones ownership loses.
+    // Continuous detection's expansion: the owned pairs plus the orphans ownership loses, each once.
     const cpu::FeaturePairList features =
         cpu::ccdFeaturePairs(m.model.faceIndices, detection.layout().faceOwned,
                              model::featureOwners(m.model.faceIndices), expected);
