@@ -116,13 +116,16 @@
 // around each node, to find the one candidate that carries a pair whose owner faces share a node.
 #define GLC_BIND_FEATURE_NODE_FACES 71     // uint[nodes + 1 + 3 * faces]: CSR offsets (counted from the
                                            // buffer's start), then each node's faces in increasing order
+#define GLC_BIND_RADIAL_UNDECIDED 72        // uint[2 + 2 * GLC_RADIAL_UNDECIDED_CAPACITY]: a count, unused, then the
+                                           // (ghost face, face) pairs RadialViolated's filter left undecided
+#define GLC_RADIAL_UNDECIDED_CAPACITY 4096u
 #define GLC_RADIAL_NO_OBSERVER 0xffffffffu
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 72
+#define GLC_BINDING_COUNT 73
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a

@@ -4,14 +4,15 @@
 // ghost face (work-group row y) and a face of its surface (x: the surface's real faces, then its
 // ghost faces before this one, so each ghost pair once). The theorem needs the observer's closed
 // surface — real and ghost faces — embedded at the start of the substep; the engine's TriTri keeps
-// the real faces apart, this pass checks the rest, at x0, by the exact test (glcTriTriFiltered,
-// else glcTriTriExact; pairs sharing a node are left out, as TriTri leaves out neighbours). One
-// crossing, or a pair the exact test could not decide, marks the surface violated for this
-// substep: RadialFree then frees none of its faces. Brute force behind a box test. One pair per
-// invocation and straight-line code, like TriTriExact: called in a loop over pairs, the exact
-// procedure answered wrongly on llvmpipe (a pair it decides correctly alone; 2026-11-26). The flag
-// is an OR: the result does not depend on the order. CPU twin: cpu::radialViolatedPairs
-// (non-empty exactly when a surface is marked).
+// the real faces apart, this pass checks the rest, at x0: pairs sharing a node are left out (as
+// TriTri leaves out neighbours), then a closed-box test, then the certified filter
+// (glcTriTriFiltered). A crossing marks the surface violated for this substep (RadialFree then
+// frees none of its faces); a pair the filter cannot decide goes to a short list that
+// RadialViolatedExact decides exactly — or, when the list is full, marks the surface too (culling
+// less only costs time). Brute force behind the box test; the exact code lives in its own kernel,
+// whose private arrays would slow every invocation of this one on llvmpipe. The flag is an OR:
+// the result does not depend on the order. CPU twin: cpu::radialViolatedPairs (non-empty exactly
+// when a surface is marked).
 #include "common/layout.glsl"
 #include "common/lists.glsl" // g_counters: the statistics
 #include "common/face_nodes.glsl"
@@ -24,6 +25,8 @@ layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) readonly buffer Predicted
 layout(std430, binding = GLC_BIND_RADIAL_FACE_OBSERVER) readonly buffer RadialFaceObserverBuf { uint g_faceObserver[]; };
 layout(std430, binding = GLC_BIND_RADIAL_OBSERVER_FACES) readonly buffer RadialObserverFacesBuf { uvec4 g_observerFaces[]; };
 layout(std430, binding = GLC_BIND_RADIAL_VIOLATED) buffer RadialViolatedBuf { uint g_violated[]; };
+// uint[2 + 2 * GLC_RADIAL_UNDECIDED_CAPACITY]: the count, unused, then (ghost face, other face) pairs
+layout(std430, binding = GLC_BIND_RADIAL_UNDECIDED) buffer RadialUndecidedBuf { uint g_undecided[]; };
 #include "common/radial_ghost.glsl"
 
 uniform uint u_ghostFaceCount;  // ghost faces in all
@@ -52,8 +55,15 @@ void main() {
         any(lessThan(max(g0, max(g1, g2)), min(o0, min(o1, o2)))))
         return;
     int filtered = glcTriTriFiltered(g0, g1, g2, o0, o1, o2);
-    // Undecidable counts as crossing: the surface is then not culled, which only costs time.
-    bool crosses = filtered != GLC_UNDECIDED ? filtered == 1
-                                             : glcTriTriExact(g0, g1, g2, o0, o1, o2) || glcExactFailed;
-    if (crosses && atomicOr(g_violated[observer], 1u) == 0u) atomicAdd(g_counters.stats[GLC_STAT_RADIAL_VIOLATED], 1u);
+    if (filtered == GLC_UNDECIDED) {
+        uint slot = atomicAdd(g_undecided[0], 1u);
+        if (slot < GLC_RADIAL_UNDECIDED_CAPACITY) {
+            g_undecided[2u + 2u * slot] = face;
+            g_undecided[3u + 2u * slot] = other;
+            return;
+        }
+    } else if (filtered == 0) {
+        return;
+    }
+    if (atomicOr(g_violated[observer], 1u) == 0u) atomicAdd(g_counters.stats[GLC_STAT_RADIAL_VIOLATED], 1u);
 }

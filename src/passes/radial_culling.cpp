@@ -195,6 +195,10 @@ RadialCullingPass::RadialCullingPass(const RadialCullingConfig& config)
         m_violatedProgram.emplace("radial_violated");
         m_violatedProgram->set("u_ghostFaceCount", m_ghostFaceCount);
         m_classify.setGhostUniforms(*m_violatedProgram);
+        m_violatedExact.emplace("radial_violated_exact");
+        m_classify.setGhostUniforms(*m_violatedExact);
+        m_undecided = gl::Buffer("radialUndecided", (2 + 2 * std::size_t{GLC_RADIAL_UNDECIDED_CAPACITY}) *
+                                                        sizeof(std::uint32_t));
     }
 }
 
@@ -226,10 +230,16 @@ void RadialCullingPass::run(AppendLists& lists) const {
         // One work-group row per ghost face, one invocation per face of its surface; at most
         // 65,535 rows per dispatch (GL's minimum).
         const std::uint32_t groups = (m_largestSurface + GLC_WORKGROUP_SIZE - 1) / GLC_WORKGROUP_SIZE;
+        m_undecided.fill32(0u);
+        m_undecided.bindStorage(GLC_BIND_RADIAL_UNDECIDED);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         for (std::uint32_t first = 0; first < m_ghostFaceCount; first += 65535u) {
             m_violatedProgram->set("u_firstGhostFace", first);
             gl::ComputeProgram::dispatch(groups, std::min(65535u, m_ghostFaceCount - first), 1);
         }
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        m_violatedExact->use();
+        m_violatedExact->dispatch1D(GLC_RADIAL_UNDECIDED_CAPACITY, GLC_WORKGROUP_SIZE);
     }
     m_free.fill32(0u);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

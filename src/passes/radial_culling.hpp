@@ -105,11 +105,12 @@ class RadialCullingPass {
     std::uint32_t m_largestSurface = 0; ///< real + ghost faces of the largest surface with ghosts
     mutable RadialClassifyPass m_classify;
     gl::Buffer m_surfaces, m_observerFaces, m_ghostLoops;
-    mutable gl::Buffer m_free;     ///< word 0: the mask holds for this substep; then one bit per face
-    mutable gl::Buffer m_moved;    ///< uint: RadialHostCheck's flag
-    mutable gl::Buffer m_violated; ///< uint per observer: RadialViolated's flag
+    mutable gl::Buffer m_free;      ///< word 0: the mask holds for this substep; then one bit per face
+    mutable gl::Buffer m_moved;     ///< uint: RadialHostCheck's flag
+    mutable gl::Buffer m_violated;  ///< uint per observer: RadialViolated's flag
+    mutable gl::Buffer m_undecided; ///< RadialViolated's pairs for RadialViolatedExact (with ghosts)
     gl::ComputeProgram m_observers, m_freeProgram, m_hostCheck;
-    std::optional<gl::ComputeProgram> m_ghostNodes, m_violatedProgram; ///< only with ghosts
+    std::optional<gl::ComputeProgram> m_ghostNodes, m_violatedProgram, m_violatedExact; ///< only with ghosts
 };
 
 } // namespace glcollide::passes

@@ -31,7 +31,7 @@ namespace {
 // The host binds buffers at more indexed points than the engine uses (0 .. GLC_BINDING_COUNT-1 of
 // layout.glsl), so a guard that saves too few of them is seen. Devices the engine runs on offer
 // at least GLC_BINDING_COUNT; the test binds min(kBindings, the device's maximum).
-constexpr GLuint kBindings = 80;
+constexpr GLuint kBindings = 80; // > GLC_BINDING_COUNT
 static_assert(kBindings > GLC_BINDING_COUNT);
 
 GLuint hostBindings() {

@@ -106,6 +106,7 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"RadialGhostPositionsBuf", GLC_BIND_RADIAL_GHOST_POSITIONS},
     {"RadialObserverFacesBuf", GLC_BIND_RADIAL_OBSERVER_FACES},
     {"RadialViolatedBuf", GLC_BIND_RADIAL_VIOLATED},
+    {"RadialUndecidedBuf", GLC_BIND_RADIAL_UNDECIDED},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {
