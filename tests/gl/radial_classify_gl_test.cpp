@@ -14,6 +14,7 @@
 #include "passes/radial_culling.hpp"
 #include "support/collision_buffers.hpp"
 #include "support/glsl_as_written.hpp"
+#include "support/radial_culling_run.hpp"
 
 #include <glcollide/error.hpp>
 #include <glcollide/scene.hpp>
@@ -139,19 +140,12 @@ TEST(RadialClassifyGl, TheCullingPassFreesWhatTheTwinFreesAndNothingThatIntersec
     std::vector<glm::vec3> x1 = s.x0;
     for (std::size_t i = 0; i < x1.size(); ++i)
         if (s.x0[i].y > 0.3f && s.x0[i].x > 0.0f) x1[i].x -= 0.6f;
-    passes::DeviceBuffers b = test::collisionBuffers(s.x0, s.faces);
-    b.predictedPositions = gl::makeBuffer("predictedPositions", test::positionsWithUnitW(x1));
     passes::RadialCullingConfig config;
     config.faceObserver.assign(faces, 0u);
     config.surfaces = {{0u, static_cast<std::uint32_t>(s.x0.size())}};
     passes::RadialCullingPass pass(config);
     passes::AppendLists lists(0);
-    lists.bind();
-    b.positions.bindStorage(GLC_BIND_NODE_POSITIONS);
-    b.predictedPositions.bindStorage(GLC_BIND_PREDICTED_POSITIONS);
-    b.faces.bindStorage(GLC_BIND_FACES);
-    pass.run(lists);
-    lists.readCounters();
+    test::runRadialCulling(pass, lists, s.x0, x1, s.faces);
 
     // The observer: the centroid. A fixed-order float sum of n terms of size <= |x| is within
     // n * 2^-24 * max|x| of the exact sum, so the mean is within 2^-24 * max|x| * (1 + small): 1e-6 m here.

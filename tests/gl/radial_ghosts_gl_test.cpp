@@ -14,7 +14,7 @@
 #include "model/ghost_triangles.hpp"
 #include "passes/collision/append_lists.hpp"
 #include "passes/radial_culling.hpp"
-#include "support/collision_buffers.hpp"
+#include "support/radial_culling_run.hpp"
 #include "support/glsl_as_written.hpp"
 
 #include <glcollide/error.hpp>
@@ -57,16 +57,9 @@ struct CullingRun {
 /// One run of the culling pass over x0 -> x1 with the engine's configuration for `model`.
 CullingRun runCulling(const model::FlatModel& model, const passes::RadialCullingConfig& config,
                       const std::vector<glm::vec3>& x0, const std::vector<glm::vec3>& x1) {
-    passes::DeviceBuffers b = test::collisionBuffers(x0, model.faceIndices);
-    b.predictedPositions = gl::makeBuffer("predictedPositions", test::positionsWithUnitW(x1));
     passes::RadialCullingPass pass(config);
     passes::AppendLists lists(0);
-    lists.bind();
-    b.positions.bindStorage(GLC_BIND_NODE_POSITIONS);
-    b.predictedPositions.bindStorage(GLC_BIND_PREDICTED_POSITIONS);
-    b.faces.bindStorage(GLC_BIND_FACES);
-    pass.run(lists);
-    lists.readCounters();
+    test::runRadialCulling(pass, lists, x0, x1, model.faceIndices);
     CullingRun r;
     const std::vector<std::uint32_t> mask = pass.readFreeMask();
     for (std::size_t f = 0; f < model.faceCount(); ++f) {
