@@ -177,6 +177,12 @@ struct SolverStats {
     double maxRelativeResidual = 0.0;      ///< largest final ‖r‖/‖b‖ of one substep
     std::uint32_t totalIterations = 0;     ///< summed over the frame's substeps
     std::uint32_t unconvergedSubsteps = 0; ///< substeps that stopped at the cap above the tolerance
+    /// The further Newton steps' line search (time.solver.line_search, decision 0024): steps
+    /// searched, steps that kept a fraction below 1 of their change, steps that kept none of it.
+    bool lineSearch = false;
+    std::uint32_t lineSearchSteps = 0;
+    std::uint32_t lineSearchShortened = 0;
+    std::uint32_t lineSearchRejected = 0;
 };
 
 struct StepStats {

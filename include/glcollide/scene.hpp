@@ -178,6 +178,10 @@ struct ImplicitSolverSettings {
     /// contacts found there, so contacts that enter the thickness during the substep act in the
     /// solve itself (decision 0024, "Newton steps"); each costs one more detection and solve.
     int newtonSteps = 0;
+    /// Each further Newton step keeps the first of the fractions 1, ½, ¼ of its change whose
+    /// incremental potential is not above the step's start (decision 0024, "Line search"), else
+    /// none; false takes the whole step (for comparison).
+    bool lineSearch = true;
 };
 
 struct TimeSettings {

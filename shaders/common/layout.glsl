@@ -120,12 +120,16 @@
                                            // (ghost face, face) pairs RadialViolated's filter left undecided
 #define GLC_RADIAL_UNDECIDED_CAPACITY 4096u
 #define GLC_RADIAL_NO_OBSERVER 0xffffffffu
+// The Newton steps' line search (NewtonLineSearch, decision 0024 "Line search").
+#define GLC_BIND_LINE_SEARCH 73            // GpuLineSearch: the last sum of the incremental potential
+#define GLC_BIND_LINE_SEARCH_VELOCITIES 74 // vec4[3 * nodes]: v0 (the substep's start), the Newton step's
+                                           // start, its full step's end
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 73
+#define GLC_BINDING_COUNT 75
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a
@@ -303,6 +307,18 @@ struct GpuEnergyGuard {
     // Per group, the contacts' energy and its magnitude as exact 128-bit fixed-point sums (units of
     // 2⁻⁶⁴ J, four 32-bit words, least significant first): the feature-pair lists are filled in an
     // order that changes from run to run, and only an exact sum does not depend on it.
+    uvec4 contactPartials[2 * GLC_ENERGY_GROUPS];
+};
+
+// The Newton steps' line search (newton_line_search.comp): the last candidate's incremental
+// potential Φ (J) and the magnitude scale of its terms, and the partial sums of its terms groups
+// as GpuEnergyGuard's: (Φ, magnitude, unused, unused) and the contacts' exact sums.
+struct GpuLineSearch {
+    float total;     // J: Φ of the last candidate summed
+    float magnitude; // J: the magnitude scale of its terms (the resolution's base)
+    uint pad0;
+    uint pad1;
+    vec4 partials[GLC_ENERGY_GROUPS];
     uvec4 contactPartials[2 * GLC_ENERGY_GROUPS];
 };
 

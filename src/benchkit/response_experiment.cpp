@@ -16,6 +16,8 @@ struct ResponseTally {
     double safeStepMaxRounds = 0, groundCrossings = 0, substepsWithIntersections = 0;
     double solverIterations = 0, solverMaxIterations = 0, unconvergedSubsteps = 0;
     double guardSubsteps = 0, guardPulledBack = 0, guardRemoved = 0;
+    double lineSearchSteps = 0, lineSearchShortened = 0, lineSearchRejected = 0;
+    bool lineSearch = false;
     int substepsPerFrame = 1;
     bool safeStep = false, implicit = false, guard = false;
 
@@ -50,6 +52,10 @@ FrameHook tallyFrames(ResponseTally& t) {
         t.solverIterations += s.solver.totalIterations;
         t.solverMaxIterations = std::max(t.solverMaxIterations, double(s.solver.maxIterations));
         t.unconvergedSubsteps += s.solver.unconvergedSubsteps;
+        t.lineSearch = t.lineSearch || s.solver.lineSearch;
+        t.lineSearchSteps += s.solver.lineSearchSteps;
+        t.lineSearchShortened += s.solver.lineSearchShortened;
+        t.lineSearchRejected += s.solver.lineSearchRejected;
     };
 }
 
@@ -89,6 +95,11 @@ void record(const ResponseTally& t, RunResult& r) {
           t.implicit && t.substeps > 0 ? t.solverIterations / t.substeps : nan);
     r.set("solver_max_iterations", t.implicit ? t.solverMaxIterations : nan);
     r.set("solver_unconverged_substeps", t.implicit ? t.unconvergedSubsteps : nan);
+    // The Newton steps' line search: the fraction of searched steps it shortened / rejected.
+    const bool search = t.lineSearch && t.lineSearchSteps > 0;
+    r.set("line_search_steps", t.lineSearch ? t.lineSearchSteps : nan);
+    r.set("line_search_shortened_fraction", search ? t.lineSearchShortened / t.lineSearchSteps : nan);
+    r.set("line_search_rejected_fraction", search ? t.lineSearchRejected / t.lineSearchSteps : nan);
     r.set("wall_ms_per_substep", r.wallMs.median / r.substeps);
     r.set("gpu_ms_per_substep", r.gpuMs.median / r.substeps);
 }

@@ -56,6 +56,8 @@ static_assert(offsetof(GpuCollisionCounters, lists) == 0);
 static_assert(offsetof(GpuCollisionCounters, stats) == 8 * GLC_LIST_COUNT);
 static_assert(offsetof(GpuEnergyGuard, partials) == 64);
 static_assert(sizeof(GpuEnergyGuard) == 64 + 16 * GLC_ENERGY_GROUPS + 32 * GLC_ENERGY_GROUPS);
+static_assert(offsetof(GpuLineSearch, partials) == 16);
+static_assert(sizeof(GpuLineSearch) == 16 + 16 * GLC_ENERGY_GROUPS + 32 * GLC_ENERGY_GROUPS);
 static_assert(sizeof(GpuHealth) == 16);
 static_assert(offsetof(GpuHealth, firstBadNode) == 0);
 static_assert(offsetof(GpuHealth, badSubstep) == 4);

@@ -115,4 +115,56 @@ Energy energy(const std::vector<glm::dvec3>& positions, const std::vector<glm::d
     return e;
 }
 
+Potential incrementalPotential(const PotentialParams& p, const std::vector<glm::dvec3>& startPositions,
+                               const std::vector<glm::dvec3>& startVelocities,
+                               const std::vector<glm::dvec3>& velocities,
+                               const std::vector<double>& inverseMasses,
+                               const std::vector<model::FlatSpring>* springs) {
+    const std::size_t n = startPositions.size();
+    std::vector<glm::dvec3> x(n), v(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const bool free = inverseMasses[i] > 0.0;
+        v[i] = free ? velocities[i] : glm::dvec3(0.0); // pinned nodes keep x0 (their v is not read)
+        x[i] = free ? startPositions[i] + p.h * velocities[i] : startPositions[i];
+    }
+    Potential phi;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (inverseMasses[i] <= 0.0) continue;
+        const double m = 1.0 / inverseMasses[i];
+        const glm::dvec3 dv = v[i] - startVelocities[i];
+        const double inertia = 0.5 * m * glm::dot(dv, dv);
+        const double air = 0.5 * p.h * p.airDamping * m * glm::dot(v[i], v[i]);
+        const double gravity = -m * glm::dot(p.gravity, x[i]);
+        const double depth = std::max(p.groundLevel - x[i].y, 0.0);
+        const double ground = p.groundStiffness > 0.0 ? 0.5 * p.groundStiffness * depth * depth : 0.0;
+        const double groundScale =
+            p.groundStiffness > 0.0
+                ? ground + p.groundStiffness * depth * (std::abs(x[i].y) + std::abs(p.groundLevel))
+                : 0.0;
+        phi.total += inertia + air + gravity + ground;
+        phi.magnitude += inertia +
+                         m * glm::length(dv) * (glm::length(v[i]) + glm::length(startVelocities[i])) + air +
+                         std::abs(gravity) + groundScale;
+    }
+    if (springs)
+        for (const model::FlatSpring& s : *springs) {
+            const glm::dvec3 d = x[s.b] - x[s.a];
+            const double length = glm::length(d);
+            const double stretch = length - s.restLength;
+            const double elastic = 0.5 * s.stiffness * stretch * stretch;
+            phi.total += elastic;
+            phi.magnitude += elastic + s.stiffness * std::abs(stretch) * (length + s.restLength);
+            if (!(length > 0.0) || s.damping == 0.0) continue;
+            // Velocities as the shader reads them: a pinned node's own (unchanged) velocity.
+            const glm::dvec3 va = inverseMasses[s.a] > 0.0 ? v[s.a] : velocities[s.a];
+            const glm::dvec3 vb = inverseMasses[s.b] > 0.0 ? v[s.b] : velocities[s.b];
+            const double rate = glm::dot(vb - va, d / length);
+            const double dissipation = 0.5 * p.h * s.damping * rate * rate;
+            phi.total += dissipation;
+            phi.magnitude +=
+                dissipation + p.h * s.damping * std::abs(rate) * (glm::length(va) + glm::length(vb));
+        }
+    return phi;
+}
+
 } // namespace glcollide::cpu

@@ -46,4 +46,28 @@ Energy energy(const std::vector<glm::dvec3>& positions, const std::vector<glm::d
               const std::vector<double>& masses, const std::vector<double>& inverseMasses,
               const glm::dvec3* gravity, const std::vector<model::FlatSpring>* springs);
 
+/// Backward Euler's incremental potential at the velocities v of one substep (decision 0024,
+/// "Line search"), whose minimiser is the step: with x = x0 + h·v for free nodes (pinned: x0),
+///   Φ(v) = Σ ½m|v − v0|² + ½h·c_air·m|v|² − m g·x + ½k_g·max(0, groundLevel − y)²
+///        + Σ_springs ½k(|xb − xa| − L)² + ½h·c(u·(vb − va))²  (+ the contacts' ½k·depth², added
+///        by the caller),
+/// ∇Φ = M(v − v0) − h·f(x, v). Twin of newton_line_search.comp (no contacts); `magnitude` is the
+/// scale of its float sum's rounding, each term's as the shader adds it.
+struct PotentialParams {
+    double h = 0.0;
+    double airDamping = 0.0;      ///< 1/s
+    glm::dvec3 gravity{0.0};      ///< m/s²
+    double groundStiffness = 0.0; ///< N/m per node (0: no ground penalty)
+    double groundLevel = 0.0;     ///< m
+};
+struct Potential {
+    double total = 0.0;
+    double magnitude = 0.0;
+};
+Potential incrementalPotential(const PotentialParams& params, const std::vector<glm::dvec3>& startPositions,
+                               const std::vector<glm::dvec3>& startVelocities,
+                               const std::vector<glm::dvec3>& velocities,
+                               const std::vector<double>& inverseMasses,
+                               const std::vector<model::FlatSpring>* springs);
+
 } // namespace glcollide::cpu

@@ -75,6 +75,7 @@ struct Engine::Impl {
     std::optional<passes::NodePredictPass> nodePredict;
     std::optional<passes::SafeStepPass> safeStep;
     std::optional<passes::EnergyGuardPass> energyGuard;
+    std::optional<passes::NewtonLineSearchPass> lineSearch;
     std::uint64_t tangledSubsteps = 0;    ///< CollisionStats::substepsUntilIntersectionFree
     bool reachedIntersectionFree = false; ///< CollisionStats::reachedIntersectionFree
     bool radialPremise = false; ///< radial culling: this substep starts intersection-free (decision 0025)
@@ -343,6 +344,9 @@ void Engine::Impl::makePass(engine::Stage stage) {
     case Stage::EnergyGuard:
         energyGuard.emplace(plan.energyGuardParams, buffers.springCount);
         break;
+    case Stage::NewtonLineSearch:
+        lineSearch.emplace(plan.lineSearchParams, buffers.nodeCount, buffers.springCount);
+        break;
     case Stage::Commit:
         break; // SafeStepPass::commit: a copy
     case Stage::NewtonDetection:
@@ -522,6 +526,16 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             implicitSolve->dispatchNewton(buffers, plan.implicitParams, contacts);
             break;
         }
+        case Stage::NewtonLineSearch: {
+            if (newtonSkipped) break; // no Newton step was taken
+            const passes::ContactInputs inputs = contactInputs();
+            const gl::TimedSection section(options.gpuTiming ? &timer : nullptr,
+                                           passes::passIndex(passes::NewtonLineSearchPass::kId),
+                                           passes::NewtonLineSearchPass::kName);
+            (void)lineSearch->dispatch(buffers, &inputs, implicitSolve->startVelocities(),
+                                       implicitSolve->newtonStart(), plan.implicitParams.h);
+            break;
+        }
         case Stage::ContactResponse:
             run(*contact, contactInputs(), plan.contact);
             if (lastOfFrame) readContacts();
@@ -616,6 +630,12 @@ void Engine::Impl::readSolverStats() {
     s.maxRelativeResidual = c.maxRelativeResidual;
     s.totalIterations = c.totalIterations;
     s.unconvergedSubsteps = c.unconvergedSubsteps;
+    s.lineSearch = lineSearch.has_value();
+    if (!lineSearch) return;
+    const passes::LineSearchCounts l = lineSearch->frameCounts();
+    s.lineSearchSteps = l.steps;
+    s.lineSearchShortened = l.shortened;
+    s.lineSearchRejected = l.rejected;
 }
 
 void Engine::Impl::checkFrameCompleted() {
@@ -665,6 +685,7 @@ void Engine::Impl::beginFrame() {
     if (options.gpuTiming) timer.beginFrame();
     stats.collision = {};
     if (implicitSolve) implicitSolve->resetStatistics();
+    if (lineSearch) lineSearch->clearFrameCounts();
     frameDispatchesBefore = gl::dispatchCount();
     frameWallMilliseconds = 0.0;
     // The energy guard's start: the host may have moved nodes since the last frame.

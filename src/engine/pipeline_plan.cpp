@@ -54,8 +54,10 @@ std::vector<Stage> PipelinePlan::safeStepStages() const {
     if (implicitSolve) s.push_back(Stage::ImplicitSolve);
     // Each further Newton step: the last step's end x1 is detected (the contacts it brings into the
     // thickness join the feature-pair lists), then the system is solved again at x1.
-    for (int k = 1; implicitSolve && implicitContacts && k < implicitParams.newtonSteps; ++k)
+    for (int k = 1; implicitSolve && implicitContacts && k < implicitParams.newtonSteps; ++k) {
         s.insert(s.end(), {Stage::NodePredict, Stage::NewtonDetection, Stage::ImplicitNewton});
+        if (lineSearch) s.push_back(Stage::NewtonLineSearch);
+    }
     s.push_back(Stage::NodePredict);
     // Recovery from an intersecting start pushes after the step, as under symplectic Euler (the
     // solve's penalty, with sides from x0, does not separate a tangled start).
@@ -96,6 +98,9 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
             break;
         case Stage::ImplicitNewton:
             break; // ImplicitSolve's pass again, timed as its
+        case Stage::NewtonLineSearch:
+            p.push_back(PassId::NewtonLineSearch);
+            break;
         case Stage::ContactResponse:
             p.push_back(PassId::ContactResponse);
             break;
@@ -215,6 +220,19 @@ void planSafeStep(const Scene& scene, PipelinePlan& plan) {
     eg.stiffness = plan.contact.stiffness;
     eg.groundStiffness = plan.implicitParams.groundStiffness;
     eg.groundLevel = plan.implicitParams.groundHeight + plan.implicitParams.groundBand;
+    // The line search's Φ: the same potentials plus inertia and the dampers' dissipation (a
+    // potential only without wind; with wind the whole Newton step is taken).
+    plan.lineSearch =
+        plan.implicitSolve && plan.implicitParams.newtonSteps > 1 && scene.time.solver.lineSearch && !nf.wind;
+    passes::LineSearchParams& ls = plan.lineSearchParams;
+    ls.gravity = eg.gravity;
+    ls.airDamping = plan.implicitParams.airDamping;
+    ls.springs = plan.springs;
+    ls.contacts = true;
+    ls.thickness = eg.thickness;
+    ls.stiffness = eg.stiffness;
+    ls.groundStiffness = eg.groundStiffness;
+    ls.groundLevel = eg.groundLevel;
     NodeUpdateParams& ca = plan.contactApplyParams;
     ca = np;
     ca.forces = false;

@@ -6,6 +6,7 @@
 #include "core/dynamics_params.hpp"
 #include "passes/device_buffers.hpp"
 #include "passes/energy_guard.hpp"
+#include "passes/newton_line_search.hpp"
 #include "passes/pass_id.hpp"
 
 #include <glcollide/scene.hpp>
@@ -27,6 +28,7 @@ enum class Stage : std::uint8_t {
     ImplicitSolve,      ///< implicit Euler: the springs' linear solve, v += Δv
     NewtonDetection,    ///< CollisionDetection of a Newton step's x1 (its counts are not the substep's)
     ImplicitNewton,     ///< implicit Euler: a further Newton step at x1 with the contacts found there
+    NewtonLineSearch,   ///< implicit Euler: the fraction of that step that lowers the incremental potential
     ContactResponse,    ///< contact forces or impulses on the feature pairs
     SafeStep,           ///< intersection-free response: steps cut to before the first contact, committed
     EnergyGuard,        ///< intersection-free response: a rise of the total energy taken out of v or x1
@@ -74,6 +76,10 @@ struct PipelinePlan {
     /// Safe step under implicit Euler: the penalty contacts of the last substep's feature pairs
     /// enter the solve's matrix (ImplicitSolverPass with contacts; docs/integration.md).
     bool implicitContacts = false;
+    /// Further Newton steps with time.solver.line_search and no wind (Φ needs a potential):
+    /// NewtonLineSearch after each (decision 0024, "Line search").
+    bool lineSearch = false;
+    passes::LineSearchParams lineSearchParams;
     /// Safe step with collision.energyGuard: EnergyGuard after SafeStep (decision 0024).
     bool energyGuard = false;
     passes::EnergyGuardParams energyGuardParams;

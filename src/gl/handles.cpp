@@ -85,15 +85,16 @@ void Buffer::download(std::size_t offset, std::size_t bytes, void* out) const {
     glBindBuffer(GL_COPY_READ_BUFFER, 0);
 }
 
-void copyBufferData(const Buffer& source, const Buffer& target, std::size_t bytes) {
+void copyBufferData(const Buffer& source, const Buffer& target, std::size_t bytes, std::size_t targetOffset) {
     if (bytes == 0) return;
-    if (bytes > source.bytes() || bytes > target.bytes())
+    if (bytes > source.bytes() || targetOffset > target.bytes() || bytes > target.bytes() - targetOffset)
         throw Error("copyBufferData: " + std::to_string(bytes) + " bytes from '" + source.label() + "' (" +
                     std::to_string(source.bytes()) + ") to '" + target.label() + "' (" +
-                    std::to_string(target.bytes()) + ")");
+                    std::to_string(target.bytes()) + ") at " + std::to_string(targetOffset));
     glBindBuffer(GL_COPY_READ_BUFFER, source.name());
     glBindBuffer(GL_COPY_WRITE_BUFFER, target.name());
-    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, static_cast<GLsizeiptr>(bytes));
+    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, static_cast<GLintptr>(targetOffset),
+                        static_cast<GLsizeiptr>(bytes));
     glBindBuffer(GL_COPY_READ_BUFFER, 0);
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 }

@@ -72,8 +72,10 @@ class Buffer {
     std::string m_label;
 };
 
-/// Copies the first `bytes` of `source` into `target` on the GPU (glCopyBufferSubData).
-void copyBufferData(const Buffer& source, const Buffer& target, std::size_t bytes);
+/// Copies the first `bytes` of `source` into `target` at byte `targetOffset` on the GPU
+/// (glCopyBufferSubData).
+void copyBufferData(const Buffer& source, const Buffer& target, std::size_t bytes,
+                    std::size_t targetOffset = 0);
 
 /// A buffer holding a copy of `data` (a placeholder when empty).
 template <typename T> Buffer makeBuffer(std::string_view label, const std::vector<T>& data) {

@@ -55,6 +55,7 @@ ImplicitSolverPass::ImplicitSolverPass(const ImplicitParams& config, std::uint32
       m_setupNewton(contactProgram(contacts && config.newtonSteps > 1, "implicit_newton_setup",
                                    solverDefines(config, true))),
       m_startVelocities("solverStartVelocities", contacts && config.newtonSteps > 1 ? nodeCount * kVec4 : 0),
+      m_newtonStart("solverNewtonStart", contacts && config.newtonSteps > 1 ? nodeCount * kVec4 : 0),
       m_contactFind(contactProgram(contacts, "implicit_contact_find")),
       m_contactScan(contactProgram(contacts, "implicit_contact_scan")),
       m_contactScatter(contactProgram(contacts, "implicit_contact_scatter")),
@@ -203,6 +204,7 @@ void ImplicitSolverPass::dispatchNewton(const DeviceBuffers& b, const ImplicitPa
     // last solve's writes of r.
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gl::copyBufferData(m_startVelocities, m_residual, m_startVelocities.bytes());
+    gl::copyBufferData(b.velocities, m_newtonStart, m_newtonStart.bytes()); // v1, for the line search
     solve(b, params, &contacts, b.predictedPositions, m_setupNewton);
 }
 
@@ -290,8 +292,9 @@ std::vector<std::string> ImplicitSolverPass::allocatedLabels() const {
         labels.push_back(buffer->label());
     if (m_contacts)
         for (const gl::Buffer* buffer : std::initializer_list<const gl::Buffer*>{
-                 &m_nodeContactCounts, &m_contactData, &m_startVelocities})
-            if (*buffer && (buffer != &m_startVelocities || m_newton)) labels.push_back(buffer->label());
+                 &m_nodeContactCounts, &m_contactData, &m_startVelocities, &m_newtonStart})
+            if (*buffer && ((buffer != &m_startVelocities && buffer != &m_newtonStart) || m_newton))
+                labels.push_back(buffer->label());
     return labels;
 }
 
@@ -302,8 +305,9 @@ std::size_t ImplicitSolverPass::allocatedBytes() const {
         bytes += buffer->bytes();
     if (m_contacts)
         for (const gl::Buffer* buffer : std::initializer_list<const gl::Buffer*>{
-                 &m_nodeContactCounts, &m_contactData, &m_startVelocities})
-            if (buffer != &m_startVelocities || m_newton) bytes += buffer->bytes();
+                 &m_nodeContactCounts, &m_contactData, &m_startVelocities, &m_newtonStart})
+            if ((buffer != &m_startVelocities && buffer != &m_newtonStart) || m_newton)
+                bytes += buffer->bytes();
     return bytes;
 }
 

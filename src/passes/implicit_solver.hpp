@@ -113,6 +113,10 @@ class ImplicitSolverPass {
     [[nodiscard]] std::vector<std::uint32_t> downloadNodeContactOffsets() const;
     [[nodiscard]] std::vector<std::uint32_t> downloadNodeContactList() const;
     [[nodiscard]] std::uint32_t contactEdgeEdgeBase() const { return m_contactEdgeEdgeBase; }
+    /// The Newton steps' velocities (built with newtonSteps > 1): v0, the substep's start, and v1,
+    /// the last Newton step's start (NewtonLineSearchPass reads both).
+    [[nodiscard]] const gl::Buffer& startVelocities() const { return m_startVelocities; }
+    [[nodiscard]] const gl::Buffer& newtonStart() const { return m_newtonStart; }
 
     /// Dispatches of one velocity update: 1 + 2·maxIterations + 1.
     [[nodiscard]] std::uint32_t dispatchesPerSubstep() const;
@@ -149,11 +153,11 @@ class ImplicitSolverPass {
     // are their contact variants and the incidence list's builders.
     bool m_contacts = false;
     gl::ComputeProgram m_setupContacts, m_directionContacts;
-    // The Newton step (ImplicitParams::newtonSteps > 1): its setup and the start velocities v0
-    // (copied into m_residual for its setup).
+    // The Newton step (ImplicitParams::newtonSteps > 1): its setup, the start velocities v0
+    // (copied into m_residual for its setup) and the last Newton step's start v1.
     bool m_newton = false;
     gl::ComputeProgram m_setupNewton;
-    gl::Buffer m_startVelocities;
+    gl::Buffer m_startVelocities, m_newtonStart;
     gl::ComputeProgram m_contactFind, m_contactScan, m_contactScatter, m_contactSort;
     mutable gl::Buffer m_nodeContactCounts; // cleared by every dispatch with contacts
     // Row offsets, the record count, incidence entries, the records' list slots and the records

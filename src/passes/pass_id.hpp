@@ -26,19 +26,20 @@ enum class PassId : std::uint8_t {
     SafeStep,     ///< intersection-free response: cut the steps of nodes that may touch, re-check, commit
     EnergyGuard,  ///< intersection-free response: a rise of the total energy taken out of the velocities
     ContactResponse,
-    ContactApply,  ///< intersection-free response: a response iteration's forces into v and x1
-    ImplicitSolve, ///< implicit Euler: assemble A·Δv = b, conjugate gradients, v += Δv
+    ContactApply,     ///< intersection-free response: a response iteration's forces into v and x1
+    ImplicitSolve,    ///< implicit Euler: assemble A·Δv = b, conjugate gradients, v += Δv
+    NewtonLineSearch, ///< implicit Euler: the fraction of a further Newton step that lowers Φ
     NodeUpdate,
     FrameStep ///< a small scene's whole frame (SpringUpdate + NodeUpdate per substep) in one dispatch
 };
 
-inline constexpr std::size_t kPassCount = 19;
+inline constexpr std::size_t kPassCount = 20;
 
 inline constexpr std::array<const char*, kPassCount> kPassNames = {
-    "NodeForce",    "SpringUpdate",  "NodePredict", "RadialCulling", "BBUpdate",
-    "BBCollision",  "BvhBuild",      "BvhRefit",    "BvhTraverse",   "TriTri",
-    "FeaturePairs", "Ccd",           "SafeStep",    "EnergyGuard",   "ContactResponse",
-    "ContactApply", "ImplicitSolve", "NodeUpdate",  "FrameStep"};
+    "NodeForce",    "SpringUpdate",  "NodePredict",      "RadialCulling", "BBUpdate",
+    "BBCollision",  "BvhBuild",      "BvhRefit",         "BvhTraverse",   "TriTri",
+    "FeaturePairs", "Ccd",           "SafeStep",         "EnergyGuard",   "ContactResponse",
+    "ContactApply", "ImplicitSolve", "NewtonLineSearch", "NodeUpdate",    "FrameStep"};
 
 constexpr const char* passName(PassId id) {
     return kPassNames[static_cast<std::size_t>(id)];

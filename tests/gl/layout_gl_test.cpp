@@ -107,6 +107,8 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"RadialObserverFacesBuf", GLC_BIND_RADIAL_OBSERVER_FACES},
     {"RadialViolatedBuf", GLC_BIND_RADIAL_VIOLATED},
     {"RadialUndecidedBuf", GLC_BIND_RADIAL_UNDECIDED},
+    {"LineSearchBuf", GLC_BIND_LINE_SEARCH},
+    {"LineSearchVelocitiesBuf", GLC_BIND_LINE_SEARCH_VELOCITIES},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {

@@ -161,21 +161,33 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     // The band's friction is bounded by the solve's ground penalty too (a resting node has some).
     EXPECT_EQ(plan.contactApplyParams.groundStiffness, plan.implicitParams.groundStiffness);
     // Automatic Newton steps with the contacts in the solve: 2. The second detects the first's end
-    // and solves again there; each pass is listed once.
+    // and solves again there, and the line search keeps the part of it that lowers Φ; each pass is
+    // listed once.
     scene.time.solver.newtonSteps = 0;
     plan = engine::planPipeline(scene);
     EXPECT_EQ(plan.implicitParams.newtonSteps, 2);
-    EXPECT_EQ(plan.stages(),
-              (std::vector<Stage>{Stage::SpringUpdate, Stage::ContactIterations, Stage::ImplicitSolve,
-                                  Stage::NodePredict, Stage::NewtonDetection, Stage::ImplicitNewton,
-                                  Stage::NodePredict, Stage::RecoveryIterations, Stage::CollisionDetection,
-                                  Stage::SafeStep, Stage::EnergyGuard, Stage::Commit}));
+    EXPECT_TRUE(plan.lineSearch);
+    EXPECT_EQ(
+        plan.stages(),
+        (std::vector<Stage>{Stage::SpringUpdate, Stage::ContactIterations, Stage::ImplicitSolve,
+                            Stage::NodePredict, Stage::NewtonDetection, Stage::ImplicitNewton,
+                            Stage::NewtonLineSearch, Stage::NodePredict, Stage::RecoveryIterations,
+                            Stage::CollisionDetection, Stage::SafeStep, Stage::EnergyGuard, Stage::Commit}));
     EXPECT_EQ(plan.passes(),
               (std::vector<std::string>{"SpringUpdate", "ContactResponse", "ContactApply", "ImplicitSolve",
                                         "NodePredict", "BBUpdate", "BBCollision", "TriTri", "FeaturePairs",
-                                        "Ccd", "SafeStep", "EnergyGuard"}));
+                                        "Ccd", "NewtonLineSearch", "SafeStep", "EnergyGuard"}));
+    // Φ sums what the guard sums, from the same levels, plus inertia and dissipation.
+    EXPECT_EQ(plan.lineSearchParams.groundStiffness, plan.energyGuardParams.groundStiffness);
+    EXPECT_EQ(plan.lineSearchParams.groundLevel, plan.energyGuardParams.groundLevel);
+    EXPECT_EQ(plan.lineSearchParams.gravity, plan.energyGuardParams.gravity);
     scene.time.solver.newtonSteps = 3;
-    EXPECT_EQ(engine::planPipeline(scene).stages().size(), plan.stages().size() + 3);
+    EXPECT_EQ(engine::planPipeline(scene).stages().size(), plan.stages().size() + 4);
+    // Switched off, each Newton step is taken whole.
+    scene.time.solver.lineSearch = false;
+    EXPECT_FALSE(engine::planPipeline(scene).lineSearch);
+    EXPECT_EQ(engine::planPipeline(scene).stages().size(), plan.stages().size() + 3 - 1);
+    scene.time.solver.lineSearch = true;
     EXPECT_FALSE(plan.nodePredictParams.forces); // the solve set v
     // The solve's ground penalty has a potential: the guard counts it, from the same level.
     EXPECT_EQ(plan.energyGuardParams.groundStiffness, plan.implicitParams.groundStiffness);

@@ -323,6 +323,16 @@ TEST(SceneJson, SettingsAndEffects) {
     EXPECT_THAT(
         errorOf(scene(kCloth, implicitTime + R"(2}})")),
         HasSubstr("/time/solver/newton_steps: more than 1 Newton step needs the contacts in the solve"));
+    // The Newton steps' line search (time.solver.line_search): on by default, a boolean.
+    EXPECT_TRUE(safe.time.solver.lineSearch) << "documented default: on";
+    EXPECT_FALSE(parse(scene(kCloth,
+                             R"("time": {"integrator": "implicit_euler", "solver": {"line_search": false}},)"
+                             R"( "collision": {"response": "intersection_free"})",
+                             R"(["springs", "self_collisions"])"))
+                     .time.solver.lineSearch);
+    EXPECT_THAT(
+        errorOf(scene(kCloth, R"("time": {"integrator": "implicit_euler", "solver": {"line_search": 1}})")),
+        HasSubstr("/time/solver/line_search: expected true or false, got 1"));
     EXPECT_EQ(c.collision.thickness, 0.002);
     EXPECT_EQ(c.collision.stiffness, 500.0);
     EXPECT_EQ(c.collision.damping, 0.1);

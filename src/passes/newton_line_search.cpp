@@ -1,0 +1,122 @@
+#include "passes/newton_line_search.hpp"
+
+#include "core/gpu_layout.hpp"
+#include "passes/energy_guard.hpp"
+
+#include <glcollide/error.hpp>
+
+#include <epoxy/gl.h>
+
+#include <string>
+#include <vector>
+
+namespace glcollide::passes {
+namespace {
+constexpr std::size_t kVec4 = 4 * sizeof(float);
+}
+
+NewtonLineSearchPass::NewtonLineSearchPass(const LineSearchParams& params, std::uint32_t nodeCount,
+                                           std::uint32_t springCount)
+    : m_params(params), m_nodeCount(nodeCount), m_springCount(params.springs ? springCount : 0u),
+      m_state(gl::makeBuffer("lineSearch", std::vector<gpu::GpuLineSearch>(1, gpu::GpuLineSearch{}))),
+      m_velocities("lineSearchVelocities", std::size_t{3} * nodeCount * kVec4),
+      m_program("newton_line_search") {
+    m_program.set("u_springCount", m_springCount);
+    m_program.set("u_contacts", params.contacts ? 1u : 0u);
+    m_program.set("u_gravity", params.gravity);
+    m_program.set("u_airDamping", static_cast<float>(params.airDamping));
+    m_program.set("u_thickness", static_cast<float>(params.thickness));
+    m_program.set("u_stiffness", static_cast<float>(params.stiffness));
+    m_program.set("u_groundStiffness", static_cast<float>(params.groundStiffness));
+    m_program.set("u_groundLevel", static_cast<float>(params.groundLevel));
+    m_program.set("u_nodeCount", nodeCount);
+}
+
+double NewtonLineSearchPass::resolution(const ContactInputs* contacts, std::uint32_t nodeCount) const {
+    std::uint64_t terms = std::uint64_t{nodeCount} + m_springCount;
+    if (m_params.contacts && contacts && contacts->lists)
+        terms += std::uint64_t{contacts->lists->capacity(GLC_LIST_VERTEX_FACE)} +
+                 contacts->lists->capacity(GLC_LIST_EDGE_EDGE);
+    // The same sums as the energy guard's (common/energy_sum.glsl): the same chain of roundings.
+    return EnergyGuardPass::resolutionFactor(terms);
+}
+
+void NewtonLineSearchPass::bindState(const DeviceBuffers& b, const ContactInputs* contacts) const {
+    if (b.nodeCount != m_nodeCount) throw Error(std::string(kName) + ": built for another node count");
+    bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
+    bindRequired(b.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, kName, "predictedPositions");
+    bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
+    if (m_springCount > 0) bindRequired(b.springs, GLC_BIND_SPRINGS, kName, "springs");
+    if (m_params.contacts) {
+        if (!contacts || !contacts->lists || !contacts->faceInfo || !contacts->objects)
+            throw Error(std::string(kName) + ": collision buffers missing");
+        bindRequired(b.faces, GLC_BIND_FACES, kName, "faces");
+        bindRequired(*contacts->faceInfo, GLC_BIND_FACE_INFO, kName, "faceInfo");
+        bindRequired(*contacts->objects, GLC_BIND_OBJECTS, kName, "objects");
+        contacts->lists->bind();
+    }
+    m_state.bindStorage(GLC_BIND_LINE_SEARCH);
+    m_velocities.bindStorage(GLC_BIND_LINE_SEARCH_VELOCITIES);
+    m_program.use();
+}
+
+void NewtonLineSearchPass::copyVelocities(const DeviceBuffers& b, const gl::Buffer& startVelocities,
+                                          const gl::Buffer& stepStart) const {
+    const std::size_t bytes = std::size_t{m_nodeCount} * kVec4;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl::copyBufferData(startVelocities, m_velocities, bytes, 0);
+    gl::copyBufferData(stepStart, m_velocities, bytes, bytes);
+    gl::copyBufferData(b.velocities, m_velocities, bytes, 2 * bytes);
+}
+
+void NewtonLineSearchPass::writeCandidate(const DeviceBuffers& b, float alpha, double h) const {
+    m_program.set("u_mode", 2u);
+    m_program.set("u_alpha", alpha);
+    m_program.set("u_h", static_cast<float>(h));
+    m_program.dispatch1D(b.nodeCount, GLC_WORKGROUP_SIZE);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+PotentialSum NewtonLineSearchPass::sum(double h) const {
+    m_program.set("u_h", static_cast<float>(h));
+    m_program.set("u_mode", 0u);
+    gl::ComputeProgram::dispatch(GLC_ENERGY_GROUPS, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    m_program.set("u_mode", 1u);
+    gl::ComputeProgram::dispatch(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    float values[2] = {0.0f, 0.0f};
+    m_state.download(0, sizeof values, values);
+    return PotentialSum{values[0], values[1]};
+}
+
+PotentialSum NewtonLineSearchPass::evaluate(const DeviceBuffers& b, const ContactInputs* contacts,
+                                            float alpha, double h) const {
+    bindState(b, contacts);
+    writeCandidate(b, alpha, h);
+    return sum(h);
+}
+
+float NewtonLineSearchPass::dispatch(const DeviceBuffers& b, const ContactInputs* contacts,
+                                     const gl::Buffer& startVelocities, const gl::Buffer& stepStart,
+                                     double h) const {
+    if (m_nodeCount == 0) return 1.0f;
+    copyVelocities(b, startVelocities, stepStart);
+    ++m_counts.steps;
+    const double resolution = this->resolution(contacts, b.nodeCount);
+    const PotentialSum start = evaluate(b, contacts, 0.0f, h);
+    for (const float alpha : kFractions) {
+        const PotentialSum candidate = evaluate(b, contacts, alpha, h);
+        if (candidate.total <= start.total + resolution * (start.magnitude + candidate.magnitude)) {
+            if (alpha < 1.0f) ++m_counts.shortened;
+            return alpha;
+        }
+    }
+    // No fraction lowers Φ: the Newton step's start stays.
+    ++m_counts.shortened;
+    ++m_counts.rejected;
+    writeCandidate(b, 0.0f, h);
+    return 0.0f;
+}
+
+} // namespace glcollide::passes
