@@ -224,15 +224,8 @@ void planSafeStep(const Scene& scene, PipelinePlan& plan) {
     // potential only without wind; with wind the whole Newton step is taken).
     plan.lineSearch =
         plan.implicitSolve && plan.implicitParams.newtonSteps > 1 && scene.time.solver.lineSearch && !nf.wind;
-    passes::LineSearchParams& ls = plan.lineSearchParams;
-    ls.gravity = eg.gravity;
-    ls.airDamping = plan.implicitParams.airDamping;
-    ls.springs = plan.springs;
-    ls.contacts = true;
-    ls.thickness = eg.thickness;
-    ls.stiffness = eg.stiffness;
-    ls.groundStiffness = eg.groundStiffness;
-    ls.groundLevel = eg.groundLevel;
+    plan.lineSearchParams.potentials = eg;
+    plan.lineSearchParams.airDamping = plan.implicitParams.airDamping;
     NodeUpdateParams& ca = plan.contactApplyParams;
     ca = np;
     ca.forces = false;

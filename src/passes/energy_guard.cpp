@@ -31,17 +31,38 @@ double EnergyGuardPass::resolutionFactor(std::uint64_t terms) {
     return static_cast<double>(depth + 8) * std::ldexp(1.0, -24);
 }
 
+void setPotentialUniforms(const gl::ComputeProgram& program, const EnergyGuardParams& params,
+                          std::uint32_t springCount) {
+    program.set("u_springCount", springCount);
+    program.set("u_contacts", params.contacts ? 1u : 0u);
+    program.set("u_gravity", params.gravity);
+    program.set("u_thickness", static_cast<float>(params.thickness));
+    program.set("u_stiffness", static_cast<float>(params.stiffness));
+    program.set("u_groundStiffness", static_cast<float>(params.groundStiffness));
+    program.set("u_groundLevel", static_cast<float>(params.groundLevel));
+}
+
+std::uint64_t bindPotentialInputs(const DeviceBuffers& b, const ContactInputs* contacts,
+                                  const EnergyGuardParams& params, std::uint32_t springCount,
+                                  const char* pass) {
+    if (springCount > 0) bindRequired(b.springs, GLC_BIND_SPRINGS, pass, "springs");
+    std::uint64_t terms = std::uint64_t{b.nodeCount} + springCount;
+    if (!params.contacts) return terms;
+    if (!contacts || !contacts->lists || !contacts->faceInfo || !contacts->objects)
+        throw Error(std::string(pass) + ": collision buffers missing");
+    bindRequired(b.faces, GLC_BIND_FACES, pass, "faces");
+    bindRequired(*contacts->faceInfo, GLC_BIND_FACE_INFO, pass, "faceInfo");
+    bindRequired(*contacts->objects, GLC_BIND_OBJECTS, pass, "objects");
+    contacts->lists->bind();
+    return terms + contacts->lists->capacity(GLC_LIST_VERTEX_FACE) +
+           contacts->lists->capacity(GLC_LIST_EDGE_EDGE);
+}
+
 EnergyGuardPass::EnergyGuardPass(const EnergyGuardParams& params, std::uint32_t springCount)
     : m_params(params), m_springCount(params.springs ? springCount : 0u),
       m_state(gl::makeBuffer("energyGuard", std::vector<gpu::GpuEnergyGuard>(1, gpu::GpuEnergyGuard{}))),
       m_program("energy_guard") {
-    m_program.set("u_springCount", m_springCount);
-    m_program.set("u_contacts", params.contacts ? 1u : 0u);
-    m_program.set("u_gravity", params.gravity);
-    m_program.set("u_thickness", static_cast<float>(params.thickness));
-    m_program.set("u_stiffness", static_cast<float>(params.stiffness));
-    m_program.set("u_groundStiffness", static_cast<float>(params.groundStiffness));
-    m_program.set("u_groundLevel", static_cast<float>(params.groundLevel));
+    setPotentialUniforms(m_program, params, m_springCount);
 }
 
 void EnergyGuardPass::sumAndDecide(const DeviceBuffers& b, const ContactInputs* contacts, Decision d) const {
@@ -50,18 +71,7 @@ void EnergyGuardPass::sumAndDecide(const DeviceBuffers& b, const ContactInputs* 
     bindRequired(d.record ? b.positions : b.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, kName,
                  "predictedPositions");
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
-    if (m_springCount > 0) bindRequired(b.springs, GLC_BIND_SPRINGS, kName, "springs");
-    std::uint64_t terms = std::uint64_t{b.nodeCount} + m_springCount;
-    if (m_params.contacts) {
-        if (!contacts || !contacts->lists || !contacts->faceInfo || !contacts->objects)
-            throw Error(std::string(kName) + ": collision buffers missing");
-        bindRequired(b.faces, GLC_BIND_FACES, kName, "faces");
-        bindRequired(*contacts->faceInfo, GLC_BIND_FACE_INFO, kName, "faceInfo");
-        bindRequired(*contacts->objects, GLC_BIND_OBJECTS, kName, "objects");
-        contacts->lists->bind();
-        terms += std::uint64_t{contacts->lists->capacity(GLC_LIST_VERTEX_FACE)} +
-                 contacts->lists->capacity(GLC_LIST_EDGE_EDGE);
-    }
+    const std::uint64_t terms = bindPotentialInputs(b, contacts, m_params, m_springCount, kName);
     m_state.bindStorage(GLC_BIND_ENERGY_GUARD);
     m_program.use();
     m_program.set("u_nodeCount", b.nodeCount);

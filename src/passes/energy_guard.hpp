@@ -30,6 +30,17 @@ struct EnergyGuardParams {
     double groundLevel = 0.0;     ///< m: the ground's height plus its band
 };
 
+/// The sums' shared inputs (common/energy_sum.glsl), for EnergyGuard and NewtonLineSearch alike:
+/// sets the potentials' uniforms of `program` (u_springCount: `springCount`, 0 without springs).
+void setPotentialUniforms(const gl::ComputeProgram& program, const EnergyGuardParams& params,
+                          std::uint32_t springCount);
+/// Binds the springs and, with contacts, the faces, face info, objects and feature-pair lists
+/// (throws naming `pass` when they are missing); returns the terms summed over (nodes, springs and
+/// the lists' capacities), the count EnergyGuardPass::resolutionFactor takes.
+std::uint64_t bindPotentialInputs(const DeviceBuffers& buffers, const ContactInputs* contacts,
+                                  const EnergyGuardParams& params, std::uint32_t springCount,
+                                  const char* pass);
+
 /// What the guard did over the frame (cleared when a frame starts).
 struct EnergyGuardCounts {
     std::uint32_t acted = 0; ///< substeps whose energy rose beyond the resolution

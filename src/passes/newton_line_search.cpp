@@ -17,28 +17,13 @@ constexpr std::size_t kVec4 = 4 * sizeof(float);
 
 NewtonLineSearchPass::NewtonLineSearchPass(const LineSearchParams& params, std::uint32_t nodeCount,
                                            std::uint32_t springCount)
-    : m_params(params), m_nodeCount(nodeCount), m_springCount(params.springs ? springCount : 0u),
+    : m_params(params), m_nodeCount(nodeCount), m_springCount(params.potentials.springs ? springCount : 0u),
       m_state(gl::makeBuffer("lineSearch", std::vector<gpu::GpuLineSearch>(1, gpu::GpuLineSearch{}))),
       m_velocities("lineSearchVelocities", std::size_t{3} * nodeCount * kVec4),
       m_program("newton_line_search") {
-    m_program.set("u_springCount", m_springCount);
-    m_program.set("u_contacts", params.contacts ? 1u : 0u);
-    m_program.set("u_gravity", params.gravity);
+    setPotentialUniforms(m_program, params.potentials, m_springCount);
     m_program.set("u_airDamping", static_cast<float>(params.airDamping));
-    m_program.set("u_thickness", static_cast<float>(params.thickness));
-    m_program.set("u_stiffness", static_cast<float>(params.stiffness));
-    m_program.set("u_groundStiffness", static_cast<float>(params.groundStiffness));
-    m_program.set("u_groundLevel", static_cast<float>(params.groundLevel));
     m_program.set("u_nodeCount", nodeCount);
-}
-
-double NewtonLineSearchPass::resolution(const ContactInputs* contacts, std::uint32_t nodeCount) const {
-    std::uint64_t terms = std::uint64_t{nodeCount} + m_springCount;
-    if (m_params.contacts && contacts && contacts->lists)
-        terms += std::uint64_t{contacts->lists->capacity(GLC_LIST_VERTEX_FACE)} +
-                 contacts->lists->capacity(GLC_LIST_EDGE_EDGE);
-    // The same sums as the energy guard's (common/energy_sum.glsl): the same chain of roundings.
-    return EnergyGuardPass::resolutionFactor(terms);
 }
 
 void NewtonLineSearchPass::bindState(const DeviceBuffers& b, const ContactInputs* contacts) const {
@@ -46,15 +31,7 @@ void NewtonLineSearchPass::bindState(const DeviceBuffers& b, const ContactInputs
     bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, kName, "predictedPositions");
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
-    if (m_springCount > 0) bindRequired(b.springs, GLC_BIND_SPRINGS, kName, "springs");
-    if (m_params.contacts) {
-        if (!contacts || !contacts->lists || !contacts->faceInfo || !contacts->objects)
-            throw Error(std::string(kName) + ": collision buffers missing");
-        bindRequired(b.faces, GLC_BIND_FACES, kName, "faces");
-        bindRequired(*contacts->faceInfo, GLC_BIND_FACE_INFO, kName, "faceInfo");
-        bindRequired(*contacts->objects, GLC_BIND_OBJECTS, kName, "objects");
-        contacts->lists->bind();
-    }
+    m_terms = bindPotentialInputs(b, contacts, m_params.potentials, m_springCount, kName);
     m_state.bindStorage(GLC_BIND_LINE_SEARCH);
     m_velocities.bindStorage(GLC_BIND_LINE_SEARCH_VELOCITIES);
     m_program.use();
@@ -103,8 +80,8 @@ float NewtonLineSearchPass::dispatch(const DeviceBuffers& b, const ContactInputs
     if (m_nodeCount == 0) return 1.0f;
     copyVelocities(b, startVelocities, stepStart);
     ++m_counts.steps;
-    const double resolution = this->resolution(contacts, b.nodeCount);
     const PotentialSum start = evaluate(b, contacts, 0.0f, h);
+    const double resolution = this->resolution(); // of the terms evaluate() bound
     for (const float alpha : kFractions) {
         const PotentialSum candidate = evaluate(b, contacts, alpha, h);
         if (candidate.total <= start.total + resolution * (start.magnitude + candidate.magnitude)) {

@@ -10,6 +10,7 @@
 
 #include "passes/contact_response.hpp"
 #include "passes/device_buffers.hpp"
+#include "passes/energy_guard.hpp"
 #include "passes/pass_id.hpp"
 
 #include <glm/vec3.hpp>
@@ -19,16 +20,11 @@
 
 namespace glcollide::passes {
 
-/// What Φ sums besides inertia: the scene's potentials, dissipation and the contacts' penalty.
+/// What Φ sums besides inertia: the energy guard's potentials (the scene's, the contacts' and the
+/// ground's penalties, sides of open faces from x0 here) and the dampers' dissipation.
 struct LineSearchParams {
-    glm::dvec3 gravity{0.0};      ///< m/s²; 0 without the gravity effect
-    double airDamping = 0.0;      ///< 1/s: the air's c (force −c·m·v); 0 when off
-    bool springs = false;         ///< the springs effect: elastic energy and damping dissipation
-    bool contacts = false;        ///< the feature pairs' ½·k·depth² counts (sides from x0)
-    double thickness = 0.0;       ///< m: the contacts' thickness
-    double stiffness = 0.0;       ///< N/m: the contacts' penalty stiffness
-    double groundStiffness = 0.0; ///< N/m per node: the implicit solve's ground penalty (0: none)
-    double groundLevel = 0.0;     ///< m: the ground's height plus its band
+    EnergyGuardParams potentials;
+    double airDamping = 0.0; ///< 1/s: the air's c (force −c·m·v); 0 when off
 };
 
 /// What the line search did over the frame (cleared when a frame starts).
@@ -64,10 +60,10 @@ class NewtonLineSearchPass {
     /// twin's); leaves that candidate in the buffers.
     [[nodiscard]] PotentialSum evaluate(const DeviceBuffers& buffers, const ContactInputs* contacts,
                                         float alpha, double h) const;
-    /// The relative resolution of a sum over the buffers' terms (the nodes, the springs and the
+    /// The relative resolution of the last evaluation's sum (over the nodes, the springs and the
     /// lists' capacities): two sums differ beyond rounding when they differ by more than this
     /// times the sum of their magnitudes.
-    [[nodiscard]] double resolution(const ContactInputs* contacts, std::uint32_t nodeCount) const;
+    [[nodiscard]] double resolution() const { return EnergyGuardPass::resolutionFactor(m_terms); }
 
     [[nodiscard]] LineSearchCounts frameCounts() const { return m_counts; }
     void clearFrameCounts() const { m_counts = {}; }
@@ -85,6 +81,7 @@ class NewtonLineSearchPass {
     mutable gl::Buffer m_state;      ///< GpuLineSearch
     mutable gl::Buffer m_velocities; ///< vec4[3·nodes]: v0, v1, v1 + δ
     mutable LineSearchCounts m_counts;
+    mutable std::uint64_t m_terms = 0; ///< terms of the last evaluation's sum
     gl::ComputeProgram m_program;
 };
 

@@ -41,12 +41,12 @@ constexpr double kH = 1.0 / 60.0;
 
 passes::LineSearchParams searchParams() {
     passes::LineSearchParams p;
-    p.gravity = glm::dvec3(0.0, -9.81, 0.0);
+    p.potentials.gravity = glm::dvec3(0.0, -9.81, 0.0);
     p.airDamping = 0.5;
-    p.springs = true;
-    p.contacts = false;
-    p.groundStiffness = 1000.0;
-    p.groundLevel = -0.25;
+    p.potentials.springs = true;
+    p.potentials.contacts = false;
+    p.potentials.groundStiffness = 1000.0;
+    p.potentials.groundLevel = -0.25;
     return p;
 }
 
@@ -54,9 +54,9 @@ cpu::PotentialParams twinParams(const passes::LineSearchParams& p) {
     cpu::PotentialParams t;
     t.h = toFloat(kH);
     t.airDamping = toFloat(p.airDamping);
-    t.gravity = glm::dvec3(glm::vec3(p.gravity));
-    t.groundStiffness = toFloat(p.groundStiffness);
-    t.groundLevel = toFloat(p.groundLevel);
+    t.gravity = glm::dvec3(glm::vec3(p.potentials.gravity));
+    t.groundStiffness = toFloat(p.potentials.groundStiffness);
+    t.groundLevel = toFloat(p.potentials.groundLevel);
     return t;
 }
 
@@ -125,9 +125,8 @@ TEST(NewtonLineSearchGl, KeepsTheFractionTheTwinsPotentialChooses) {
         b.predictedPositions = upload("predictedPositions", pack(model.state.positions, &w));
         const gl::Buffer start = upload("v0", pack(v0)), stepStart = upload("v1", pack(v1));
         const passes::NewtonLineSearchPass pass(params, b.nodeCount, b.springCount);
-        const double resolution = pass.resolution(nullptr, b.nodeCount);
-
         const float kept = pass.dispatch(b, nullptr, start, stepStart, kH);
+        const double resolution = pass.resolution();
         // What it left: the kept candidate and its positions.
         const std::vector<glm::dvec3> keptV = candidate(v1, vFull, kept);
         const std::vector<glm::dvec4> gpuV = download(b.velocities, b.nodeCount);

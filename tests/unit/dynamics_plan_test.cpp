@@ -178,9 +178,9 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
                                         "NodePredict", "BBUpdate", "BBCollision", "TriTri", "FeaturePairs",
                                         "Ccd", "NewtonLineSearch", "SafeStep", "EnergyGuard"}));
     // Φ sums what the guard sums, from the same levels, plus inertia and dissipation.
-    EXPECT_EQ(plan.lineSearchParams.groundStiffness, plan.energyGuardParams.groundStiffness);
-    EXPECT_EQ(plan.lineSearchParams.groundLevel, plan.energyGuardParams.groundLevel);
-    EXPECT_EQ(plan.lineSearchParams.gravity, plan.energyGuardParams.gravity);
+    EXPECT_EQ(plan.lineSearchParams.potentials.groundStiffness, plan.energyGuardParams.groundStiffness);
+    EXPECT_EQ(plan.lineSearchParams.potentials.groundLevel, plan.energyGuardParams.groundLevel);
+    EXPECT_EQ(plan.lineSearchParams.potentials.gravity, plan.energyGuardParams.gravity);
     scene.time.solver.newtonSteps = 3;
     EXPECT_EQ(engine::planPipeline(scene).stages().size(), plan.stages().size() + 4);
     // Switched off, each Newton step is taken whole.
