@@ -4,7 +4,10 @@
 // (side A: +, summing to 1; side B: −, summing to −1), a unit normal u from B to A and a depth
 // (how far inside the thickness h it is). Include after contact_geometry.glsl; the includer
 // declares g_positions (vec4: xyz, w inverse mass), vec3 previousPosition(uint node) (the node at
-// the start of the substep: the side it must be kept on) and uniform float u_thickness.
+// the start of the substep: the side it must be kept on), uniform float u_thickness and const bool
+// kContactCrossings: whether a vertex or edge that went through a face or edge within the substep
+// is a contact at any depth (the implicit solve's Newton steps and their line search, which
+// linearise at a predicted end that may have gone through), or only within the thickness.
 // Twin: src/cpu/contact_twin.cpp (contactGeometry).
 #ifndef GLC_CONTACT_PAIR_GLSL
 #define GLC_CONTACT_PAIR_GLSL
@@ -36,6 +39,15 @@ bool ownsClosestFeature(uint p, uvec3 face, vec3 w, uint owned) {
     return true; // not reached: two zeros make the third weight 1
 }
 
+// Whether vertex p was strictly on the face's `side` (closed objects: the outside, +1) at the start
+// of the substep (previousPosition), so that being now deeper than the thickness behind the face's
+// plane, over the face, means it went through the face within the substep.
+bool crossedFacePlane(uint p, uvec3 face, float side) {
+    vec3 pa = previousPosition(face.x);
+    float sPrev = dot(cross(previousPosition(face.y) - pa, previousPosition(face.z) - pa), previousPosition(p) - pa);
+    return side != 0.0 && side * sPrev > 0.0;
+}
+
 // Vertex `p` against face (a, b, c) with ownership bits `faceOwned` (contact_vertex_face.comp).
 // The vertex's side of the face: closed objects, the outside (outward normals); open surfaces
 // (cloth, which has no inside), the side it was on at the start of the substep (previousPosition)
@@ -64,7 +76,10 @@ ContactPair vertexFaceContact(uint p, uvec3 face, uint faceOwned, bool closed) {
     float sideDistance = side * s;
     bool inside = w.x > 0.0 && w.y > 0.0 && w.z > 0.0;
     ContactPair c = ContactPair(true, uvec4(p, face), vec4(1.0, -w), vec3(0.0), 0.0);
-    if (side != 0.0 && inside && sideDistance < u_thickness && sideDistance > -u_thickness) {
+    if (kContactCrossings && inside && !(sideDistance > -u_thickness) && crossedFacePlane(p, face, side)) {
+        c.normal = side * n; // went through the face, deeper than the thickness: back to its side
+        c.depth = u_thickness - sideDistance;
+    } else if (side != 0.0 && inside && sideDistance < u_thickness && sideDistance > -u_thickness) {
         c.normal = side * n;
         c.depth = u_thickness - sideDistance;
     } else if (d < u_thickness && d > 0.0) {
@@ -84,7 +99,7 @@ ContactPair vertexFaceContact(uint p, uvec3 face, uint faceOwned, bool closed) {
 // Edges p0p1 and q0q1 (contact_edge_edge.comp): closer than the thickness with both closest points
 // inside their edges (an endpoint is a vertex: the vertex-face contacts have it). Edges that
 // crossed within the substep (their closest-point offset points the other way than at its start)
-// are pushed back, depth h + d (decision 0019).
+// are pushed back, depth h + d (decision 0019); with kContactCrossings at any distance d.
 ContactPair edgeEdgeContact(uint p0, uint p1, uint q0, uint q1) {
     vec3 x0 = g_positions[p0].xyz, x1 = g_positions[p1].xyz;
     vec3 y0 = g_positions[q0].xyz, y1 = g_positions[q1].xyz;
@@ -92,9 +107,10 @@ ContactPair edgeEdgeContact(uint p0, uint p1, uint q0, uint q1) {
     if (!(st.x > 0.0 && st.x < 1.0 && st.y > 0.0 && st.y < 1.0)) return noContact();
     vec3 diff = mix(x0, x1, st.x) - mix(y0, y1, st.y);
     float d = length(diff);
-    if (!(d < u_thickness)) return noContact();
     vec3 diffPrev = mix(previousPosition(p0), previousPosition(p1), st.x) -
                     mix(previousPosition(q0), previousPosition(q1), st.y);
+    bool crossed = dot(diffPrev, diff) < 0.0;
+    if (!(d < u_thickness) && !(kContactCrossings && crossed)) return noContact();
     ContactPair c = ContactPair(true, uvec4(p0, p1, q0, q1), vec4(1.0 - st.x, st.x, st.y - 1.0, -st.y),
                                 vec3(0.0), 0.0);
     if (d > 0.0 && dot(diffPrev, diff) >= 0.0) {

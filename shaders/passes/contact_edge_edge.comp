@@ -15,6 +15,8 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
 #include "common/contact_geometry.glsl"
 #include "common/contact_force.glsl"
+// Contacts within the thickness only (common/contact_pair.glsl).
+const bool kContactCrossings = false;
 #include "common/contact_pair.glsl"
 #include "common/tangled.glsl"
 

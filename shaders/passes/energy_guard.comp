@@ -62,6 +62,8 @@ uniform float u_resolution;   // relative resolution of the sums (see the header
 // The contact geometry reads the start of the substep for the sides of open faces: the energy of
 // a state is the energy of its positions, so its sides are its own (as Engine::energy()'s twin).
 vec3 previousPosition(uint n) { return g_positions[n].xyz; }
+// Contacts within the thickness only (common/contact_pair.glsl).
+const bool kContactCrossings = false;
 #include "common/contact_pair.glsl"
 #include "common/energy_sum.glsl"
 

@@ -34,6 +34,8 @@ uniform uint u_recordCapacity; // records the buffer holds
 
 vec3 previousPosition(uint n) { return g_positions[n].xyz - u_substep * g_velocities[n].xyz; }
 
+// Contacts at any depth for pairs that went through each other (common/contact_pair.glsl).
+const bool kContactCrossings = true;
 #include "common/contact_pair.glsl"
 #include "common/tangled.glsl"
 

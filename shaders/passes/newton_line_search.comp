@@ -51,6 +51,8 @@ uniform float u_groundLevel;     // m: the ground's height plus its band
 
 // Sides of open faces from x0, as the Newton step's setup takes them (from x1 − h·v1).
 vec3 previousPosition(uint n) { return g_start[n].xyz; }
+// Contacts at any depth for pairs that went through each other (common/contact_pair.glsl).
+const bool kContactCrossings = true;
 #include "common/contact_pair.glsl"
 #include "common/energy_sum.glsl"
 

@@ -29,11 +29,19 @@ bool ownsClosestFeature(std::uint32_t p, const std::array<std::uint32_t, 3>& fac
 struct Geometry {
     const ContactParams& p;
     const ContactInput& in;
+    Crossings crossings = Crossings::WithinThickness;
 
     const glm::dvec3& x(std::uint32_t n) const { return (*in.positions)[n]; }
     const glm::dvec3& v(std::uint32_t n) const { return (*in.velocities)[n]; }
     glm::dvec3 previous(std::uint32_t n) const {
         return x(n) - (p.sidesFromPrevious ? p.substep : 0.0) * v(n);
+    }
+
+    // Whether `node` was strictly on the face's `side` at the start of the substep.
+    bool crossedFacePlane(std::uint32_t node, const std::array<std::uint32_t, 3>& f, double side) const {
+        const glm::dvec3 pa = previous(f[0]);
+        const double sPrev = glm::dot(glm::cross(previous(f[1]) - pa, previous(f[2]) - pa), previous(node) - pa);
+        return side != 0.0 && side * sPrev > 0.0;
     }
 
     std::optional<ContactGeometry> vertexFace(std::uint32_t node, const std::array<std::uint32_t, 3>& f,
@@ -58,7 +66,11 @@ struct Geometry {
         const bool inside = wts.x > 0.0 && wts.y > 0.0 && wts.z > 0.0;
         glm::dvec3 u;
         double depth = 0.0;
-        if (side != 0.0 && inside && sideDistance < h && sideDistance > -h) {
+        if (crossings == Crossings::AtAnyDepth && inside && !(sideDistance > -h) &&
+            crossedFacePlane(node, f, side)) {
+            u = side * n;
+            depth = h - sideDistance;
+        } else if (side != 0.0 && inside && sideDistance < h && sideDistance > -h) {
             u = side * n;
             depth = h - sideDistance;
         } else if (d < h && d > 0.0) {
@@ -81,9 +93,10 @@ struct Geometry {
         if (!(s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0)) return std::nullopt; // an endpoint: vertex-face
         const glm::dvec3 diff = (x(p0) + s * (x(p1) - x(p0))) - (x(q0) + t * (x(q1) - x(q0)));
         const double d = glm::length(diff);
-        if (!(d < p.thickness)) return std::nullopt;
         const glm::dvec3 diffPrev = (previous(p0) + s * (previous(p1) - previous(p0))) -
                                     (previous(q0) + t * (previous(q1) - previous(q0)));
+        const bool crossed = glm::dot(diffPrev, diff) < 0.0;
+        if (!(d < p.thickness) && !(crossings == Crossings::AtAnyDepth && crossed)) return std::nullopt;
         glm::dvec3 u;
         double depth = 0.0;
         if (d > 0.0 && glm::dot(diffPrev, diff) >= 0.0) {
@@ -105,8 +118,8 @@ struct Geometry {
 /// Calls f(contact) for every contact among `pairs`, in list order (vertex-face, then edge-edge).
 template <typename F>
 void forEachContact(const ContactParams& params, const ContactInput& in, const FeaturePairList& pairs,
-                    F&& f) {
-    const Geometry geometry{params, in};
+                    F&& f, Crossings crossings = Crossings::WithinThickness) {
+    const Geometry geometry{params, in, crossings};
     const std::vector<std::uint32_t>& idx = *in.faceIndices;
     for (const IndexPair& vf : pairs.vertexFace) {
         const auto [node, face] = vf;
@@ -396,9 +409,10 @@ ContactResult contactForces(const ContactParams& params, const ContactInput& in,
 }
 
 std::vector<ContactGeometry> contactGeometries(const ContactParams& params, const ContactInput& in,
-                                               const FeaturePairList& pairs) {
+                                               const FeaturePairList& pairs, Crossings crossings) {
     std::vector<ContactGeometry> contacts;
-    forEachContact(params, in, pairs, [&](const ContactGeometry& c) { contacts.push_back(c); });
+    forEachContact(
+        params, in, pairs, [&](const ContactGeometry& c) { contacts.push_back(c); }, crossings);
     return contacts;
 }
 

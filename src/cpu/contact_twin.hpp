@@ -72,10 +72,20 @@ struct ContactGeometry {
     double depth = 0.0;
 };
 
+/// Whether a vertex or edge that went through a face or edge within the substep (its side at the
+/// start, x − substep·v, is the other one) is a contact at any depth or only within the thickness
+/// (contact_pair.glsl's kContactCrossings). The implicit solve's Newton steps take any depth: they
+/// linearise at a predicted end x1 = x0 + h·v1 that may have gone through by more than the
+/// thickness, and a pair that is no contact there would get no force at all (decision 0024,
+/// "Crossings in the Newton steps"). The responses and the energy guard, whose positions never
+/// went through, keep the thickness.
+enum class Crossings { WithinThickness, AtAnyDepth };
+
 /// The contacts among the feature pairs, in list order (vertex-face, then edge-edge): the rules of
 /// the response and of the implicit solve's contact term (implicit_contact_find.comp).
 std::vector<ContactGeometry> contactGeometries(const ContactParams& params, const ContactInput& in,
-                                               const FeaturePairList& pairs);
+                                               const FeaturePairList& pairs,
+                                               Crossings crossings = Crossings::WithinThickness);
 
 /// Contact forces of the feature pairs (the response's two kernels, count pass then force pass).
 ContactResult contactForces(const ContactParams& params, const ContactInput& in,

@@ -149,7 +149,7 @@ SpringBlock springBlock(const model::FlatSpring& s, const glm::dvec3& xi, const 
 
 ImplicitContactSet implicitContacts(const ContactParams& params, const ContactInput& in,
                                     const FeaturePairList& pairs) {
-    return {contactGeometries(params, in, pairs), params.stiffness};
+    return {contactGeometries(params, in, pairs, Crossings::AtAnyDepth), params.stiffness};
 }
 
 ImplicitSolveStats implicitVelocityUpdate(const ImplicitParams& params,

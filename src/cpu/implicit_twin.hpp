@@ -46,7 +46,9 @@ struct ImplicitContactSet {
 };
 
 /// The active contacts of the feature pairs for the implicit solve: contactGeometries at
-/// params.thickness and params.substep (the side rule), with params.stiffness.
+/// params.thickness and params.substep (the side rule), crossings at any depth
+/// (Crossings::AtAnyDepth: a Newton step's predicted end may have gone through), with
+/// params.stiffness.
 ImplicitContactSet implicitContacts(const ContactParams& params, const ContactInput& in,
                                     const FeaturePairList& pairs);
 

@@ -437,6 +437,70 @@ TEST_P(ImplicitContactGl, NewtonStepMatchesTheDenseSolveOfItsSystem) {
     EXPECT_LE(std::sqrt(error2), (rGpu + rDense) * maxInverseMass * (1.0 + 1e-9));
 }
 
+// A Newton step whose predicted end went through (decision 0024, "Crossings in the Newton
+// steps"): the cloth's x1 lies 1.5–4 thicknesses under the ground (x0 = x1 − h·v1: the cloth's
+// heights above it). Every record of the Newton step's find against the twin's geometry with
+// crossings at any depth (cpu::Crossings::AtAnyDepth), pair by pair; the bounds are the first
+// step's, the normal's distance being how far the pair went through.
+TEST_P(ImplicitContactGl, NewtonRecordsOfPairsThatWentThroughMatchTheTwin) {
+    ContactScene s = clothOverGround(6, 0.01, GetParam(), 15);
+    const double h = 1.0 / 60.0;
+    const ImplicitParams p = solverParams(h, true);
+    ContactParams cp = contactParams(0.01, 1.0e4);
+    cp.substep = h; // sides from x1 − h·v1 = x0, as the engine's Newton step
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> under(1.5, 4.0);
+    cpu::NodeState& st = s.model.state;
+    for (std::size_t i = 0; i < st.positions.size(); ++i) {
+        if (st.inverseMasses[i] <= 0.0) continue;
+        const double y0 = st.positions[i].y, y1 = toFloat(-cp.thickness * under(rng));
+        st.positions[i].y = y1;
+        st.velocities[i] = glm::dvec3(0.0, toFloat((y1 - y0) / h), 0.0);
+    }
+    const std::vector<glm::dvec3> v0 = st.velocities;
+    const GpuRun r = runGpu(s, p, cp, s.pairs, 0, true, &v0);
+    const std::vector<std::uint8_t> closed = s.faceClosed();
+    const cpu::ContactInput in = twinInput(s, closed);
+    const double L = 1.1;
+    RecordErrors e;
+    std::uint32_t deep = 0, withinOnly = 0;
+    const auto compare = [&](std::uint32_t slot, const cpu::FeaturePairList& one, bool edgeEdge) {
+        const std::vector<cpu::ContactGeometry> twin =
+            cpu::contactGeometries(cp, in, one, cpu::Crossings::AtAnyDepth);
+        withinOnly += static_cast<std::uint32_t>(cpu::contactGeometries(cp, in, one).size());
+        const gpu::GpuImplicitContact& c = r.records[slot];
+        ASSERT_EQ(twin.size(), c.normalForce.w > 0.0f ? 1u : 0u) << "slot " << slot;
+        if (twin.empty()) return;
+        ++(edgeEdge ? e.edgeEdge : e.vertexFace);
+        if (twin[0].depth > 2.0 * cp.thickness) ++deep;
+        for (int k = 0; k < 4; ++k) {
+            const auto kk = static_cast<std::size_t>(k);
+            EXPECT_EQ(c.nodes[k], twin[0].nodes[kk]);
+            e.weights = std::max(e.weights, std::abs(c.weights[k] - twin[0].weights[kk]) / kUnitRoundoff);
+        }
+        const glm::dvec3 u(c.normalForce.x, c.normalForce.y, c.normalForce.z);
+        const double d = std::abs(twin[0].depth - cp.thickness); // how far apart, either side
+        ASSERT_GT(d, 0.0);
+        e.normal = std::max(e.normal, glm::length(u - twin[0].normal) / (kUnitRoundoff * L / d));
+        e.force = std::max(e.force, std::abs(c.normalForce.w - cp.stiffness * twin[0].depth) /
+                                        (kUnitRoundoff * cp.stiffness * L));
+    };
+    for (std::uint32_t i = 0; i < s.pairs.vertexFace.size(); ++i)
+        compare(i, {{s.pairs.vertexFace[i]}, {}}, false);
+    for (std::uint32_t i = 0; i < s.pairs.edgeEdge.size(); ++i)
+        compare(r.edgeEdgeBase + i, {{}, {s.pairs.edgeEdge[i]}}, true);
+    std::printf("went through, closed ground %d: %u vertex-face, %u edge-edge contacts (%u deeper than twice the "
+                "thickness; %u within it); max error: weights %.3g u, normal %.3g u·L/d, force %.3g u·k·L\n",
+                GetParam() ? 1 : 0, e.vertexFace, e.edgeEdge, deep, withinOnly, e.weights, e.normal, e.force);
+    ASSERT_GT(e.vertexFace, 20u);
+    ASSERT_GT(e.edgeEdge, 20u);
+    EXPECT_GT(deep, 20u);
+    EXPECT_EQ(withinOnly, 0u) << "every cloth node is deeper than the thickness: the responses' rule has none";
+    EXPECT_LE(e.weights, kWeightErrorUnits);
+    EXPECT_LE(e.normal, kNormalErrorUnits);
+    EXPECT_LE(e.force, kForceErrorUnits);
+}
+
 INSTANTIATE_TEST_SUITE_P(Ground, ImplicitContactGl, ::testing::Bool(),
                          [](const auto& param) { return param.param ? "Closed" : "Open"; });
 
@@ -526,13 +590,15 @@ TEST(ImplicitContactGlAnalytic, RestingNodeMatchesBackwardEulerOfOneSpring) {
 // contact and ends at x1 below the triangle. The Newton step finds the contact at x1 (the side from
 // x1 − h·v1 = x0: above) and, the penalty being linear in y there, lands on backward Euler's
 // closed form with the contact, v* = (m·v0 + h(−m·g + k(h_c − y0)))/(m + h²k), whose y0 + h·v* lies
-// inside the thickness: the contact the first step did not see acts in the solve.
+// inside the thickness: the contact the first step did not see acts in the solve. At 2 m/s x1 is
+// 6 thicknesses through the triangle: the Newton step's contacts take crossings at any depth
+// (decision 0024, "Crossings in the Newton steps"; without, that x1 had no contact at all).
 TEST(ImplicitContactGlAnalytic, NewtonStepCatchesAContactTheFirstStepMissed) {
     const double m = 0.05, k = 1.0e4, h = 1.0 / 30.0, thickness = 0.01;
     const ImplicitParams p = solverParams(h, false);
     ContactParams cp = contactParams(thickness, k);
     cp.substep = h;
-    for (const double v0 : {-0.2, -0.3}) {
+    for (const double v0 : {-0.2, -0.3, -2.0}) {
         ContactScene s = nodeOnTriangle(m, 1.5 * thickness, v0);
         cpu::NodeState& st = s.model.state;
         const double mass = 1.0 / st.inverseMasses[3], y0 = st.positions[3].y;

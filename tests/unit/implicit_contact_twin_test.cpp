@@ -203,5 +203,71 @@ TEST(ImplicitContactTwin, ContactBlocksKeepTheSystemSymmetricPositiveDefinite) {
     EXPECT_GE(xAx, minMass * xx);
 }
 
+// A Newton step's predicted end may have gone through a face or an edge by more than the
+// thickness (decision 0024, "Crossings in the Newton steps"): with the sides from the substep's
+// start (x − substep·v) the implicit solve's contact set keeps such a pair as a contact, pushed
+// back to its start side with depth h_c + how far it went through; the responses' rule
+// (Crossings::WithinThickness) has no contact there. A node that was already on that side at the
+// start, or that passed beside the face, is no contact in either.
+TEST(ImplicitContactTwin, ANewtonStepKeepsAVertexThatWentThroughAFaceAtAnyDepth) {
+    const double h = 1.0 / 60.0, thickness = 0.01;
+    ContactParams p = contactParams(thickness, 1.0e3);
+    p.substep = h; // sides from x1 − h·v1 = x0, as the Newton step's find
+    for (const double depthBelow : {0.02, 0.2})
+        for (const bool closed : {false, true}) {
+            // x0: 0.5·thickness above the face; x1: depthBelow under it (over its interior).
+            NodeOnTriangle s(0.05, -depthBelow, (-depthBelow - 0.5 * thickness) / h);
+            s.closed = {static_cast<std::uint8_t>(closed ? 1 : 0)};
+            const std::vector<cpu::ContactGeometry> any =
+                cpu::contactGeometries(p, s.input(), s.pairs, cpu::Crossings::AtAnyDepth);
+            ASSERT_EQ(any.size(), 1u) << "closed " << closed << ", " << depthBelow << " m under";
+            EXPECT_NEAR(any[0].depth, thickness + depthBelow, 1e-12);
+            EXPECT_NEAR(any[0].normal.y, 1.0, 1e-12) << "back to the side it started on";
+            EXPECT_EQ(cpu::implicitContacts(p, s.input(), s.pairs).contacts.size(), 1u);
+            EXPECT_TRUE(cpu::contactGeometries(p, s.input(), s.pairs).empty()) << "within the thickness only";
+
+            // Already under the face at the start: it did not go through (closed: inside).
+            NodeOnTriangle under(0.05, -depthBelow, -0.1);
+            under.closed = s.closed;
+            EXPECT_TRUE(cpu::contactGeometries(p, under.input(), under.pairs, cpu::Crossings::AtAnyDepth).empty());
+            // Passed the face's plane beside the face: its closest point is on an edge, no crossing.
+            NodeOnTriangle beside(0.05, -depthBelow, (-depthBelow - 0.5 * thickness) / h);
+            beside.closed = s.closed;
+            beside.state.positions[3] = glm::dvec3(-0.3, -depthBelow, 0.5);
+            EXPECT_TRUE(cpu::contactGeometries(p, beside.input(), beside.pairs, cpu::Crossings::AtAnyDepth).empty());
+        }
+    // At the substep's start (substep 0: sides from x itself) nothing has gone through.
+    NodeOnTriangle now(0.05, -0.02, -1.0);
+    p.substep = 0.0;
+    EXPECT_TRUE(cpu::contactGeometries(p, now.input(), now.pairs, cpu::Crossings::AtAnyDepth).empty());
+}
+
+TEST(ImplicitContactTwin, ANewtonStepKeepsEdgesThatCrossedAtAnyDistance) {
+    const double h = 1.0 / 60.0, thickness = 0.01;
+    ContactParams p = contactParams(thickness, 1.0e3);
+    p.substep = h;
+    // Edge p0p1 along x at height y1, moving down from 0.5·thickness over edge q0q1 (along z, y = 0).
+    for (const double below : {0.03, 0.3}) {
+        cpu::NodeState st;
+        const double y1 = -below, v = (y1 - 0.5 * thickness) / h;
+        st.positions = {glm::dvec3(-0.5, y1, 0.1), glm::dvec3(0.5, y1, 0.1), glm::dvec3(0.2, 0, -0.5),
+                        glm::dvec3(0.2, 0, 0.5), glm::dvec3(1, 0, 1), glm::dvec3(-1, y1, -1)};
+        st.velocities = {glm::dvec3(0, v, 0), glm::dvec3(0, v, 0), glm::dvec3(0.0),
+                         glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0, v, 0)};
+        st.inverseMasses = {20.0, 20.0, 0.0, 0.0, 0.0, 20.0};
+        // Face 0 (0, 1, 5) owns edge 0–1; face 1 (2, 3, 4) owns edge 2–3.
+        const std::vector<std::uint32_t> faces{0, 1, 5, 2, 3, 4}, owned{kOwnAll, kOwnAll};
+        const std::vector<std::uint8_t> closed{0, 0};
+        const cpu::ContactInput in{&st.positions, &st.velocities, &faces, &owned, &closed, &st.inverseMasses};
+        const cpu::FeaturePairList pairs{{}, {{0, 3}}}; // edge 0 of face 0 against edge 0 of face 1
+        const std::vector<cpu::ContactGeometry> any =
+            cpu::contactGeometries(p, in, pairs, cpu::Crossings::AtAnyDepth);
+        ASSERT_EQ(any.size(), 1u) << below;
+        EXPECT_NEAR(any[0].depth, thickness + below, 1e-12);
+        EXPECT_NEAR(any[0].normal.y, 1.0, 1e-12) << "back up: the side the edge started on";
+        EXPECT_TRUE(cpu::contactGeometries(p, in, pairs).empty()) << "within the thickness only";
+    }
+}
+
 } // namespace
 } // namespace glcollide
