@@ -80,7 +80,7 @@ struct ImplicitParams {
     /// again at the previous step's end x1 with the contacts found there.
     int newtonSteps = 1;
     double tolerance = 1.0e-4; ///< stop when ‖r‖ ≤ tolerance·‖b‖
-    int maxIterations = 64;    ///< CG iteration cap
+    int maxIterations = 256;   ///< CG iteration cap (include/glcollide/scene.hpp says why 256)
 };
 
 /// The largest scene FrameStep takes: one work group of 1024 invocations walks every node twice

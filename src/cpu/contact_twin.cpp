@@ -40,7 +40,8 @@ struct Geometry {
     // Whether `node` was strictly on the face's `side` at the start of the substep.
     bool crossedFacePlane(std::uint32_t node, const std::array<std::uint32_t, 3>& f, double side) const {
         const glm::dvec3 pa = previous(f[0]);
-        const double sPrev = glm::dot(glm::cross(previous(f[1]) - pa, previous(f[2]) - pa), previous(node) - pa);
+        const double sPrev =
+            glm::dot(glm::cross(previous(f[1]) - pa, previous(f[2]) - pa), previous(node) - pa);
         return side != 0.0 && side * sPrev > 0.0;
     }
 
@@ -117,8 +118,8 @@ struct Geometry {
 
 /// Calls f(contact) for every contact among `pairs`, in list order (vertex-face, then edge-edge).
 template <typename F>
-void forEachContact(const ContactParams& params, const ContactInput& in, const FeaturePairList& pairs,
-                    F&& f, Crossings crossings = Crossings::WithinThickness) {
+void forEachContact(const ContactParams& params, const ContactInput& in, const FeaturePairList& pairs, F&& f,
+                    Crossings crossings = Crossings::WithinThickness) {
     const Geometry geometry{params, in, crossings};
     const std::vector<std::uint32_t>& idx = *in.faceIndices;
     for (const IndexPair& vf : pairs.vertexFace) {

@@ -32,6 +32,12 @@ constexpr std::uint64_t kMaxContactRecords = std::uint64_t{1} << 27;
 constexpr std::size_t kRecordWords = sizeof(gpu::GpuImplicitContact) / sizeof(std::uint32_t);
 
 constexpr std::size_t kVec4 = 4 * sizeof(float);
+// Every this many CG iterations the host reads whether the solve has converged and stops
+// dispatching if so (a 4-byte read-back, which waits for the GPU). Without it every solve ran
+// all maxIterations (two dispatches each, the later ones returning at once), so a cap high
+// enough for the hard substeps cost every substep that much. 16: at most 32 idle dispatches
+// per solve, at most maxIterations / 16 waits.
+constexpr std::uint32_t kConvergenceCheckInterval = 16;
 
 } // namespace
 
@@ -260,10 +266,20 @@ void ImplicitSolverPass::solve(const DeviceBuffers& b, const ImplicitParams& par
         direction.set("u_tolerance2", tolerance2);
         m_layout.dispatch(direction);
         if (k == maxIterations) break; // that dispatch only checked the residual
+        if (k % kConvergenceCheckInterval == kConvergenceCheckInterval - 1 && converged()) break;
         bindLayout(m_update, b);
         m_update.set("u_iteration", k);
         m_layout.dispatch(m_update);
     }
+}
+
+bool ImplicitSolverPass::converged() const {
+    // The direction pass that found ‖r‖ small enough (or the cap) set doneAt: every later
+    // dispatch of this solve would return at once, so stopping here changes no bit.
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::uint32_t doneAt = GLC_SOLVER_RUNNING;
+    m_state.download(offsetof(gpu::GpuSolverState, doneAt), sizeof doneAt, &doneAt);
+    return doneAt != GLC_SOLVER_RUNNING;
 }
 
 void ImplicitSolverPass::resetStatistics() {

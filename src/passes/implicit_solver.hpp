@@ -118,7 +118,8 @@ class ImplicitSolverPass {
     [[nodiscard]] const gl::Buffer& startVelocities() const { return m_startVelocities; }
     [[nodiscard]] const gl::Buffer& newtonStart() const { return m_newtonStart; }
 
-    /// Dispatches of one velocity update: 1 + 2·maxIterations + 1.
+    /// Dispatches of one velocity update at most (the cap reached): 1 + 2·maxIterations + 1; a
+    /// solve that converges stops within 16 iterations of it (kConvergenceCheckInterval).
     [[nodiscard]] std::uint32_t dispatchesPerSubstep() const;
     /// Dispatches a velocity update with contacts adds: find (over both lists, with their
     /// indirect-argument dispatches: 4), scan, scatter and sort; a find that outgrows the records
@@ -126,6 +127,8 @@ class ImplicitSolverPass {
     static constexpr std::uint32_t kContactDispatches = 7;
 
   private:
+    /// Whether the current solve's direction pass has set doneAt (read back from the GPU).
+    [[nodiscard]] bool converged() const;
     /// One solve: setup (`setup`, the positions bound at GLC_BIND_NODE_POSITIONS: `positions`) and
     /// the conjugate-gradient iterations.
     void solve(const DeviceBuffers& b, const ImplicitParams& params, const ImplicitContacts* contacts,

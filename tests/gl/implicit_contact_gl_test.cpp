@@ -489,13 +489,15 @@ TEST_P(ImplicitContactGl, NewtonRecordsOfPairsThatWentThroughMatchTheTwin) {
         compare(i, {{s.pairs.vertexFace[i]}, {}}, false);
     for (std::uint32_t i = 0; i < s.pairs.edgeEdge.size(); ++i)
         compare(r.edgeEdgeBase + i, {{}, {s.pairs.edgeEdge[i]}}, true);
-    std::printf("went through, closed ground %d: %u vertex-face, %u edge-edge contacts (%u deeper than twice the "
-                "thickness; %u within it); max error: weights %.3g u, normal %.3g u·L/d, force %.3g u·k·L\n",
-                GetParam() ? 1 : 0, e.vertexFace, e.edgeEdge, deep, withinOnly, e.weights, e.normal, e.force);
+    std::printf(
+        "went through, closed ground %d: %u vertex-face, %u edge-edge contacts (%u deeper than twice the "
+        "thickness; %u within it); max error: weights %.3g u, normal %.3g u·L/d, force %.3g u·k·L\n",
+        GetParam() ? 1 : 0, e.vertexFace, e.edgeEdge, deep, withinOnly, e.weights, e.normal, e.force);
     ASSERT_GT(e.vertexFace, 20u);
     ASSERT_GT(e.edgeEdge, 20u);
     EXPECT_GT(deep, 20u);
-    EXPECT_EQ(withinOnly, 0u) << "every cloth node is deeper than the thickness: the responses' rule has none";
+    EXPECT_EQ(withinOnly, 0u)
+        << "every cloth node is deeper than the thickness: the responses' rule has none";
     EXPECT_LE(e.weights, kWeightErrorUnits);
     EXPECT_LE(e.normal, kNormalErrorUnits);
     EXPECT_LE(e.force, kForceErrorUnits);

@@ -160,6 +160,37 @@ TEST_P(ImplicitGl, SolveMatchesExactSolution) {
 
 INSTANTIATE_TEST_SUITE_P(Sizes, ImplicitGl, ::testing::ValuesIn(kSizes));
 
+// The host stops dispatching a solve once the GPU says it has converged (read back every 16
+// iterations): the same bits as a solve that runs to its cap (whose later dispatches return at
+// once), and the dispatches of the iterations it needed, not of the cap. Cap 1024 against the
+// same solve at a cap just above its own iteration count.
+TEST(ImplicitGl, StopsDispatchingOnceConvergedWithTheSameBits) {
+    RandomModel m = makeRandomModel(GLC_WORKGROUP_SIZE + 1, 4321);
+    for (model::FlatSpring& s : m.springs) s.stiffness = toFloat(s.stiffness * 100.0);
+    ImplicitParams p = solverParams();
+    p.maxIterations = 1024;
+    passes::ImplicitSolverCounts counts;
+    const std::uint64_t before = gl::dispatchCount();
+    const std::vector<glm::dvec3> early = solveOnGpu(p, m, &counts);
+    const std::uint64_t dispatches = gl::dispatchCount() - before;
+    ASSERT_EQ(counts.unconvergedSubsteps, 0u);
+    const std::uint32_t needed = counts.maxIterations;
+    ASSERT_GT(needed, 16u) << "a solve that needs several checks";
+    ASSERT_LT(needed + 16u, 1024u);
+    // Setup, then two dispatches per iteration up to the check after the converged one.
+    EXPECT_LE(dispatches, 2u + 2u * (needed + 16u));
+    EXPECT_LT(dispatches, 2u * 1024u);
+    p.maxIterations = static_cast<int>(needed) + 1; // no check reaches past it: every dispatch runs
+    passes::ImplicitSolverCounts capped;
+    const std::vector<glm::dvec3> full = solveOnGpu(p, m, &capped);
+    EXPECT_EQ(capped.maxIterations, needed);
+    for (std::size_t i = 0; i < early.size(); ++i) {
+        EXPECT_EQ(early[i].x, full[i].x) << i;
+        EXPECT_EQ(early[i].y, full[i].y) << i;
+        EXPECT_EQ(early[i].z, full[i].z) << i;
+    }
+}
+
 /// A hub node joined to 10,000 leaves on a sphere around it (rest lengths 0.8–1.2 of the distance:
 /// some springs compressed), the leaves joined in a ring, every tenth leaf pinned.
 RandomModel star(std::uint32_t leaves) {

@@ -229,12 +229,14 @@ TEST(ImplicitContactTwin, ANewtonStepKeepsAVertexThatWentThroughAFaceAtAnyDepth)
             // Already under the face at the start: it did not go through (closed: inside).
             NodeOnTriangle under(0.05, -depthBelow, -0.1);
             under.closed = s.closed;
-            EXPECT_TRUE(cpu::contactGeometries(p, under.input(), under.pairs, cpu::Crossings::AtAnyDepth).empty());
+            EXPECT_TRUE(
+                cpu::contactGeometries(p, under.input(), under.pairs, cpu::Crossings::AtAnyDepth).empty());
             // Passed the face's plane beside the face: its closest point is on an edge, no crossing.
             NodeOnTriangle beside(0.05, -depthBelow, (-depthBelow - 0.5 * thickness) / h);
             beside.closed = s.closed;
             beside.state.positions[3] = glm::dvec3(-0.3, -depthBelow, 0.5);
-            EXPECT_TRUE(cpu::contactGeometries(p, beside.input(), beside.pairs, cpu::Crossings::AtAnyDepth).empty());
+            EXPECT_TRUE(
+                cpu::contactGeometries(p, beside.input(), beside.pairs, cpu::Crossings::AtAnyDepth).empty());
         }
     // At the substep's start (substep 0: sides from x itself) nothing has gone through.
     NodeOnTriangle now(0.05, -0.02, -1.0);
@@ -251,9 +253,9 @@ TEST(ImplicitContactTwin, ANewtonStepKeepsEdgesThatCrossedAtAnyDistance) {
         cpu::NodeState st;
         const double y1 = -below, v = (y1 - 0.5 * thickness) / h;
         st.positions = {glm::dvec3(-0.5, y1, 0.1), glm::dvec3(0.5, y1, 0.1), glm::dvec3(0.2, 0, -0.5),
-                        glm::dvec3(0.2, 0, 0.5), glm::dvec3(1, 0, 1), glm::dvec3(-1, y1, -1)};
+                        glm::dvec3(0.2, 0, 0.5),   glm::dvec3(1, 0, 1),      glm::dvec3(-1, y1, -1)};
         st.velocities = {glm::dvec3(0, v, 0), glm::dvec3(0, v, 0), glm::dvec3(0.0),
-                         glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0, v, 0)};
+                         glm::dvec3(0.0),     glm::dvec3(0.0),     glm::dvec3(0, v, 0)};
         st.inverseMasses = {20.0, 20.0, 0.0, 0.0, 0.0, 20.0};
         // Face 0 (0, 1, 5) owns edge 0–1; face 1 (2, 3, 4) owns edge 2–3.
         const std::vector<std::uint32_t> faces{0, 1, 5, 2, 3, 4}, owned{kOwnAll, kOwnAll};
