@@ -195,6 +195,50 @@ TEST(RadialGhostsGl, ASleeveClosedByGhostsFreesWhatTheTwinFreesAndNothingThatInt
     EXPECT_GT(expectFreeFacesIntersectNothing(inward, x0, x1, turned.free), 0u);
 }
 
+// A ghost fan that folds past the observer within the substep: the top opening's ring is mirrored
+// (x -> -x), so it passes through a line at mid-substep and its fan turns over: every face of that
+// fan is not positive (the case the other tests never reach: a GPU that left ghost faces
+// unclassified, or took them as positive, would differ from the twin only here), while most of
+// the sleeve below stays free. The GPU's free faces must be the twin's over the real and ghost
+// faces with the GPU's ghost nodes, and intersect nothing at eight times of the substep (exact
+// oracle; the top band's faces, twisted by half a turn, do intersect each other).
+TEST(RadialGhostsGl, AGhostFanFoldingPastTheObserverIsNotPositiveAndTheFreeFacesStaySafe) {
+    const model::FlatModel model = sleeveModel();
+    const auto faces = static_cast<std::uint32_t>(model.faceCount());
+    const passes::RadialCullingConfig config =
+        passes::radialCullingConfig(model, std::numeric_limits<double>::infinity());
+    const std::vector<glm::vec3> x0 = floats(model.positions);
+    std::vector<glm::vec3> x1 = x0;
+    for (std::size_t i = (kAlong - 1) * kAround; i < kAlong * kAround; ++i) x1[i].x = -x0[i].x;
+    const CullingRun run = runCulling(model, config, x0, x1);
+    ASSERT_EQ(run.observers.size(), 1u);
+    EXPECT_EQ(run.violated, std::vector<std::uint32_t>{0u});
+
+    std::vector<std::uint32_t> allFaces = model.faceIndices;
+    allFaces.insert(allFaces.end(), config.ghosts.faces.begin(), config.ghosts.faces.end());
+    std::vector<std::uint32_t> allObservers = config.faceObserver;
+    allObservers.insert(allObservers.end(), config.ghosts.faceObserver.begin(),
+                        config.ghosts.faceObserver.end());
+    const std::vector<glm::vec3> g0 = withGhosts(x0, run.ghostNodes, false),
+                                 g1 = withGhosts(x1, run.ghostNodes, true);
+    const std::vector<glm::vec3> observer = {run.observers[0].start, run.observers[0].end};
+    const std::vector<std::uint32_t> positive =
+        cpu::radialPositiveMask(allFaces, g0, g1, allObservers, observer);
+    std::uint32_t ghostsNotPositive = 0;
+    for (std::size_t f = faces; f < allObservers.size(); ++f)
+        ghostsNotPositive += (positive[f / 32] >> (f % 32) & 1u) == 0u;
+    std::printf("%u of %zu ghost faces not positive, %u of %u real faces free\n", ghostsNotPositive,
+                config.ghosts.faceObserver.size(), run.freeCount, faces);
+    ASSERT_EQ(ghostsNotPositive, kAround) << "the top fan turns over: none of its faces can be positive";
+    EXPECT_GT(run.freeCount, faces / 2) << "the sleeve below the fold stays free";
+    const std::vector<std::uint8_t> twin = cpu::radialFreeFaces(allFaces, g0, g1, allObservers, observer);
+    if (test::deviceEvaluatesGlslAsWritten()) {
+        EXPECT_EQ(run.free, std::vector<std::uint8_t>(twin.begin(), twin.begin() + faces));
+    }
+    EXPECT_GT(expectFreeFacesIntersectNothing(model, x0, x1, run.free), 0u)
+        << "the half turn must really intersect, or the test shows nothing";
+}
+
 // A real face that crosses a ghost fan at the start of the substep: the closed surface is not
 // embedded, the winding argument fails, and culling must free nothing of it — although every
 // face stays positive and no real faces intersect (so without the violated check all would be
