@@ -278,19 +278,16 @@ struct RecordErrors {
 // then about ×10 for another device's rounding (fused multiply-adds, other operation orders).
 constexpr double kWeightErrorUnits = 256.0, kNormalErrorUnits = 16.0, kForceErrorUnits = 8.0;
 
-class ImplicitContactGl : public ::testing::TestWithParam<bool> {}; // the ground is closed
-
-TEST_P(ImplicitContactGl, RecordsAndRowsMatchTheTwin) {
-    const ContactScene s = clothOverGround(6, 0.01, GetParam(), 11);
-    const ImplicitParams p = solverParams(1.0 / 30.0, true);
-    const ContactParams cp = contactParams(0.01, 1.0e4);
-    const GpuRun r = runGpu(s, p, cp, s.pairs);
+/// Every record of `r` against the twin's geometry of its pair (cpu::contactGeometries with
+/// `crossings`), slot by slot: a record exactly where the twin has a contact, the same nodes, and
+/// the largest errors (L: the largest coordinate).
+RecordErrors compareRecordsWithTwin(const GpuRun& r, const ContactScene& s, const ContactParams& cp,
+                                    cpu::Crossings crossings, double L) {
     const std::vector<std::uint8_t> closed = s.faceClosed();
     const cpu::ContactInput in = twinInput(s, closed);
-    const double L = 1.1;
     RecordErrors e;
     const auto compare = [&](std::uint32_t slot, const cpu::FeaturePairList& one, bool edgeEdge) {
-        const std::vector<cpu::ContactGeometry> twin = cpu::contactGeometries(cp, in, one);
+        const std::vector<cpu::ContactGeometry> twin = cpu::contactGeometries(cp, in, one, crossings);
         const gpu::GpuImplicitContact& c = r.records[slot];
         ASSERT_EQ(twin.size(), c.normalForce.w > 0.0f ? 1u : 0u) << "slot " << slot;
         if (twin.empty()) return;
@@ -302,8 +299,8 @@ TEST_P(ImplicitContactGl, RecordsAndRowsMatchTheTwin) {
         }
         const glm::dvec3 u(c.normalForce.x, c.normalForce.y, c.normalForce.z);
         // The normal is an offset of length d (or a face's cross product) over its length: its
-        // error grows as u·L/d; no pair of this scene has crossed, so d = h_c − depth > 0.
-        const double d = cp.thickness - twin[0].depth;
+        // error grows as u·L/d, d the pair's distance, on either side (|h_c − depth|).
+        const double d = std::abs(cp.thickness - twin[0].depth);
         ASSERT_GT(d, 0.0);
         e.normal = std::max(e.normal, glm::length(u - twin[0].normal) / (kUnitRoundoff * L / d));
         e.force = std::max(e.force, std::abs(c.normalForce.w - cp.stiffness * twin[0].depth) /
@@ -313,6 +310,17 @@ TEST_P(ImplicitContactGl, RecordsAndRowsMatchTheTwin) {
         compare(i, {{s.pairs.vertexFace[i]}, {}}, false);
     for (std::uint32_t i = 0; i < s.pairs.edgeEdge.size(); ++i)
         compare(r.edgeEdgeBase + i, {{}, {s.pairs.edgeEdge[i]}}, true);
+    return e;
+}
+
+class ImplicitContactGl : public ::testing::TestWithParam<bool> {}; // the ground is closed
+
+TEST_P(ImplicitContactGl, RecordsAndRowsMatchTheTwin) {
+    const ContactScene s = clothOverGround(6, 0.01, GetParam(), 11);
+    const ImplicitParams p = solverParams(1.0 / 30.0, true);
+    const ContactParams cp = contactParams(0.01, 1.0e4);
+    const GpuRun r = runGpu(s, p, cp, s.pairs);
+    const RecordErrors e = compareRecordsWithTwin(r, s, cp, cpu::Crossings::WithinThickness, 1.1);
     std::printf("closed ground %d: %u vertex-face, %u edge-edge contacts; max error: weights %.3g u, normal "
                 "%.3g u·L/d, "
                 "force %.3g u·k·L\n",
@@ -459,36 +467,13 @@ TEST_P(ImplicitContactGl, NewtonRecordsOfPairsThatWentThroughMatchTheTwin) {
     }
     const std::vector<glm::dvec3> v0 = st.velocities;
     const GpuRun r = runGpu(s, p, cp, s.pairs, 0, true, &v0);
+    const RecordErrors e = compareRecordsWithTwin(r, s, cp, cpu::Crossings::AtAnyDepth, 1.1);
     const std::vector<std::uint8_t> closed = s.faceClosed();
     const cpu::ContactInput in = twinInput(s, closed);
-    const double L = 1.1;
-    RecordErrors e;
-    std::uint32_t deep = 0, withinOnly = 0;
-    const auto compare = [&](std::uint32_t slot, const cpu::FeaturePairList& one, bool edgeEdge) {
-        const std::vector<cpu::ContactGeometry> twin =
-            cpu::contactGeometries(cp, in, one, cpu::Crossings::AtAnyDepth);
-        withinOnly += static_cast<std::uint32_t>(cpu::contactGeometries(cp, in, one).size());
-        const gpu::GpuImplicitContact& c = r.records[slot];
-        ASSERT_EQ(twin.size(), c.normalForce.w > 0.0f ? 1u : 0u) << "slot " << slot;
-        if (twin.empty()) return;
-        ++(edgeEdge ? e.edgeEdge : e.vertexFace);
-        if (twin[0].depth > 2.0 * cp.thickness) ++deep;
-        for (int k = 0; k < 4; ++k) {
-            const auto kk = static_cast<std::size_t>(k);
-            EXPECT_EQ(c.nodes[k], twin[0].nodes[kk]);
-            e.weights = std::max(e.weights, std::abs(c.weights[k] - twin[0].weights[kk]) / kUnitRoundoff);
-        }
-        const glm::dvec3 u(c.normalForce.x, c.normalForce.y, c.normalForce.z);
-        const double d = std::abs(twin[0].depth - cp.thickness); // how far apart, either side
-        ASSERT_GT(d, 0.0);
-        e.normal = std::max(e.normal, glm::length(u - twin[0].normal) / (kUnitRoundoff * L / d));
-        e.force = std::max(e.force, std::abs(c.normalForce.w - cp.stiffness * twin[0].depth) /
-                                        (kUnitRoundoff * cp.stiffness * L));
-    };
-    for (std::uint32_t i = 0; i < s.pairs.vertexFace.size(); ++i)
-        compare(i, {{s.pairs.vertexFace[i]}, {}}, false);
-    for (std::uint32_t i = 0; i < s.pairs.edgeEdge.size(); ++i)
-        compare(r.edgeEdgeBase + i, {{}, {s.pairs.edgeEdge[i]}}, true);
+    std::uint32_t deep = 0;
+    for (const cpu::ContactGeometry& c : cpu::contactGeometries(cp, in, s.pairs, cpu::Crossings::AtAnyDepth))
+        deep += c.depth > 2.0 * cp.thickness ? 1u : 0u;
+    const auto withinOnly = static_cast<std::uint32_t>(cpu::contactGeometries(cp, in, s.pairs).size());
     std::printf(
         "went through, closed ground %d: %u vertex-face, %u edge-edge contacts (%u deeper than twice the "
         "thickness; %u within it); max error: weights %.3g u, normal %.3g u·L/d, force %.3g u·k·L\n",

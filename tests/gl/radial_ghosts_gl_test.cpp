@@ -81,6 +81,23 @@ std::vector<glm::vec3> withGhosts(std::vector<glm::vec3> x, const std::vector<pa
     return x;
 }
 
+/// The sleeve's closed surface for the twins: the real faces, then the ghost faces; each face's
+/// observer; the real nodes followed by the GPU's ghost nodes at both ends of the substep.
+struct ClosedByGhosts {
+    std::vector<std::uint32_t> faces, observers;
+    std::vector<glm::vec3> x0, x1;
+};
+ClosedByGhosts closedByGhosts(const model::FlatModel& model, const passes::RadialCullingConfig& config,
+                              const CullingRun& run, const std::vector<glm::vec3>& x0,
+                              const std::vector<glm::vec3>& x1) {
+    ClosedByGhosts c{model.faceIndices, config.faceObserver, withGhosts(x0, run.ghostNodes, false),
+                     withGhosts(x1, run.ghostNodes, true)};
+    c.faces.insert(c.faces.end(), config.ghosts.faces.begin(), config.ghosts.faces.end());
+    c.observers.insert(c.observers.end(), config.ghosts.faceObserver.begin(),
+                       config.ghosts.faceObserver.end());
+    return c;
+}
+
 /// The ghost nodes against the double mean of their loops. A fixed-order float sum of n terms of
 /// size <= m is within n * 2^-24 * m of the exact sum (Higham §4.2), the division adds one more
 /// rounding of the mean: (n + 2) * 2^-24 * m bounds the error of the mean.
@@ -157,16 +174,10 @@ TEST(RadialGhostsGl, ASleeveClosedByGhostsFreesWhatTheTwinFreesAndNothingThatInt
     EXPECT_EQ(run.violatedStat, 0u);
 
     // The twin over the same real and ghost faces, with the GPU's ghost nodes and observer.
-    std::vector<std::uint32_t> allFaces = model.faceIndices;
-    allFaces.insert(allFaces.end(), config.ghosts.faces.begin(), config.ghosts.faces.end());
-    std::vector<std::uint32_t> allObservers = config.faceObserver;
-    allObservers.insert(allObservers.end(), config.ghosts.faceObserver.begin(),
-                        config.ghosts.faceObserver.end());
-    const std::vector<glm::vec3> g0 = withGhosts(x0, run.ghostNodes, false),
-                                 g1 = withGhosts(x1, run.ghostNodes, true);
-    EXPECT_TRUE(cpu::radialViolatedPairs(allFaces, faces, g0).empty());
-    const std::vector<std::uint8_t> twin =
-        cpu::radialFreeFaces(allFaces, g0, g1, allObservers, {run.observers[0].start, run.observers[0].end});
+    const ClosedByGhosts all = closedByGhosts(model, config, run, x0, x1);
+    EXPECT_TRUE(cpu::radialViolatedPairs(all.faces, faces, all.x0).empty());
+    const std::vector<std::uint8_t> twin = cpu::radialFreeFaces(
+        all.faces, all.x0, all.x1, all.observers, {run.observers[0].start, run.observers[0].end});
     const std::vector<std::uint8_t> twinReal(twin.begin(), twin.begin() + faces);
     if (test::deviceEvaluatesGlslAsWritten()) {
         EXPECT_EQ(run.free, twinReal);
@@ -214,24 +225,19 @@ TEST(RadialGhostsGl, AGhostFanFoldingPastTheObserverIsNotPositiveAndTheFreeFaces
     ASSERT_EQ(run.observers.size(), 1u);
     EXPECT_EQ(run.violated, std::vector<std::uint32_t>{0u});
 
-    std::vector<std::uint32_t> allFaces = model.faceIndices;
-    allFaces.insert(allFaces.end(), config.ghosts.faces.begin(), config.ghosts.faces.end());
-    std::vector<std::uint32_t> allObservers = config.faceObserver;
-    allObservers.insert(allObservers.end(), config.ghosts.faceObserver.begin(),
-                        config.ghosts.faceObserver.end());
-    const std::vector<glm::vec3> g0 = withGhosts(x0, run.ghostNodes, false),
-                                 g1 = withGhosts(x1, run.ghostNodes, true);
+    const ClosedByGhosts all = closedByGhosts(model, config, run, x0, x1);
     const std::vector<glm::vec3> observer = {run.observers[0].start, run.observers[0].end};
     const std::vector<std::uint32_t> positive =
-        cpu::radialPositiveMask(allFaces, g0, g1, allObservers, observer);
+        cpu::radialPositiveMask(all.faces, all.x0, all.x1, all.observers, observer);
     std::uint32_t ghostsNotPositive = 0;
-    for (std::size_t f = faces; f < allObservers.size(); ++f)
+    for (std::size_t f = faces; f < all.observers.size(); ++f)
         ghostsNotPositive += (positive[f / 32] >> (f % 32) & 1u) == 0u;
     std::printf("%u of %zu ghost faces not positive, %u of %u real faces free\n", ghostsNotPositive,
                 config.ghosts.faceObserver.size(), run.freeCount, faces);
     ASSERT_EQ(ghostsNotPositive, kAround) << "the top fan turns over: none of its faces can be positive";
     EXPECT_GT(run.freeCount, faces / 2) << "the sleeve below the fold stays free";
-    const std::vector<std::uint8_t> twin = cpu::radialFreeFaces(allFaces, g0, g1, allObservers, observer);
+    const std::vector<std::uint8_t> twin =
+        cpu::radialFreeFaces(all.faces, all.x0, all.x1, all.observers, observer);
     if (test::deviceEvaluatesGlslAsWritten()) {
         EXPECT_EQ(run.free, std::vector<std::uint8_t>(twin.begin(), twin.begin() + faces));
     }
@@ -260,10 +266,8 @@ TEST(RadialGhostsGl, AGhostCrossedByARealFaceAtTheStartFreesNothing) {
 
     const CullingRun run = runCulling(model, config, x0, x0);
     // ... but real faces cross the ghost fan: the exact twin finds the pairs, the GPU the surface.
-    std::vector<std::uint32_t> allFaces = model.faceIndices;
-    allFaces.insert(allFaces.end(), config.ghosts.faces.begin(), config.ghosts.faces.end());
-    const std::vector<cpu::RadialFacePair> violated =
-        cpu::radialViolatedPairs(allFaces, faces, withGhosts(x0, run.ghostNodes, false));
+    const ClosedByGhosts all = closedByGhosts(model, config, run, x0, x0);
+    const std::vector<cpu::RadialFacePair> violated = cpu::radialViolatedPairs(all.faces, faces, all.x0);
     ASSERT_FALSE(violated.empty());
     for (const cpu::RadialFacePair& p : violated)
         EXPECT_GE(p[1], faces) << "a violated pair has a ghost face";
@@ -293,10 +297,9 @@ TEST(RadialGhostsGl, TheDedoMaskAtRestIsClosedByItsFansAndFree) {
     EXPECT_TRUE(mask.inward);
     const std::vector<glm::vec3> x0 = floats(model.positions);
     const CullingRun run = runCulling(model, config, x0, x0);
-    std::vector<std::uint32_t> allFaces = model.faceIndices;
-    allFaces.insert(allFaces.end(), config.ghosts.faces.begin(), config.ghosts.faces.end());
+    const ClosedByGhosts all = closedByGhosts(model, config, run, x0, x0);
     const std::vector<cpu::RadialFacePair> violated =
-        cpu::radialViolatedPairs(allFaces, model.faceCount(), withGhosts(x0, run.ghostNodes, false));
+        cpu::radialViolatedPairs(all.faces, model.faceCount(), all.x0);
     for (const cpu::RadialFacePair& p : violated)
         ADD_FAILURE() << "faces " << p[0] << " and " << p[1] << " cross";
     EXPECT_EQ(run.violated, (std::vector<std::uint32_t>{0u, 0u}));
