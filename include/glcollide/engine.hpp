@@ -158,6 +158,10 @@ struct CollisionStats {
     std::uint32_t radialGhostFaces = 0, radialViolatedSurfaces = 0, radialSubstepsViolated = 0;
     std::uint32_t radialCulledTriTri = 0, radialCulledCcd = 0;
     std::uint64_t radialCulledTriTriInFrame = 0, radialCulledCcdInFrame = 0;
+    /// The first frame only: the start was checked standing still before the first substep
+    /// (decision 0025, "Culling from the first substep"), and found without intersecting pairs,
+    /// so the first substep could cull.
+    bool radialStartChecked = false, radialStartFree = false;
 };
 
 /// The first non-finite state NodeUpdate produced (EngineOptions::checkFinite).

@@ -99,6 +99,7 @@ nlohmann::json frameRecord(const Engine& engine) {
                                         {"ccd_pairs_left_out", c.radialCulledCcd},
                                         {"tri_tri_pairs_left_out_in_frame", c.radialCulledTriTriInFrame},
                                         {"ccd_pairs_left_out_in_frame", c.radialCulledCcdInFrame}};
+        if (c.radialStartChecked) record["radial_culling"]["start_free"] = c.radialStartFree;
         if (c.energyGuard)
             record["energy_guard"] = {{"substeps_acted", c.energyGuardSubsteps},
                                       {"substeps_pulled_back", c.energyGuardPulledBack},

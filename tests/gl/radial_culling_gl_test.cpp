@@ -4,8 +4,9 @@
 // substep. The scenes are built to fold and to defeat the observer: a soft ball of cloth that
 // crumples on the ground (faces turn their backs on the centroid, the centroid leaves the
 // squashed surface), a fast one, and a host that moves nodes between frames (the premise is then
-// unknown, and the first substep must not cull). Each case also checks that culling acted, so the
-// comparison is not vacuous.
+// unknown, and the first substep must not cull). The very first substep culls when the start,
+// checked standing still before it, has no intersecting pair, and does not when it has. Each case also checks
+// that culling acted, so the comparison is not vacuous.
 
 #include <glcollide/engine.hpp>
 #include <glcollide/error.hpp>
@@ -57,6 +58,8 @@ std::string sleeveScene(const std::string& culling, double spin) {
 struct Totals {
     std::uint64_t culledTriTri = 0, culledCcd = 0, culledSubsteps = 0, substepsWithNonPositive = 0;
     std::uint32_t ghostFaces = 0, substepsViolated = 0;
+    bool startFree = false;             ///< the start check found no intersecting pair
+    std::uint32_t firstFrameCulled = 0; ///< substeps of frame 1 that culled
 };
 
 /// Steps both engines `frames` frames; every frame: bit-identical positions and the same exact
@@ -88,6 +91,12 @@ Totals expectIdentical(const std::string& none, const std::string& radial, int f
         std::size_t differing = 0;
         for (std::size_t i = 0; i < xa.size(); ++i) differing += xa[i] != xb[i] ? 1u : 0u;
         EXPECT_EQ(differing, 0u) << "frame " << frame << ": nodes whose positions differ";
+        if (frame == 1) {
+            EXPECT_TRUE(cb.radialStartChecked) << "the start was not checked before the first substep";
+            EXPECT_FALSE(ca.radialStartChecked) << "checked without culling";
+            t.startFree = cb.radialStartFree;
+            t.firstFrameCulled = cb.radialSubsteps;
+        }
         if (frame == hostMove) {
             EXPECT_FALSE(cb.radialSubsteps == static_cast<std::uint32_t>(b.substepInfo().substeps))
                 << "frame " << frame << ": the host moved a node, yet the first substep culled";
@@ -107,6 +116,8 @@ Totals expectIdentical(const std::string& none, const std::string& radial, int f
 // their backs on the centroid, which is an observer in a poor place by the end.
 TEST(RadialCullingGl, ACrumplingBallIsBitIdenticalWithAndWithoutCulling) {
     const Totals t = expectIdentical(ballScene("none", 6.0, 1.0, 1), ballScene("radial", 6.0, 1.0, 1), 45);
+    EXPECT_TRUE(t.startFree);
+    EXPECT_EQ(t.firstFrameCulled, 1u) << "a free start: the first substep culls";
     EXPECT_GT(t.culledSubsteps, 30u);
     EXPECT_GT(t.culledCcd, 0u);
     EXPECT_GT(t.culledTriTri, 0u);
@@ -137,7 +148,28 @@ TEST(RadialCullingGl, ATwistingSleeveIsBitIdenticalWithAndWithoutCulling) {
 TEST(RadialCullingGl, AHostWriteSwitchesCullingOffForTheNextSubstep) {
     const Totals t =
         expectIdentical(ballScene("none", 2.0, 40.0, 1), ballScene("radial", 2.0, 40.0, 1), 12, 6);
-    EXPECT_EQ(t.culledSubsteps, 12u - 2u) << "all but the first frame and the frame after the host's write";
+    EXPECT_EQ(t.culledSubsteps, 12u - 1u) << "all but the frame after the host's write";
+}
+
+// Two balls that overlap at the start (recovery pushes them apart): the start check finds their
+// intersecting pairs, so the first substep must not cull; the frames stay bit-identical.
+TEST(RadialCullingGl, AnIntersectingStartIsNotCulled) {
+    auto twoBalls = [](const std::string& culling) {
+        std::string s = ballScene(culling, 0.5, 40.0, 1);
+        const std::string effects = R"("self_collisions"])";
+        s.replace(s.find(effects), effects.size(), R"("self_collisions", "collisions"])");
+        const std::string ball = R"({"name": "ball", )";
+        const std::size_t at = s.find(ball);
+        const std::string object = s.substr(at, s.rfind('}', s.size() - 3) - at + 1);
+        std::string second = object;
+        second.replace(second.find(R"("ball")"), 6, R"("other")");
+        second.replace(second.find("[0, 0.2, 0]"), 11, "[0.25, 0.2, 0]");
+        s.insert(at + object.size(), ", " + second);
+        return s;
+    };
+    const Totals t = expectIdentical(twoBalls("none"), twoBalls("radial"), 4);
+    EXPECT_FALSE(t.startFree) << "the balls overlap: the start check must find intersecting pairs";
+    EXPECT_EQ(t.firstFrameCulled, 0u);
 }
 
 TEST(RadialCullingGl, TheSceneRefusesRadialCullingWithoutItsPremise) {
