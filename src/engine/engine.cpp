@@ -712,8 +712,9 @@ void Engine::Impl::checkHostMoves() {
 /// 81,920-face cloth ball thrown at 6 m/s needs 16.8M candidate pairs at one substep per frame, more
 /// than llvmpipe's 128 MiB storage block). One detection of the start standing still (x1 = x0:
 /// boxes without motion) decides with the exact TriTri whether any face pair intersects at x0; none
-/// is the premise. It changes no node: NodePredict writes x1 again before the first substep's
-/// detection, whose counts are the substep's. Once, before the first substep.
+/// is the premise. It changes nothing else: NodePredict writes x1 again before the first substep's
+/// detection, whose counts are the substep's, and the check's lists are emptied. Once, before
+/// the first substep.
 void Engine::Impl::checkStartFree() {
     if (startChecked) return;
     startChecked = true;
@@ -722,6 +723,9 @@ void Engine::Impl::checkStartFree() {
     gl::copyBufferData(buffers.positions, buffers.predictedPositions, buffers.positions.bytes());
     collision->setRadialCulling(false);
     radialPremise = collision->detect(buffers, nullptr).intersections == 0;
+    // The first substep's solve and filters read the last detection's pairs: without culling there
+    // was none before it, and culling changes nothing but time.
+    collision->forgetLists();
     stats.collision.radialStartChecked = true;
     stats.collision.radialStartFree = radialPremise;
 }

@@ -131,6 +131,10 @@ class CollisionDetection {
     /// starts from are intersection-free: the theorem's premise). Ignored without
     /// CollisionConfig::radial.
     void setRadialCulling(bool on) { m_radialOn = on && m_radial.has_value(); }
+    /// Empties every list the detection fills, as before the first detect(): what the passes that
+    /// read the last detection's lists (the implicit solve's contacts, the velocity filters) then
+    /// see. Capacities stay.
+    void forgetLists() { m_lists->resetCounts(m_chain.outputsFrom(0)); }
     [[nodiscard]] bool radialCullingConfigured() const { return m_radial.has_value(); }
     /// The radial culling pass (tests read its free mask); null without CollisionConfig::radial.
     [[nodiscard]] const RadialCullingPass* radialCulling() const { return m_radial ? &*m_radial : nullptr; }

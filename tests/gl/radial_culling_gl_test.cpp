@@ -58,8 +58,9 @@ std::string sleeveScene(const std::string& culling, double spin) {
 struct Totals {
     std::uint64_t culledTriTri = 0, culledCcd = 0, culledSubsteps = 0, substepsWithNonPositive = 0;
     std::uint32_t ghostFaces = 0, substepsViolated = 0;
-    bool startFree = false;             ///< the start check found no intersecting pair
-    std::uint32_t firstFrameCulled = 0; ///< substeps of frame 1 that culled
+    bool startFree = false;               ///< the start check found no intersecting pair
+    std::uint32_t firstFrameCulled = 0;   ///< substeps of frame 1 that culled
+    double firstFrameContactEnergy = 0.0; ///< J: penalty energy after frame 1, without culling
 };
 
 /// Steps both engines `frames` frames; every frame: bit-identical positions and the same exact
@@ -96,6 +97,7 @@ Totals expectIdentical(const std::string& none, const std::string& radial, int f
             EXPECT_FALSE(ca.radialStartChecked) << "checked without culling";
             t.startFree = cb.radialStartFree;
             t.firstFrameCulled = cb.radialSubsteps;
+            t.firstFrameContactEnergy = a.energy().contact;
         }
         if (frame == hostMove) {
             EXPECT_FALSE(cb.radialSubsteps == static_cast<std::uint32_t>(b.substepInfo().substeps))
@@ -151,25 +153,38 @@ TEST(RadialCullingGl, AHostWriteSwitchesCullingOffForTheNextSubstep) {
     EXPECT_EQ(t.culledSubsteps, 12u - 1u) << "all but the frame after the host's write";
 }
 
+/// Two cloth balls (radius 0.15 m, thickness 5 mm) side by side, the second's centre `secondX`
+/// from the first's and turned 31° about z (so that faces, not two vertices, face each other).
+std::string twoBallsScene(const std::string& culling, const std::string& secondX) {
+    std::string s = ballScene(culling, 0.5, 40.0, 1);
+    const std::string effects = R"("self_collisions"])";
+    s.replace(s.find(effects), effects.size(), R"("self_collisions", "collisions"])");
+    const std::string ball = R"({"name": "ball", )";
+    const std::size_t at = s.find(ball);
+    const std::string object = s.substr(at, s.rfind('}', s.size() - 3) - at + 1);
+    std::string second = object;
+    second.replace(second.find(R"("ball")"), 6, R"("other")");
+    second.replace(second.find("[0, 0.2, 0]"), 11, "[" + secondX + R"(, 0.2, 0], "rotate_deg": [0, 0, 31])");
+    s.insert(at + object.size(), ", " + second);
+    return s;
+}
+
 // Two balls that overlap at the start (recovery pushes them apart): the start check finds their
 // intersecting pairs, so the first substep must not cull; the frames stay bit-identical.
 TEST(RadialCullingGl, AnIntersectingStartIsNotCulled) {
-    auto twoBalls = [](const std::string& culling) {
-        std::string s = ballScene(culling, 0.5, 40.0, 1);
-        const std::string effects = R"("self_collisions"])";
-        s.replace(s.find(effects), effects.size(), R"("self_collisions", "collisions"])");
-        const std::string ball = R"({"name": "ball", )";
-        const std::size_t at = s.find(ball);
-        const std::string object = s.substr(at, s.rfind('}', s.size() - 3) - at + 1);
-        std::string second = object;
-        second.replace(second.find(R"("ball")"), 6, R"("other")");
-        second.replace(second.find("[0, 0.2, 0]"), 11, "[0.25, 0.2, 0]");
-        s.insert(at + object.size(), ", " + second);
-        return s;
-    };
-    const Totals t = expectIdentical(twoBalls("none"), twoBalls("radial"), 4);
+    const Totals t = expectIdentical(twoBallsScene("none", "0.25"), twoBallsScene("radial", "0.25"), 4);
     EXPECT_FALSE(t.startFree) << "the balls overlap: the start check must find intersecting pairs";
     EXPECT_EQ(t.firstFrameCulled, 0u);
+}
+
+// Two balls within the thickness of each other at the start, not intersecting: the first substep
+// culls, and the start check's pairs (contacts at x0) must not reach the first solve, which
+// without culling has no earlier detection to take contacts from.
+TEST(RadialCullingGl, AStartWithContactsIsCulledAndBitIdentical) {
+    const Totals t = expectIdentical(twoBallsScene("none", "0.3"), twoBallsScene("radial", "0.3"), 4);
+    EXPECT_TRUE(t.startFree);
+    EXPECT_EQ(t.firstFrameCulled, 1u);
+    EXPECT_GT(t.firstFrameContactEnergy, 0.0) << "the balls must be within the thickness of each other";
 }
 
 TEST(RadialCullingGl, TheSceneRefusesRadialCullingWithoutItsPremise) {

@@ -43,10 +43,11 @@ class StageChain {
     /// `timer` (section passIndex(stage.pass)) when not null; a rerun adds to its pass's time.
     /// Returns the number of reruns. Throws glcollide::Error when a list cannot grow enough.
     std::uint32_t run(AppendLists& lists, gl::GpuTimer* timer) const;
+    /// The outputs of the stages from `first` on, each once.
+    [[nodiscard]] std::vector<std::uint32_t> outputsFrom(std::size_t first) const;
 
   private:
     void runFrom(std::size_t first, gl::GpuTimer* timer) const;
-    [[nodiscard]] std::vector<std::uint32_t> outputsFrom(std::size_t first) const;
 
     std::vector<Stage> m_stages;
 };
