@@ -78,11 +78,15 @@
 #define GLC_BIND_IMPLICIT_CONTACTS 50       // uint[nodes + 1 + 16 · (vertex-face + edge-edge capacity)]
 #define GLC_BIND_NODE_CONTACT_COUNTS 51     // uint[nodes]: incidences per node (integer atomics), then scatter cursors
 #define GLC_BIND_OBJECT_TOI 52            // uint[objects]: the earliest time of impact of the object's nodes
+                                          // (SafeStep, decision 0024), bits as GLC_BIND_NODE_TOI
+#define GLC_BIND_FEATURE_ORPHANS 53       // uint[faces + 1 + 2 * entries]: the orphan feature pairs each face pair
+                                          // carries (model::orphanTable; FeaturePairs, continuous detection)
+#define GLC_ORPHAN_HIGHER_CORNERS 3u      // an entry's bits: 1 << k, corner k of the lower face against the
+#define GLC_ORPHAN_EDGE_PAIRS 6u          // higher; << (3 + k), corner k of the higher; << (6 + 3e + g), edge e
+                                          // of the lower face against edge g of the higher
 #define GLC_BIND_TANGLED 54               // uint[nodes + faces]: 1 for the nodes, then the faces, of the face pairs
                                           // that intersect at x0 (the safe step's CCD leaves their pairs out)
 #define GLC_BIND_ENERGY_GUARD 55          // GpuEnergyGuard: the energy guard's sums and counts (decision 0024)
-#define GLC_BIND_FEATURE_OWNERS 53        // uint[6*faces]: owner face of corners 0..2, then of edges 0..2 (FeaturePairs, continuous)
-                                          // (SafeStep, decision 0024), bits as GLC_BIND_NODE_TOI
 // Radial view-based culling's classification (RadialClassify, docs/culling.md).
 #define GLC_BIND_RADIAL_OBSERVERS 56      // vec4[2 * observers]: each observer's position at t = 0, then at t = 1
 #define GLC_BIND_RADIAL_FACE_OBSERVER 57  // uint[faces]: the face's observer, or GLC_RADIAL_NO_OBSERVER
@@ -112,10 +116,6 @@
                                            // (classified index), ghost faces of each observer's surface
 #define GLC_BIND_RADIAL_VIOLATED 70        // uint[observers]: 1 when a ghost face of the surface crosses
                                            // another of its faces at x0 (RadialViolated): nothing is free
-// Continuous detection's orphan feature pairs (FeaturePairs, decision 0018 addendum): the faces
-// around each node, to find the one candidate that carries a pair whose owner faces share a node.
-#define GLC_BIND_FEATURE_NODE_FACES 71     // uint[nodes + 1 + 3 * faces]: CSR offsets (counted from the
-                                           // buffer's start), then each node's faces in increasing order
 #define GLC_BIND_RADIAL_UNDECIDED 72        // uint[2 + 2 * GLC_RADIAL_UNDECIDED_CAPACITY]: a count, unused, then the
                                            // (ghost face, face) pairs RadialViolated's filter left undecided
 #define GLC_RADIAL_UNDECIDED_CAPACITY 4096u

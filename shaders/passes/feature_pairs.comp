@@ -18,9 +18,11 @@
 // contact like the others, by exactly one candidate: for a vertex against a face, the lowest face
 // around the vertex that shares no node with that face; for an edge pair, the lowest face pair
 // around the two edges whose faces share no node (decision 0018, addendum "Orphans"). That
-// candidate exists whenever the pair can touch: its faces' boxes contain the features' boxes. The
-// owner faces come from GLC_BIND_FEATURE_OWNERS, each node's faces from
-// GLC_BIND_FEATURE_NODE_FACES. Without the define the lists are those of discrete detection.
+// candidate exists whenever the pair can touch: its faces' boxes contain the features' boxes.
+// Which orphans a face pair carries depends on the topology alone, so the host lists them once
+// (model::orphanTable, GLC_BIND_FEATURE_ORPHANS) and a candidate looks its pair up; searching the
+// faces around each feature here instead cost 90 % of this kernel (llvmpipe, 20K-face cloth ball).
+// Without the define the lists are those of discrete detection.
 // CPU twin: cpu::featurePairs (src/cpu/contact_twin.cpp).
 #include "common/layout.glsl"
 #include "common/lists.glsl"
@@ -35,82 +37,42 @@ layout(std430, binding = GLC_BIND_VERTEX_FACE_PAIRS) writeonly buffer VertexFace
 layout(std430, binding = GLC_BIND_EDGE_EDGE_PAIRS) writeonly buffer EdgeEdgePairsBuf { uvec2 g_edgeEdge[]; };
 
 #ifdef GLC_CCD_COMPLETE
-layout(std430, binding = GLC_BIND_FEATURE_OWNERS) readonly buffer FeatureOwnersBuf { uint g_featureOwner[]; };
-layout(std430, binding = GLC_BIND_FEATURE_NODE_FACES) readonly buffer FeatureNodeFacesBuf { uint g_nodeFaces[]; };
+layout(std430, binding = GLC_BIND_FEATURE_ORPHANS) readonly buffer FeatureOrphansBuf { uint g_orphans[]; };
 
-const uint kNone = 0xffffffffu;
-
-bool sharesNode(uvec3 a, uvec3 b) {
-    return any(equal(a, b.xxx)) || any(equal(a, b.yyy)) || any(equal(a, b.zzz));
-}
-
-// The lowest face around `node` that shares no node with the face of nodes `other`: the one
-// candidate that carries the orphan pair (node, other). Each node's faces are listed in
-// increasing order, so the first that qualifies is the lowest.
-uint lowestFaceApart(uint node, uvec3 other) {
-    for (uint k = g_nodeFaces[node]; k < g_nodeFaces[node + 1u]; ++k)
-        if (!sharesNode(faceNodes(g_nodeFaces[k]), other)) return g_nodeFaces[k];
-    return kNone;
-}
-
-// The lowest face pair (lower face, higher face) around edges a and b (node pairs) whose faces
-// share no node: the one candidate that carries the orphan edge pair (a, b).
-uvec2 lowestFacePairApart(uvec2 a, uvec2 b) {
-    uvec2 best = uvec2(kNone);
-    for (uint i = g_nodeFaces[a.x]; i < g_nodeFaces[a.x + 1u]; ++i) {
-        uint f = g_nodeFaces[i];
-        uvec3 nf = faceNodes(f);
-        if (!any(equal(nf, uvec3(a.y)))) continue; // around a.x, not around the edge
-        for (uint j = g_nodeFaces[b.x]; j < g_nodeFaces[b.x + 1u]; ++j) {
-            uint g = g_nodeFaces[j];
-            uvec3 ng = faceNodes(g);
-            if (!any(equal(ng, uvec3(b.y))) || sharesNode(nf, ng)) continue;
-            uvec2 key = uvec2(min(f, g), max(f, g));
-            if (key.x < best.x || (key.x == best.x && key.y < best.y)) best = key;
+// The orphan bits of face pair (lower, higher) (model::orphanTable): a binary search among the
+// lower face's entries, (higher face, bits) word pairs in increasing higher face; 0 when absent.
+uint orphanBits(uint lower, uint higher) {
+    uint first = g_orphans[lower], count = (g_orphans[lower + 1u] - first) / 2u;
+    while (count > 0u) { // the first entry whose face is >= higher: in [first, first + 2 count)
+        uint step = count / 2u, mid = first + 2u * step;
+        if (g_orphans[mid] < higher) {
+            first = mid + 2u;
+            count -= step + 1u;
+        } else {
+            count = step;
         }
     }
-    return best;
+    return first < g_orphans[lower + 1u] && g_orphans[first] == higher ? g_orphans[first + 1u] : 0u;
 }
 
-// Bits k (0..2): corner k of `face`, not owned by it, whose owner face shares a node with `other`
-// (an orphan: ownership's candidate does not exist), when `face` is the lowest face around the
-// corner apart from `other` — so of all candidates that see the orphan, exactly one appends it.
-uint orphanVertices(uint face, uint owned, uvec3 nodes, uvec3 other) {
-    uint bits = 0u;
-    for (uint k = 0u; k < 3u; ++k)
-        if ((owned & (GLC_OWN_VERTEX0 << k)) == 0u && sharesNode(faceNodes(g_featureOwner[6u * face + k]), other) &&
-            lowestFaceApart(nodes[k], other) == face)
-            bits |= 1u << k;
-    return bits;
-}
-
-// The nodes of the owner face of edge e (0..2) of `face`.
-uvec3 edgeOwnerNodes(uint face, uint owned, uvec3 nodes, uint e) {
-    return (owned & (GLC_OWN_EDGE01 << e)) != 0u ? nodes : faceNodes(g_featureOwner[6u * face + 3u + e]);
-}
-
-// Bit 3*e+g: edge e of the first face against edge g of the second whose owner faces share a
-// node (an orphan; a pair owned here on both sides never is one: the candidate's faces share
-// none), when this candidate is the lowest face pair around the two edges whose faces share no
-// node — exactly one candidate appends it.
-uint orphanEdgePairs(uvec2 pair, uvec3 fa, uvec3 fb, uint oa, uint ob) {
-    uvec3 ownerA[3], ownerB[3];
-    for (uint e = 0u; e < 3u; ++e) {
-        ownerA[e] = edgeOwnerNodes(pair.x, oa, fa, e);
-        ownerB[e] = edgeOwnerNodes(pair.y, ob, fb, e);
-    }
-    uvec2 key = uvec2(min(pair.x, pair.y), max(pair.x, pair.y));
-    uint bits = 0u;
+// Edge-pair bits 3e+g (edge e of one face, g of the other) with the faces' roles swapped.
+uint transposedEdgeBits(uint bits) {
+    uint swapped = 0u;
     for (uint e = 0u; e < 3u; ++e)
         for (uint g = 0u; g < 3u; ++g)
-            if (sharesNode(ownerA[e], ownerB[g]) &&
-                lowestFacePairApart(uvec2(fa[e], fa[(e + 1u) % 3u]), uvec2(fb[g], fb[(g + 1u) % 3u])) == key)
-                bits |= 1u << (3u * e + g);
-    return bits;
+            if ((bits & (1u << (3u * e + g))) != 0u) swapped |= 1u << (3u * g + e);
+    return swapped;
 }
 
-void appendOrphans(uvec2 pair, uvec3 fa, uvec3 fb, uint oa, uint ob) {
-    uint va = orphanVertices(pair.x, oa, fa, fb), vb = orphanVertices(pair.y, ob, fb, fa);
+void appendOrphans(uvec2 pair, uvec3 fa, uvec3 fb) {
+    // The broad phases list (lower, higher); the table's bits are for that order.
+    bool ordered = pair.x < pair.y;
+    uint bits = ordered ? orphanBits(pair.x, pair.y) : orphanBits(pair.y, pair.x);
+    if (bits == 0u) return;
+    uint lowerCorners = bits & 7u, higherCorners = (bits >> GLC_ORPHAN_HIGHER_CORNERS) & 7u;
+    uint edgePairs = bits >> GLC_ORPHAN_EDGE_PAIRS;
+    uint va = ordered ? lowerCorners : higherCorners, vb = ordered ? higherCorners : lowerCorners;
+    uint ee = ordered ? edgePairs : transposedEdgeBits(edgePairs);
     uint vertexFace = uint(bitCount(va) + bitCount(vb));
     if (vertexFace != 0u) {
         uint slot = glcReserve(GLC_LIST_VERTEX_FACE, vertexFace);
@@ -126,7 +88,6 @@ void appendOrphans(uvec2 pair, uvec3 fa, uvec3 fb, uint oa, uint ob) {
             }
         }
     }
-    uint ee = orphanEdgePairs(pair, fa, fb, oa, ob);
     uint edgeEdge = uint(bitCount(ee));
     if (edgeEdge != 0u) {
         uint slot = glcReserve(GLC_LIST_EDGE_EDGE, edgeEdge);
@@ -180,6 +141,6 @@ void main() {
         }
     }
 #ifdef GLC_CCD_COMPLETE
-    appendOrphans(pair, fa, fb, oa, ob);
+    appendOrphans(pair, fa, fb);
 #endif
 }

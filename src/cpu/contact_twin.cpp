@@ -351,7 +351,7 @@ FeaturePairList ccdFeaturePairs(const std::vector<std::uint32_t>& faceIndices,
     const auto edgeOwner = [&](std::uint32_t f, std::uint32_t k) {
         return featureOwners[6 * std::size_t{f} + 3 + k];
     };
-    // Each node's faces, in increasing order (model::nodeFaceTable, as the GPU reads them).
+    // Each node's faces, in increasing order (model::nodeFaceTable).
     const std::vector<std::uint32_t> around = model::nodeFaceTable(faceIndices, nodeCountOf(faceIndices));
     const auto corner = [&](std::uint32_t f, std::uint32_t k) { return faceIndices[3 * std::size_t{f} + k]; };
     const auto hasNode = [&](std::uint32_t f, std::uint32_t n) {

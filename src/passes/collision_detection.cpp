@@ -32,7 +32,7 @@ const CollisionSettings& checked(const CollisionSettings& s) {
 } // namespace
 
 CollisionTables::CollisionTables(const model::FlatModel& model, const model::OctreeLayout& layout,
-                                 bool withFeatureOwners) {
+                                 bool withFeatureOrphans) {
     std::vector<gpu::GpuFaceInfo> info(model.faceCount());
     for (std::size_t f = 0; f < info.size(); ++f)
         info[f] = {layout.faceObject[f], layout.faceBox[f], layout.faceOwned[f], 0u};
@@ -44,18 +44,15 @@ CollisionTables::CollisionTables(const model::FlatModel& model, const model::Oct
                          layout.firstBox[o], layout.closed[o]});
     }
     objects = gl::makeBuffer("objects", table);
-    if (withFeatureOwners) {
-        featureOwners = gl::makeBuffer("featureOwners", model::featureOwners(model.faceIndices));
-        nodeFaces =
-            gl::makeBuffer("featureNodeFaces", model::nodeFaceTable(model.faceIndices, model.nodeCount()));
-    }
+    if (withFeatureOrphans)
+        featureOrphans =
+            gl::makeBuffer("featureOrphans", model::orphanTable(model.faceIndices, model.nodeCount()));
 }
 
 void CollisionTables::bind() const {
     faceInfo.bindStorage(GLC_BIND_FACE_INFO);
     objects.bindStorage(GLC_BIND_OBJECTS);
-    if (featureOwners) featureOwners.bindStorage(GLC_BIND_FEATURE_OWNERS);
-    if (nodeFaces) nodeFaces.bindStorage(GLC_BIND_FEATURE_NODE_FACES);
+    if (featureOrphans) featureOrphans.bindStorage(GLC_BIND_FEATURE_ORPHANS);
 }
 
 CollisionDetection::CollisionDetection(const CollisionConfig& config, const model::FlatModel& model)
@@ -252,8 +249,7 @@ const gl::Buffer& CollisionDetection::broadPhaseBuffer(const std::string& label)
 
 std::vector<const gl::Buffer*> CollisionDetection::allBuffers() const {
     std::vector<const gl::Buffer*> all = {&m_tables.faceInfo, &m_tables.objects};
-    if (m_tables.featureOwners) all.push_back(&m_tables.featureOwners);
-    if (m_tables.nodeFaces) all.push_back(&m_tables.nodeFaces);
+    if (m_tables.featureOrphans) all.push_back(&m_tables.featureOrphans);
     for (const gl::Buffer* b : m_broadPhase->buffers()) all.push_back(b);
     for (const gl::Buffer* b : m_lists->buffers()) all.push_back(b);
     if (m_ccd) all.push_back(&m_ccd->nodeToi());

@@ -89,16 +89,15 @@ struct CollisionCounts {
 
 /// The per-face and per-object tables of the collision kernels and the contact response.
 struct CollisionTables {
-    /// `featureOwners`: also upload the feature-owner table (continuous detection).
+    /// `featureOrphans`: also upload the orphan table (continuous detection).
     CollisionTables(const model::FlatModel& model, const model::OctreeLayout& layout,
-                    bool featureOwners = false);
+                    bool featureOrphans = false);
     void bind() const;
     gl::Buffer faceInfo; ///< GpuFaceInfo per face (object, leaf box, owned features)
     gl::Buffer objects;  ///< GpuObject per object
-    /// Owner face of every corner and edge (model::featureOwners, GLC_BIND_FEATURE_OWNERS) and each
-    /// node's faces (model::nodeFaceTable, GLC_BIND_FEATURE_NODE_FACES): read by FeaturePairs under
-    /// continuous detection only, to append the orphan feature pairs; none (no GL name) otherwise.
-    gl::Buffer featureOwners, nodeFaces;
+    /// The orphan feature pairs each face pair carries (model::orphanTable, GLC_BIND_FEATURE_ORPHANS):
+    /// read by FeaturePairs under continuous detection only; none (no GL name) otherwise.
+    gl::Buffer featureOrphans;
 };
 
 class CollisionDetection {

@@ -48,8 +48,7 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"UndecidedBuf", GLC_BIND_UNDECIDED},
     // Representative-Triangle feature pairs (src/passes/collision/feature_pairs.cpp)
     {"VertexFacePairsBuf", GLC_BIND_VERTEX_FACE_PAIRS},
-    {"FeatureOwnersBuf", GLC_BIND_FEATURE_OWNERS},
-    {"FeatureNodeFacesBuf", GLC_BIND_FEATURE_NODE_FACES},
+    {"FeatureOrphansBuf", GLC_BIND_FEATURE_ORPHANS},
     {"EdgeEdgePairsBuf", GLC_BIND_EDGE_EDGE_PAIRS},
     // tri-tri queries (src/passes/tri_tri_query_pass.cpp)
     {"QueryTrianglesBuf", GLC_BIND_QUERY_TRIANGLES},

@@ -18,8 +18,8 @@ namespace glcollide::passes {
 class FeaturePairs {
   public:
     /// `ccdComplete` (continuous detection): also append, each once, the feature pairs that
-    /// ownership loses in self-collisions (orphans; GLC_CCD_COMPLETE; reads GLC_BIND_FEATURE_OWNERS
-    /// and GLC_BIND_FEATURE_NODE_FACES).
+    /// ownership loses in self-collisions (orphans; GLC_CCD_COMPLETE; reads the orphan table,
+    /// GLC_BIND_FEATURE_ORPHANS).
     explicit FeaturePairs(bool ccdComplete);
     /// Declares the vertex-face and edge-edge lists with these first capacities (>= 1) and adds
     /// the FeaturePairs stage to `chain`. Call after the candidate list is declared and the stages
