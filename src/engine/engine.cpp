@@ -502,6 +502,9 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
                 if (!params.sidesFromPrevious) params.substep = 0.0; // sides from x0 itself
                 const passes::ImplicitContacts contacts{contactInputs(), params};
                 run(*implicitSolve, plan.implicitParams, &contacts);
+                // The frame's contact count is the solve's: the velocity filter before it counts
+                // only the contacts it acts on (approaching, or with friction).
+                if (lastOfFrame) stats.collision.contacts = implicitSolve->contactCount();
             } else {
                 run(*implicitSolve, plan.implicitParams);
             }
@@ -560,7 +563,8 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
                 // held a block on a 35° incline at μ = 0.4).
                 if (k == 1 && !params.repulsion) params.friction = apply.friction = 0.0;
                 run(*contact, contactInputs(), params);
-                if (lastOfFrame && k == 0) readContacts(); // the contacts, not their iterations
+                // The contacts, not their iterations; with contacts in the solve, the solve's.
+                if (lastOfFrame && k == 0 && !plan.implicitContacts) readContacts();
                 run(*contactApply, apply, static_cast<std::uint32_t>(index));
             }
             break;

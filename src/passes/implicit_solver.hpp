@@ -103,6 +103,10 @@ class ImplicitSolverPass {
         return parity ? m_direction1 : m_direction0;
     }
 
+    /// Contacts in the last dispatch with contacts (its records; no download: the host read the
+    /// count to size them).
+    [[nodiscard]] std::uint32_t contactCount() const { return m_records; }
+
     /// The contact term after the last dispatch with contacts (tests compare them with the twin;
     /// each a download): the records, one per contact in the order the GPU appended them, each
     /// record's list slot (vertex-face slots first, then contactEdgeEdgeBase() + the edge-edge
