@@ -225,6 +225,34 @@ TEST(IntersectionFreeGl, ABoxRestingUnderImplicitEulerNeedsNoGuard) {
     EXPECT_LT(run.end.kinetic, 1e-4) << "at rest after 1 s";
 }
 
+// The frame's `contacts` are the implicit solve's (its records). Two boxes side by side, half the
+// thickness apart, nothing pulling them together and no friction: the penalty holds them apart,
+// so the velocity filter before the solve acts on no contact — it counted only those it acts on,
+// and reported 0 while the contact energy was positive.
+TEST(IntersectionFreeGl, ContactsAtRestAreCountedWithoutFriction) {
+    const std::string json =
+        R"({"format_version": 1, "name": "boxes side by side", "effects": ["springs", "collisions"],
+      "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 2},
+      "collision": {"broad_phase": "bvh", "thickness": 0.01, "stiffness": 1000, "friction": 0.0,
+                    "response": "intersection_free"},
+      "objects": [
+        {"name": "left", "generator": {"type": "tet_box", "size": [0.3, 0.3, 0.3], "resolution": [2, 2, 2]},
+         "transform": {"translate": [0, 0.2, 0]}, "mass": 0.5, "springs": {"stiffness": 2000}},
+        {"name": "right", "generator": {"type": "tet_box", "size": [0.3, 0.3, 0.3], "resolution": [2, 2, 2]},
+         "transform": {"translate": [0.305, 0.2, 0]}, "mass": 0.5, "springs": {"stiffness": 2000}}]})";
+    Engine engine(parseScene(json, ".", "boxes side by side"));
+    for (int frame = 1; frame <= 5; ++frame) {
+        engine.step();
+        const std::uint32_t contacts = engine.lastStep().collision.contacts;
+        if (engine.energy().contact > 0.0) {
+            EXPECT_GT(contacts, 0u) << "frame " << frame << ": contact energy " << engine.energy().contact;
+        }
+        if (frame == 1) {
+            EXPECT_GT(engine.energy().contact, 0.0) << "the boxes start within the thickness";
+        }
+    }
+}
+
 // Every feature pair that the CCD may stop a step at is a contact the response acts on (decision
 // 0018, addendum "Orphans"): a sleeve (1,216 faces) hung from its top ring and spun at 40 rad/s
 // twists and wraps onto itself; before, the pairs whose owner faces share a node were the CCD's
