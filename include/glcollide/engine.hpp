@@ -82,8 +82,7 @@ struct CollisionStats {
     std::uint32_t candidatePairs = 0;       ///< face pairs within the contact thickness, last substep
     std::uint32_t intersectingPairs = 0;    ///< face pairs whose closed triangles intersect, last substep
     std::uint32_t maxIntersectingPairs = 0; ///< the largest intersectingPairs of the frame's substeps
-    std::uint32_t contacts =
-        0; ///< vertex-face and edge-edge contacts with a force, last substep (implicit solve: its contacts)
+    std::uint32_t contacts = 0;             ///< contacts with a force, last substep (implicit: the solve's)
     std::uint32_t undecidedPairs =
         0; ///< robust: candidates the filtered test left to the exact pass, last substep
     std::uint32_t exactFallbacks =
