@@ -125,6 +125,18 @@ enum class Culling : std::uint8_t {
     Radial,
 };
 
+/// Where radial culling's observers stand (`collision.observers`; docs/culling.md, "Clusters").
+enum class RadialObservers : std::uint8_t {
+    /// One observer per object that is closed by itself or by ghost fans over its boundary loops
+    /// (ghost_max_perimeter); an open object that cannot be so closed is split into clusters.
+    Auto,
+    /// One observer per object closed by itself or by ghosts; other objects get none.
+    Objects,
+    /// Every object that is not closed by itself is split into clusters of its initial shape, each
+    /// closed by ghost fans and watched from behind; only pairs within one cluster are culled.
+    Clusters,
+};
+
 enum class TriTriPrecision : std::uint8_t {
     Fast,   ///< float with epsilons: may disagree with the exact answer near degenerate configurations
     Robust, ///< float filter with a certified error bound, exact fallback: always the exact answer
@@ -158,6 +170,12 @@ struct CollisionSettings {
     /// are not culled); default +infinity (every closed, manifold, unpinched loop). Suggested: about
     /// 1.5 × the perimeter of the largest opening that should be closed (a cuff, an ear hole).
     double ghostMaxPerimeter = std::numeric_limits<double>::infinity();
+    RadialObservers observers = RadialObservers::Auto;
+    /// Radial culling's clusters (docs/culling.md, "Clusters"): half-angle (radians) of each
+    /// cluster's normal cone at the initial positions. Range (0, π/2); default π/4.
+    double clusterMaxAngle = 0.7853981633974483;
+    /// Radial culling's clusters: most faces in one (>= 1; 0: no limit).
+    std::uint32_t clusterMaxFaces = 0;
 };
 
 /// How a substep advances the nodes (docs/integration.md).

@@ -93,10 +93,14 @@
 #define GLC_BIND_RADIAL_POSITIVE 58       // uint[(faces + 31) / 32]: bit f % 32 of word f / 32 set when face f
                                           // is proven positive for its observer over the substep
 #define GLC_BIND_RADIAL_OBSERVER_NODES 59 // uvec4[observers]: the first node and node count whose centroid is the
-                                          // observer (RadialObservers), 1 when the surface's faces wind
-                                          // inward (classified the other way round), unused
+                                          // observer (RadialObservers; 0 nodes: a cluster's, which
+                                          // RadialGhostNodes sets back behind its outer loop), 1 when the
+                                          // surface's faces wind inward (classified the other way round), unused
 #define GLC_BIND_RADIAL_CONES 60          // vec4[faces]: each observed face's footprint cone (unit axis, cosine)
-#define GLC_BIND_RADIAL_NONPOSITIVE 61    // uint[1 + faces]: a count, then the observed faces not proven positive
+#define GLC_BIND_RADIAL_NONPOSITIVE 61    // uint[1 + 2 * observers + faces]: the observed faces not proven positive:
+                                          // their count, then per observer its count and where its bucket
+                                          // starts (from the buffer's start), then the buckets (one slot per
+                                          // classified face of the observer)
 #define GLC_BIND_RADIAL_FREE 62           // uint[1 + (faces + 31) / 32]: word 0 is 1 when the mask holds for this
                                           // substep; bit f % 32 of word 1 + f / 32 set when face f is free
                                           // (intersects nothing of its observer's surface during the substep)
@@ -108,14 +112,23 @@
 // real ones. A classified face f >= the real face count is ghost face f - real faces; a node index
 // >= the node count is ghost node index - nodes.
 #define GLC_BIND_RADIAL_GHOST_FACES 66     // uint[3 * ghost faces]: each ghost face's three node indices
-#define GLC_BIND_RADIAL_GHOST_LOOPS 67     // uint[ghost nodes + 1 + loop nodes]: CSR offsets of each ghost
-                                           // node's loop (counted from the list's start), then the list
+#define GLC_BIND_RADIAL_GHOST_LOOPS 67     // uint[8 * ghost nodes + loop nodes]: per ghost node (where its loop's
+                                           // nodes are listed, from the buffer's start; how many; its kind,
+                                           // GLC_GHOST_*; the node a skirt node hangs behind), (its depth's
+                                           // float bits; the observer it places or GLC_RADIAL_NO_OBSERVER;
+                                           // that observer's depth's bits; unused); then the loop nodes
+#define GLC_GHOST_LOOP_MEAN 0u             // the mean of its loop (model::GhostKind::LoopMean)
+#define GLC_GHOST_APEX 1u                  // mean - depth * radius * axis of its loop (a cluster's apex)
+#define GLC_GHOST_SKIRT 2u                 // its node - depth * radius * axis of its loop (a cluster's skirt)
 #define GLC_BIND_RADIAL_GHOST_POSITIONS 68 // vec4[2 * ghost nodes]: each ghost node at t = 0, then at t = 1
                                            // (the mean of its loop's nodes; RadialGhostNodes)
-#define GLC_BIND_RADIAL_OBSERVER_FACES 69  // uvec4[observers]: first real face, real faces, first ghost face
-                                           // (classified index), ghost faces of each observer's surface
+#define GLC_BIND_RADIAL_OBSERVER_FACES 69  // uint[4 * observers + listed faces]: per observer where its real faces
+                                           // are listed (from the buffer's start), how many, its first ghost
+                                           // face (classified index), how many; then the lists
 #define GLC_BIND_RADIAL_VIOLATED 70        // uint[observers]: 1 when a ghost face of the surface crosses
                                            // another of its faces at x0 (RadialViolated): nothing is free
+#define GLC_BIND_RADIAL_NODE_OBSERVER 71   // uint[nodes]: the observer of every face around the node, or
+                                           // GLC_RADIAL_NO_OBSERVER (vertex-face pairs: the vertex on the surface)
 #define GLC_BIND_RADIAL_UNDECIDED 72        // uint[2 + 2 * GLC_RADIAL_UNDECIDED_CAPACITY]: a count, unused, then the
                                            // (ghost face, face) pairs RadialViolated's filter left undecided
 #define GLC_RADIAL_UNDECIDED_CAPACITY 4096u

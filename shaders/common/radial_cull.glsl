@@ -11,7 +11,7 @@
 
 layout(std430, binding = GLC_BIND_RADIAL_FACE_OBSERVER) readonly buffer RadialFaceObserverBuf { uint g_radialFaceObserver[]; };
 layout(std430, binding = GLC_BIND_RADIAL_FREE) readonly buffer RadialFreeBuf { uint g_radialFree[]; };
-layout(std430, binding = GLC_BIND_RADIAL_OBSERVER_NODES) readonly buffer RadialObserverNodesBuf { uvec4 g_radialObserverNodes[]; };
+layout(std430, binding = GLC_BIND_RADIAL_NODE_OBSERVER) readonly buffer RadialNodeObserverBuf { uint g_radialNodeObserver[]; };
 
 bool glcRadialFree(uint face) {
     return (g_radialFree[1u + face / 32u] & (1u << (face % 32u))) != 0u;
@@ -25,14 +25,13 @@ bool glcRadialCulled(uint faceA, uint faceB) {
 }
 
 // Vertex `node` against `face`: touching would make the faces around the node intersect the face,
-// so a free face suffices — when the node belongs to the face's observer's surface (its node
-// range).
+// so a free face suffices — when the node lies on the face's observer's surface (every face
+// around it is that surface's: GLC_BIND_RADIAL_NODE_OBSERVER).
 bool glcRadialCulledVertexFace(uint node, uint face) {
     if (g_radialFree[0] == 0u) return false;
     uint observer = g_radialFaceObserver[face];
     if (observer == GLC_RADIAL_NO_OBSERVER || !glcRadialFree(face)) return false;
-    uvec4 range = g_radialObserverNodes[observer];
-    return node >= range.x && node - range.x < range.y;
+    return g_radialNodeObserver[node] == observer;
 }
 
 #endif

@@ -10,8 +10,8 @@
 // the real faces, then the ghost faces that close observed surfaces' holes (common/radial_ghost.glsl):
 // one invocation each, ghost nodes read from RadialGhostNodes' positions.
 // Also, for RadialFree, every observed face's footprint cone (common/radial_footprint.glsl) and
-// the list of observed faces not proven positive (appended in any order: RadialFree only asks
-// whether some listed cone meets a face's, which does not depend on the order).
+// the lists of observed faces not proven positive, one per observer (appended in any order:
+// RadialFree only asks whether some listed cone meets a face's, which does not depend on the order).
 #include "common/layout.glsl"
 #include "common/face_nodes.glsl"
 
@@ -52,8 +52,11 @@ void main() {
         p2End = t;
     }
     g_cones[face] = glcRadialFootprint(p0, p1, p2, q, p0End, p1End, p2End, qEnd);
-    if (glcRadialPositive(p0, p1, p2, q, p0End, p1End, p2End, qEnd))
+    if (glcRadialPositive(p0, p1, p2, q, p0End, p1End, p2End, qEnd)) {
         atomicOr(g_positive[face / 32u], 1u << (face % 32u));
-    else
-        g_nonPositive[1u + atomicAdd(g_nonPositive[0], 1u)] = face;
+    } else { // into its observer's bucket (RadialFree scans only that one), and counted in all
+        uint slot = atomicAdd(g_nonPositive[1u + 2u * observer], 1u);
+        g_nonPositive[g_nonPositive[2u + 2u * observer] + slot] = face;
+        atomicAdd(g_nonPositive[0], 1u);
+    }
 }

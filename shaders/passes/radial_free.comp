@@ -4,8 +4,8 @@
 // cone meets the cone of no face of the same observer that is not proven positive (the list
 // RadialClassify appended). By the decision's theorem a free face intersects nothing of its
 // observer's surface during the substep; common/radial_cull.glsl leaves its pairs out of the exact
-// tests. Brute force over the non-positive list (its length is the culling's cost; a bin of cone
-// axes would bound it). Sets bit f of words 1.. of the free mask (atomicOr into a cleared mask) and
+// tests. Brute force over its observer's non-positive list (RadialClassify's bucket of that
+// observer: its length is the culling's cost; a bin of cone axes would bound it). Sets bit f of words 1.. of the free mask (atomicOr into a cleared mask) and
 // word 0 = 1: the mask holds for this substep. Ghost faces are in the list (they bound where the
 // surface may fold) but are never free themselves; a surface that RadialViolated marked frees
 // nothing. CPU twin: cpu::radialFreeFaces.
@@ -36,11 +36,9 @@ void main() {
     uint observer = g_faceObserver[face];
     if (g_violated[observer] != 0u) return; // a ghost crosses the surface at x0: no premise
     vec4 cone = g_cones[face];
-    uint count = g_nonPositive[0];
-    for (uint k = 0u; k < count; ++k) {
-        uint other = g_nonPositive[1u + k];
-        if (g_faceObserver[other] == observer && glcRadialFootprintsMeet(cone, g_cones[other])) return;
-    }
+    uint first = g_nonPositive[2u + 2u * observer], count = g_nonPositive[1u + 2u * observer];
+    for (uint k = 0u; k < count; ++k)
+        if (glcRadialFootprintsMeet(cone, g_cones[g_nonPositive[first + k]])) return;
     atomicOr(g_free[1u + face / 32u], 1u << (face % 32u));
     atomicAdd(g_counters.stats[GLC_STAT_RADIAL_FREE], 1u);
 }

@@ -2,7 +2,8 @@
 // RadialObservers — the automatic observer of radial view-based culling (decision 0025,
 // docs/culling.md "Observers"): the centroid of its surface's nodes, at the start of the substep
 // (the positions x0) and at its end (the predicted positions x1); it moves linearly between them,
-// as the classification assumes. One work group per observer; a fixed-order tree sum, so the
+// as the classification assumes (a cluster's observer, with no nodes here, is RadialGhostNodes').
+// One work group per observer; a fixed-order tree sum, so the
 // point does not depend on scheduling. The start's w carries the surface's orientation (decision
 // 0025, "Orientation"). Nothing here needs to be exact: an observer in a poor place
 // only culls less (a surface that does not wind once around it frees no face, decision 0025).
@@ -21,6 +22,7 @@ shared vec3 s_end[GLC_WORKGROUP_SIZE];
 void main() {
     uint observer = gl_WorkGroupID.x, i = gl_LocalInvocationID.x;
     uvec4 range = g_observerNodes[observer];
+    if (range.y == 0u) return; // a cluster's observer: RadialGhostNodes sets it back behind its loop
     vec3 start = vec3(0.0), end = vec3(0.0);
     for (uint k = i; k < range.y; k += GLC_WORKGROUP_SIZE) {
         start += g_start[range.x + k].xyz;

@@ -23,7 +23,8 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_start[]; };
 layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) readonly buffer PredictedPositionsBuf { vec4 g_end[]; }; // unused here
 layout(std430, binding = GLC_BIND_RADIAL_FACE_OBSERVER) readonly buffer RadialFaceObserverBuf { uint g_faceObserver[]; };
-layout(std430, binding = GLC_BIND_RADIAL_OBSERVER_FACES) readonly buffer RadialObserverFacesBuf { uvec4 g_observerFaces[]; };
+// Per observer: where its real faces are listed, how many, its first ghost face, how many; then the lists.
+layout(std430, binding = GLC_BIND_RADIAL_OBSERVER_FACES) readonly buffer RadialObserverFacesBuf { uint g_observerFaces[]; };
 layout(std430, binding = GLC_BIND_RADIAL_VIOLATED) buffer RadialViolatedBuf { uint g_violated[]; };
 // uint[2 + 2 * GLC_RADIAL_UNDECIDED_CAPACITY]: the count, unused, then (ghost face, other face) pairs
 layout(std430, binding = GLC_BIND_RADIAL_UNDECIDED) buffer RadialUndecidedBuf { uint g_undecided[]; };
@@ -42,10 +43,11 @@ void main() {
     uint face = u_realFaceCount + ghostFace;
     uint observer = g_faceObserver[face];
     if (observer == GLC_RADIAL_NO_OBSERVER) return;
-    uvec4 range = g_observerFaces[observer];
+    uvec4 range = uvec4(g_observerFaces[4u * observer], g_observerFaces[4u * observer + 1u],
+                        g_observerFaces[4u * observer + 2u], g_observerFaces[4u * observer + 3u]);
     uint k = gl_GlobalInvocationID.x;
     if (k >= range.y + (face - range.z) || g_violated[observer] != 0u) return; // or already marked
-    uint other = k < range.y ? range.x + k : range.z + (k - range.y);
+    uint other = k < range.y ? g_observerFaces[range.x + k] : range.z + (k - range.y);
     uvec3 g = glcRadialFaceNodes(face), o = glcRadialFaceNodes(other);
     if (sharesNode(g, o)) return;
     vec3 g0 = glcRadialStart(g.x), g1 = glcRadialStart(g.y), g2 = glcRadialStart(g.z);

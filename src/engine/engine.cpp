@@ -373,7 +373,9 @@ void Engine::Impl::makePass(engine::Stage stage) {
         config.settings = plan.collision;
         config.substepsPerFrame = static_cast<std::uint32_t>(substeps.substeps);
         if (plan.collision.culling == Culling::Radial)
-            config.radial = passes::radialCullingConfig(model, plan.collision.ghostMaxPerimeter);
+            config.radial = passes::radialCullingConfig(
+                model, {plan.collision.ghostMaxPerimeter, plan.collision.observers,
+                        plan.collision.clusterMaxAngle, plan.collision.clusterMaxFaces});
         collision.emplace(config, model);
         // Robust precision promises the oracle's answers; check that this device delivers them
         // before relying on it (once per device, driver and shader; docs/narrow-phase.md).

@@ -165,7 +165,7 @@ CollisionCounts CollisionDetection::detect(const DeviceBuffers& buffers, gl::Gpu
     } else {
         m_radialNone.bindStorage(GLC_BIND_RADIAL_FREE);
         m_radialNone.bindStorage(GLC_BIND_RADIAL_FACE_OBSERVER);
-        m_radialNone.bindStorage(GLC_BIND_RADIAL_OBSERVER_NODES);
+        m_radialNone.bindStorage(GLC_BIND_RADIAL_NODE_OBSERVER);
     }
     m_broadPhase->bind();
     m_broadPhase->prepare();

@@ -26,6 +26,23 @@ const std::vector<std::uint32_t>& checkedGhostFaces(const std::vector<std::uint3
                         std::to_string(ghosts.faces[i]) + " of " + std::to_string(nodes));
     return ghosts.faces;
 }
+
+/// The non-positive lists' header (layout.glsl, GLC_BIND_RADIAL_NONPOSITIVE): the total, then per
+/// observer its count (0) and where its bucket starts; a bucket holds every classified face of its
+/// observer, so no append can overflow it.
+std::vector<std::uint32_t> nonPositiveHeader(const std::vector<std::uint32_t>& faceObserver,
+                                             std::uint32_t observerCount) {
+    std::vector<std::uint32_t> faces(observerCount, 0);
+    for (std::uint32_t o : faceObserver)
+        if (o < observerCount) ++faces[o];
+    std::vector<std::uint32_t> header{0u};
+    std::uint32_t start = 1 + 2 * observerCount;
+    for (std::uint32_t o = 0; o < observerCount; ++o) {
+        header.insert(header.end(), {0u, start});
+        start += faces[o];
+    }
+    return header;
+}
 } // namespace
 
 RadialClassifyPass::RadialClassifyPass(const std::vector<std::uint32_t>& faceObserver,
@@ -36,11 +53,13 @@ RadialClassifyPass::RadialClassifyPass(const std::vector<std::uint32_t>& faceObs
       m_observerCount(observerCount),
       // Without ghosts no node index may read the ghost positions, whatever the node count.
       m_nodeLimit(ghosts.faces.empty() ? 0xffffffffu : ghosts.nodeCount),
+      m_nonPositiveHeader(nonPositiveHeader(faceObserver, observerCount)),
       m_faceObserver(gl::makeBuffer("radialFaceObserver", faceObserver)),
       m_observers("radialObservers", std::size_t{2} * observerCount * sizeof(glm::vec4)),
       m_mask("radialPositive", ((m_faceCount + 31u) / 32u) * sizeof(std::uint32_t)),
       m_cones("radialCones", std::size_t{m_faceCount} * sizeof(glm::vec4)),
-      m_nonPositive("radialNonPositive", (std::size_t{m_faceCount} + 1) * sizeof(std::uint32_t)),
+      m_nonPositive("radialNonPositive",
+                    (m_nonPositiveHeader.size() + std::size_t{m_faceCount}) * sizeof(std::uint32_t)),
       m_ghostFaces(gl::makeBuffer("radialGhostFaces", ghosts.faces)),
       m_ghostPositions("radialGhostPositions", std::size_t{2} * ghosts.ghostNodeCount * sizeof(glm::vec4)),
       m_program("radial_classify") {
@@ -85,8 +104,7 @@ void RadialClassifyPass::dispatchOnBoundPositions() {
     m_ghostFaces.bindStorage(GLC_BIND_RADIAL_GHOST_FACES);
     m_ghostPositions.bindStorage(GLC_BIND_RADIAL_GHOST_POSITIONS);
     m_mask.fill32(0u);
-    const std::uint32_t zero = 0;
-    m_nonPositive.upload(0, sizeof zero, &zero);
+    m_nonPositive.upload(0, m_nonPositiveHeader.size() * sizeof(std::uint32_t), m_nonPositiveHeader.data());
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     m_mask.bindStorage(GLC_BIND_RADIAL_POSITIVE);
     m_cones.bindStorage(GLC_BIND_RADIAL_CONES);

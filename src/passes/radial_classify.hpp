@@ -72,6 +72,7 @@ class RadialClassifyPass {
 
   private:
     std::uint32_t m_faceCount = 0, m_realFaceCount = 0, m_observerCount = 0, m_nodeLimit = 0;
+    std::vector<std::uint32_t> m_nonPositiveHeader; ///< uploaded before each classification: counts 0
     gl::Buffer m_faceObserver, m_observers, m_mask, m_cones, m_nonPositive, m_ghostFaces, m_ghostPositions;
     gl::ComputeProgram m_program;
 };

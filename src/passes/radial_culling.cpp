@@ -3,6 +3,7 @@
 #include "core/gpu_layout.hpp"
 #include "model/ghost_triangles.hpp"
 #include "model/radial_surfaces.hpp"
+#include "model/surface_clusters.hpp"
 
 #include <glcollide/error.hpp>
 
@@ -11,33 +12,39 @@
 #include <glm/vec4.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <string>
 
 namespace glcollide::passes {
+
+static_assert(GLC_GHOST_LOOP_MEAN == static_cast<std::uint32_t>(model::GhostKind::LoopMean));
+static_assert(GLC_GHOST_APEX == static_cast<std::uint32_t>(model::GhostKind::Apex));
+static_assert(GLC_GHOST_SKIRT == static_cast<std::uint32_t>(model::GhostKind::Skirt));
+
 namespace {
 std::vector<std::uint32_t> surfaceRanges(const std::vector<RadialSurface>& surfaces) {
     std::vector<std::uint32_t> ranges;
-    for (std::size_t o = 0; o < surfaces.size(); ++o) {
-        if (surfaces[o].nodeCount == 0)
-            throw Error(std::string(RadialCullingPass::kName) + ": observer " + std::to_string(o) +
-                        " has a surface with no nodes");
-        ranges.insert(ranges.end(),
-                      {surfaces[o].firstNode, surfaces[o].nodeCount, surfaces[o].inward ? 1u : 0u, 0u});
-    }
+    for (const RadialSurface& s : surfaces)
+        ranges.insert(ranges.end(), {s.firstNode, s.nodeCount, s.inward ? 1u : 0u, 0u});
     if (ranges.empty()) ranges = {0u, 0u, 0u, 0u}; // a buffer the consumers can bind
     return ranges;
 }
 
-/// uvec4 per observer for RadialViolated: first real face, real faces, first ghost face as a
-/// classified index (after the `realFaces`), ghost faces.
-std::vector<std::uint32_t> observerFaceRanges(const RadialCullingConfig& config) {
+/// RadialViolated's table: per observer a uvec4 (where its real faces are listed, counted from
+/// the buffer's start; how many; its first ghost face as a classified index, after the
+/// `realFaces`; how many), then the lists.
+std::vector<std::uint32_t> observerFaceTable(const RadialCullingConfig& config) {
     const auto realFaces = static_cast<std::uint32_t>(config.faceObserver.size());
-    std::vector<std::uint32_t> ranges;
-    for (const RadialSurface& s : config.surfaces)
-        ranges.insert(ranges.end(),
-                      {s.firstFace, s.faceCount, realFaces + s.firstGhostFace, s.ghostFaceCount});
-    if (ranges.empty()) ranges = {0u, 0u, 0u, 0u};
-    return ranges;
+    std::vector<std::uint32_t> table;
+    auto listed = static_cast<std::uint32_t>(4 * std::max<std::size_t>(config.surfaces.size(), 1));
+    for (const RadialSurface& s : config.surfaces) {
+        const auto count = static_cast<std::uint32_t>(s.faces.size());
+        table.insert(table.end(), {listed, count, realFaces + s.firstGhostFace, s.ghostFaceCount});
+        listed += count;
+    }
+    if (table.empty()) table = {0u, 0u, 0u, 0u};
+    for (const RadialSurface& s : config.surfaces) table.insert(table.end(), s.faces.begin(), s.faces.end());
+    return table;
 }
 
 /// The classified faces' observers: the real faces', then the ghost faces'.
@@ -47,18 +54,28 @@ std::vector<std::uint32_t> classifiedFaceObservers(const RadialCullingConfig& co
     return all;
 }
 
-/// RadialGhostNodes' table: the CSR offsets counted from the buffer's start, then the loop nodes.
-std::vector<std::uint32_t> ghostLoopTable(const RadialGhosts& g) {
-    if (g.loopOffsets.empty()) return {0u};
-    const auto shift = static_cast<std::uint32_t>(g.loopOffsets.size());
+/// RadialGhostNodes' table: per ghost node two uvec4 (where its loop's nodes are listed, counted
+/// from the buffer's start; how many; its kind; the node a skirt node hangs behind) and (its
+/// depth's bits; the observer it places or GLC_RADIAL_NO_OBSERVER; that observer's depth's bits;
+/// unused), then the loop nodes.
+std::vector<std::uint32_t> ghostNodeTable(const RadialGhosts& g) {
+    if (g.nodes.empty()) return {0u};
+    const auto shift = static_cast<std::uint32_t>(8 * g.nodes.size());
+    const auto bits = [](float v) {
+        std::uint32_t b = 0;
+        std::memcpy(&b, &v, sizeof b);
+        return b;
+    };
     std::vector<std::uint32_t> table;
-    for (std::uint32_t o : g.loopOffsets) table.push_back(shift + o);
+    for (const RadialGhostNode& n : g.nodes)
+        table.insert(table.end(), {shift + n.loopFirst, n.loopCount, static_cast<std::uint32_t>(n.kind),
+                                   n.hang, bits(n.depth), n.observerOf, bits(n.observerDepth), 0u});
     table.insert(table.end(), g.loopNodes.begin(), g.loopNodes.end());
     return table;
 }
 
 std::uint32_t ghostNodeCount(const RadialGhosts& g) {
-    return g.loopOffsets.empty() ? 0u : static_cast<std::uint32_t>(g.loopOffsets.size() - 1);
+    return static_cast<std::uint32_t>(g.nodes.size());
 }
 
 /// Checks the ghosts' tables against each other and the surfaces; returns the ghost faces.
@@ -69,21 +86,42 @@ RadialGhostFaces checkedGhosts(const RadialCullingConfig& config) {
     if (g.faces.size() != 3 * g.faceObserver.size())
         throw Error(name + ": " + std::to_string(g.faces.size()) + " ghost face indices for " +
                     std::to_string(g.faceObserver.size()) + " ghost faces");
-    if (!g.loopOffsets.empty() && (g.loopOffsets.front() != 0 || g.loopOffsets.back() != g.loopNodes.size()))
-        throw Error(name + ": the ghost loops' offsets do not span their " +
-                    std::to_string(g.loopNodes.size()) + " nodes");
-    for (std::size_t k = 1; k < g.loopOffsets.size(); ++k)
-        if (g.loopOffsets[k] <= g.loopOffsets[k - 1])
-            throw Error(name + ": ghost node " + std::to_string(k - 1) + " has an empty loop");
+    for (std::size_t k = 0; k < g.nodes.size(); ++k) {
+        const RadialGhostNode& n = g.nodes[k];
+        if (n.loopCount == 0 || std::uint64_t{n.loopFirst} + n.loopCount > g.loopNodes.size())
+            throw Error(name + ": ghost node " + std::to_string(k) + "'s loop lies outside the " +
+                        std::to_string(g.loopNodes.size()) + " loop nodes, or is empty");
+        if (n.kind == model::GhostKind::Skirt && n.hang >= g.nodeCount)
+            throw Error(name + ": ghost node " + std::to_string(k) + " hangs behind node " +
+                        std::to_string(n.hang) + " of " + std::to_string(g.nodeCount));
+    }
     for (std::uint32_t n : g.loopNodes)
         if (n >= g.nodeCount)
             throw Error(name + ": a ghost loop names node " + std::to_string(n) + " of " +
                         std::to_string(g.nodeCount));
+    if (config.nodeObserver.size() != g.nodeCount)
+        throw Error(name + ": a node observer table of " + std::to_string(config.nodeObserver.size()) +
+                    " entries for " + std::to_string(g.nodeCount) + " nodes");
+    std::vector<std::uint32_t> watchers(config.surfaces.size(), 0);
+    for (const RadialGhostNode& n : g.nodes)
+        if (n.observerOf != kNoRadialObserver) {
+            if (n.observerOf >= config.surfaces.size() || n.kind != model::GhostKind::Apex)
+                throw Error(name + ": a ghost node places observer " + std::to_string(n.observerOf) + " of " +
+                            std::to_string(config.surfaces.size()) + ", or is no apex");
+            ++watchers[n.observerOf];
+        }
     for (std::size_t o = 0; o < config.surfaces.size(); ++o) {
         const RadialSurface& s = config.surfaces[o];
-        if (std::uint64_t{s.firstFace} + s.faceCount > config.faceObserver.size() ||
-            std::uint64_t{s.firstGhostFace} + s.ghostFaceCount > g.faceObserver.size())
-            throw Error(name + ": observer " + std::to_string(o) + "'s faces lie outside the faces");
+        for (std::uint32_t f : s.faces)
+            if (f >= config.faceObserver.size())
+                throw Error(name + ": observer " + std::to_string(o) + "'s faces lie outside the faces");
+        if (std::uint64_t{s.firstGhostFace} + s.ghostFaceCount > g.faceObserver.size())
+            throw Error(name + ": observer " + std::to_string(o) +
+                        "'s ghost faces lie outside the ghost faces");
+        if (watchers[o] != (s.nodeCount == 0 ? 1u : 0u))
+            throw Error(name + ": observer " + std::to_string(o) + " is placed by " +
+                        std::to_string(watchers[o]) + " ghost nodes and " + std::to_string(s.nodeCount) +
+                        " nodes");
     }
     return {g.nodeCount, nodes, g.faces};
 }
@@ -125,48 +163,146 @@ model::GhostTriangles objectGhosts(const model::FlatModel& model, const model::O
     return ghosts;
 }
 
-} // namespace
+/// Appends the ghost fans of one surface, in object-local node indices (a node >= `objectNodes` is
+/// the object's ghost node index − objectNodes), to the model's ghosts.
+void appendGhostFans(RadialGhosts& g, const model::ObjectRange& r, std::uint32_t observer,
+                     const std::vector<model::Triangle>& faces) {
+    const auto base = static_cast<std::uint32_t>(g.nodes.size());
+    for (const model::Triangle& t : faces) {
+        for (std::uint32_t n : t)
+            g.faces.push_back(n < r.nodeCount ? r.firstNode + n : g.nodeCount + base + (n - r.nodeCount));
+        g.faceObserver.push_back(observer);
+    }
+}
 
-RadialCullingConfig radialCullingConfig(const model::FlatModel& model, double ghostMaxPerimeter) {
-    RadialCullingConfig config;
-    config.faceObserver.assign(model.faceCount(), kNoRadialObserver);
-    RadialGhosts& g = config.ghosts;
-    g.nodeCount = static_cast<std::uint32_t>(model.nodeCount());
-    for (const model::ObjectRange& r : model.objects) {
+/// Appends a loop (object-local nodes) to the ghosts' loop nodes; returns where it starts.
+std::uint32_t appendLoop(RadialGhosts& g, const model::ObjectRange& r,
+                         const std::vector<std::uint32_t>& loop) {
+    const auto first = static_cast<std::uint32_t>(g.loopNodes.size());
+    for (std::uint32_t n : loop) g.loopNodes.push_back(r.firstNode + n);
+    return first;
+}
+
+/// Object `r` as one observed surface, closed by itself or by ghosts; false when it cannot be.
+bool observeObject(RadialCullingConfig& config, const model::FlatModel& model, const model::ObjectRange& r,
+                   const RadialObserverSettings& settings) {
+    const auto observer = static_cast<std::uint32_t>(config.surfaces.size());
+    RadialSurface surface{
+        r.firstNode, r.nodeCount, {}, static_cast<std::uint32_t>(config.ghosts.faceObserver.size()), 0};
+    if (model::isClosedOrientedConnected(model.faceIndices, r.firstFace, r.faceCount)) {
+        surface.inward = signedVolume6(model.faceIndices, r.firstFace, r.faceCount, model.positions) < 0.0;
+    } else {
+        if (settings.observers == RadialObservers::Clusters || !(settings.ghostMaxPerimeter > 0.0))
+            return false;
+        const model::GhostTriangles ghosts =
+            objectGhosts(model, r, settings.ghostMaxPerimeter, surface.inward);
+        if (ghosts.faces.empty()) return false;
+        appendGhostFans(config.ghosts, r, observer, ghosts.faces);
+        for (std::uint32_t loop : ghosts.ghostNodeLoop) {
+            const std::vector<std::uint32_t>& nodes = ghosts.loops[loop].nodes;
+            RadialGhostNode node;
+            node.loopFirst = appendLoop(config.ghosts, r, nodes);
+            node.loopCount = static_cast<std::uint32_t>(nodes.size());
+            config.ghosts.nodes.push_back(node);
+        }
+        surface.ghostFaceCount = static_cast<std::uint32_t>(ghosts.faces.size());
+    }
+    for (std::uint32_t f = 0; f < r.faceCount; ++f) {
+        surface.faces.push_back(r.firstFace + f);
+        config.faceObserver[r.firstFace + f] = observer;
+    }
+    config.surfaces.push_back(std::move(surface));
+    return true;
+}
+
+/// Object `r` cut into clusters of its initial shape (docs/culling.md, "Clusters"), each closed by
+/// model::closeCluster and watched from behind; a cluster whose loops cannot all be filled gets none.
+void observeClusters(RadialCullingConfig& config, const model::FlatModel& model, const model::ObjectRange& r,
+                     const RadialObserverSettings& settings) {
+    std::vector<model::Triangle> faces;
+    for (std::uint32_t f = 0; f < r.faceCount; ++f) {
+        const std::uint32_t* n = &model.faceIndices[3 * std::size_t{r.firstFace + f}];
+        faces.push_back({n[0] - r.firstNode, n[1] - r.firstNode, n[2] - r.firstNode});
+    }
+    const std::vector<glm::dvec3> positions(model.positions.begin() + r.firstNode,
+                                            model.positions.begin() + r.firstNode + r.nodeCount);
+    const model::SurfaceClusters clusters =
+        model::surfaceClusters(faces, positions, {settings.clusterMaxAngle, settings.clusterMaxFaces});
+    std::vector<std::vector<std::uint32_t>> members(clusters.count);
+    for (std::uint32_t f = 0; f < r.faceCount; ++f) members[clusters.faceCluster[f]].push_back(f);
+    const double depth = model::clusterObserverDepth(settings.clusterMaxAngle);
+    for (const std::vector<std::uint32_t>& member : members) {
+        std::vector<model::Triangle> clusterFaces;
+        for (std::uint32_t f : member) clusterFaces.push_back(faces[f]);
+        const model::ClusterClosure closure = model::closeCluster(clusterFaces, positions, depth);
+        if (!closure.closed) {
+            ++config.openClusters;
+            continue;
+        }
         const auto observer = static_cast<std::uint32_t>(config.surfaces.size());
         RadialSurface surface{r.firstNode,
-                              r.nodeCount,
-                              r.firstFace,
-                              r.faceCount,
-                              static_cast<std::uint32_t>(g.faceObserver.size()),
-                              0};
-        if (!model::isClosedOrientedConnected(model.faceIndices, r.firstFace, r.faceCount)) {
-            if (!(ghostMaxPerimeter > 0.0)) continue;
-            const model::GhostTriangles ghosts = objectGhosts(model, r, ghostMaxPerimeter, surface.inward);
-            if (ghosts.faces.empty()) continue;
-            // Ghost node k of this object is ghost node `base + k` of the model.
-            const auto base =
-                static_cast<std::uint32_t>(g.loopOffsets.empty() ? 0 : g.loopOffsets.size() - 1);
-            if (g.loopOffsets.empty()) g.loopOffsets.push_back(0);
-            for (std::uint32_t loop : ghosts.ghostNodeLoop) {
-                for (std::uint32_t n : ghosts.loops[loop].nodes) g.loopNodes.push_back(r.firstNode + n);
-                g.loopOffsets.push_back(static_cast<std::uint32_t>(g.loopNodes.size()));
+                              0,
+                              {},
+                              static_cast<std::uint32_t>(config.ghosts.faceObserver.size()),
+                              static_cast<std::uint32_t>(closure.faces.size()),
+                              closure.volume6 < 0.0};
+        appendGhostFans(config.ghosts, r, observer, closure.faces);
+        std::vector<std::uint32_t> loopFirst;
+        for (const std::vector<std::uint32_t>& loop : closure.loops)
+            loopFirst.push_back(appendLoop(config.ghosts, r, loop));
+        for (const model::ClusterGhostNode& c : closure.ghostNodes) {
+            RadialGhostNode node;
+            node.loopFirst = loopFirst[c.loop];
+            node.loopCount = static_cast<std::uint32_t>(closure.loops[c.loop].size());
+            node.kind = c.kind;
+            node.hang = r.firstNode + c.hang;
+            node.depth = static_cast<float>(c.depth);
+            if (c.kind == model::GhostKind::Apex) {
+                node.observerOf = observer;
+                node.observerDepth = static_cast<float>(closure.observerDepth);
             }
-            for (const model::Triangle& t : ghosts.faces) {
-                for (std::uint32_t n : t)
-                    g.faces.push_back(n < r.nodeCount ? r.firstNode + n
-                                                      : g.nodeCount + base + (n - r.nodeCount));
-                g.faceObserver.push_back(observer);
-            }
-            surface.ghostFaceCount = static_cast<std::uint32_t>(ghosts.faces.size());
-        } else {
-            surface.inward =
-                signedVolume6(model.faceIndices, r.firstFace, r.faceCount, model.positions) < 0.0;
+            config.ghosts.nodes.push_back(node);
         }
-        config.surfaces.push_back(surface);
-        for (std::uint32_t f = 0; f < r.faceCount; ++f) config.faceObserver[r.firstFace + f] = observer;
+        for (std::uint32_t f : member) {
+            surface.faces.push_back(r.firstFace + f);
+            config.faceObserver[r.firstFace + f] = observer;
+        }
+        config.surfaces.push_back(std::move(surface));
+        ++config.clusters;
     }
+}
+
+/// Per node: the observer shared by every face around it (RadialCullingConfig::nodeObserver).
+std::vector<std::uint32_t> nodeObservers(const RadialCullingConfig& config, const model::FlatModel& model) {
+    constexpr std::uint32_t kUnset = kNoRadialObserver - 1u;
+    std::vector<std::uint32_t> nodes(model.nodeCount(), kUnset);
+    for (std::size_t f = 0; f < model.faceCount(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            std::uint32_t& n = nodes[model.faceIndices[3 * f + k]];
+            n = n == kUnset || n == config.faceObserver[f] ? config.faceObserver[f] : kNoRadialObserver;
+        }
+    for (std::uint32_t& n : nodes)
+        if (n == kUnset) n = kNoRadialObserver;
+    return nodes;
+}
+
+} // namespace
+
+RadialCullingConfig radialCullingConfig(const model::FlatModel& model,
+                                        const RadialObserverSettings& settings) {
+    RadialCullingConfig config;
+    config.faceObserver.assign(model.faceCount(), kNoRadialObserver);
+    config.ghosts.nodeCount = static_cast<std::uint32_t>(model.nodeCount());
+    for (const model::ObjectRange& r : model.objects)
+        if (!observeObject(config, model, r, settings) && settings.observers != RadialObservers::Objects &&
+            r.faceCount > 0)
+            observeClusters(config, model, r, settings);
+    config.nodeObserver = nodeObservers(config, model);
     return config;
+}
+
+RadialCullingConfig radialCullingConfig(const model::FlatModel& model, double ghostMaxPerimeter) {
+    return radialCullingConfig(model, {ghostMaxPerimeter, RadialObservers::Objects});
 }
 
 RadialCullingPass::RadialCullingPass(const RadialCullingConfig& config)
@@ -176,8 +312,11 @@ RadialCullingPass::RadialCullingPass(const RadialCullingConfig& config)
       m_ghostFaceCount(static_cast<std::uint32_t>(config.ghosts.faceObserver.size())),
       m_classify(classifiedFaceObservers(config), m_observerCount, checkedGhosts(config)),
       m_surfaces(gl::makeBuffer("radialSurfaces", surfaceRanges(config.surfaces))),
-      m_observerFaces(gl::makeBuffer("radialObserverFaces", observerFaceRanges(config))),
-      m_ghostLoops(gl::makeBuffer("radialGhostLoops", ghostLoopTable(config.ghosts))),
+      m_observerFaces(gl::makeBuffer("radialObserverFaces", observerFaceTable(config))),
+      m_ghostLoops(gl::makeBuffer("radialGhostLoops", ghostNodeTable(config.ghosts))),
+      m_nodeObservers(gl::makeBuffer(
+          "radialNodeObservers",
+          config.nodeObserver.empty() ? std::vector<std::uint32_t>{kNoRadialObserver} : config.nodeObserver)),
       m_free("radialFree", (1u + (m_faceCount + 31u) / 32u) * sizeof(std::uint32_t)),
       m_moved("radialMoved", sizeof(std::uint32_t)),
       m_violated("radialViolated", std::max(m_observerCount, 1u) * sizeof(std::uint32_t)),
@@ -185,7 +324,8 @@ RadialCullingPass::RadialCullingPass(const RadialCullingConfig& config)
     for (std::uint32_t o : config.faceObserver) m_observedFaces += o != kNoRadialObserver ? 1u : 0u;
     for (const RadialSurface& s : config.surfaces)
         if (s.ghostFaceCount > 0)
-            m_largestSurface = std::max(m_largestSurface, s.faceCount + s.ghostFaceCount);
+            m_largestSurface =
+                std::max(m_largestSurface, static_cast<std::uint32_t>(s.faces.size()) + s.ghostFaceCount);
     m_freeProgram.set("u_faceCount", m_faceCount);
     m_free.fill32(0u);
     m_violated.fill32(0u);
@@ -205,6 +345,7 @@ RadialCullingPass::RadialCullingPass(const RadialCullingConfig& config)
 void RadialCullingPass::bindForConsumers() const {
     m_classify.faceObserver().bindStorage(GLC_BIND_RADIAL_FACE_OBSERVER);
     m_surfaces.bindStorage(GLC_BIND_RADIAL_OBSERVER_NODES);
+    m_nodeObservers.bindStorage(GLC_BIND_RADIAL_NODE_OBSERVER);
     m_free.bindStorage(GLC_BIND_RADIAL_FREE);
 }
 

@@ -13,23 +13,29 @@
 #include "gl/handles.hpp"
 #include "gl/program.hpp"
 #include "model/flat_model.hpp"
+#include "model/surface_clusters.hpp"
 #include "passes/collision/append_lists.hpp"
 #include "passes/device_buffers.hpp"
 #include "passes/pass_id.hpp"
 #include "passes/radial_classify.hpp"
 
+#include <glcollide/scene.hpp>
+
 #include <cstdint>
+#include <limits>
+#include <numbers>
 #include <optional>
 #include <vector>
 
 namespace glcollide::passes {
 
-/// One observer's surface: its real nodes [firstNode, firstNode + nodeCount) (their centroid is
-/// the observer), its real faces [firstFace, firstFace + faceCount) and its ghost faces
-/// [firstGhostFace, firstGhostFace + ghostFaceCount) (indices into the ghost faces, 0-based).
+/// One observer's surface: its real faces and its ghost faces [firstGhostFace, firstGhostFace +
+/// ghostFaceCount) (indices into the ghost faces, 0-based). An object's observer is the centroid
+/// of its real nodes [firstNode, firstNode + nodeCount); a cluster's (nodeCount 0) stands behind
+/// the cluster, set back from the ghost node of its outer loop (RadialGhosts::observerOf).
 struct RadialSurface {
     std::uint32_t firstNode = 0, nodeCount = 0;
-    std::uint32_t firstFace = 0, faceCount = 0;
+    std::vector<std::uint32_t> faces; ///< its real faces, ascending
     std::uint32_t firstGhostFace = 0, ghostFaceCount = 0;
     /// The surface's faces (real and ghost) wind inward: its signed volume is negative. The
     /// classification then turns every face round (decision 0025, "Orientation"); a wrong value
@@ -37,32 +43,63 @@ struct RadialSurface {
     bool inward = false;
 };
 
-/// Ghost nodes and faces that close the observed surfaces' holes (docs/culling.md, "Ghost
-/// triangles"; model::ghostTriangles builds them). Ghost node g is the mean of its loop's nodes
-/// loopNodes[loopOffsets[g] .. loopOffsets[g + 1]); a ghost face's node index >= the model's node
-/// count names ghost node (index - node count).
+/// One ghost node (docs/culling.md, "Ghost triangles" and "Clusters"; model::ClusterGhostNode):
+/// placed each substep from its loop, loopNodes[loopFirst .. loopFirst + loopCount).
+struct RadialGhostNode {
+    std::uint32_t loopFirst = 0, loopCount = 0;
+    model::GhostKind kind = model::GhostKind::LoopMean;
+    std::uint32_t hang = 0; ///< Skirt: the model's node it hangs behind
+    float depth = 0.0f;     ///< Apex, Skirt: in loop radii
+    /// Apex of a cluster: the observer it places, observerDepth loop radii behind the loop's mean;
+    /// else kNoRadialObserver.
+    std::uint32_t observerOf = 0xffffffffu;
+    float observerDepth = 0.0f;
+};
+
+/// Ghost nodes and faces that close the observed surfaces' holes and clusters (model::ghostTriangles
+/// and model::closeCluster build them); a ghost face's node index >= the model's node count names
+/// ghost node (index - node count).
 struct RadialGhosts {
-    std::uint32_t nodeCount = 0;            ///< the model's nodes
-    std::vector<std::uint32_t> loopOffsets; ///< ghost nodes + 1 entries (empty: no ghosts)
+    std::uint32_t nodeCount = 0; ///< the model's nodes
     std::vector<std::uint32_t> loopNodes;
+    std::vector<RadialGhostNode> nodes;
     std::vector<std::uint32_t> faces;        ///< 3 per ghost face
     std::vector<std::uint32_t> faceObserver; ///< per ghost face
 };
 
 /// Which faces culling may consider: per face its observer's index or kNoRadialObserver, and per
 /// observer its surface. The surface of an observer — its real faces and ghost faces — must be
-/// closed, consistently oriented and connected (the theorem's premise); the engine gives one
-/// observer to each object so closed.
+/// closed, consistently oriented and connected (the theorem's premise).
 struct RadialCullingConfig {
     std::vector<std::uint32_t> faceObserver;
     std::vector<RadialSurface> surfaces;
     RadialGhosts ghosts;
+    /// Per node of the model: the observer of every face around it, kNoRadialObserver where they
+    /// differ or where it has no face. A vertex-face pair is culled only when the vertex lies on
+    /// the face's observer's surface; a node all of whose faces are that surface's does.
+    std::vector<std::uint32_t> nodeObserver;
+    std::uint32_t clusters = 0;     ///< observers that watch a cluster
+    std::uint32_t openClusters = 0; ///< clusters left without one (a loop that cannot be filled)
+};
+
+/// Where the observers stand (CollisionSettings: ghost_max_perimeter, observers, cluster_max_angle).
+struct RadialObserverSettings {
+    double ghostMaxPerimeter = std::numeric_limits<double>::infinity();
+    RadialObservers observers = RadialObservers::Auto;
+    double clusterMaxAngle = std::numbers::pi / 4.0;
+    std::uint32_t clusterMaxFaces = 0;
 };
 
 /// The engine's observers (decision 0025): one per object of `model` whose surface is closed,
-/// consistently oriented and connected (the theorem's premise) by itself, or once fans of ghost
-/// triangles (model::ghostTriangles, at the model's positions) close its boundary loops of perimeter
-/// <= `ghostMaxPerimeter` m; the other objects' faces get no observer and are never culled.
+/// consistently oriented and connected (the theorem's premise) by itself, or — unless
+/// settings.observers is Clusters — once fans of ghost triangles (model::ghostTriangles, at the
+/// model's positions) close its boundary loops of perimeter <= settings.ghostMaxPerimeter m. The
+/// other objects are split into clusters (model::surfaceClusters, closed by model::closeCluster),
+/// each with an observer of its own — unless settings.observers is Objects: then their faces get no
+/// observer and are never culled.
+RadialCullingConfig radialCullingConfig(const model::FlatModel& model,
+                                        const RadialObserverSettings& settings);
+/// Objects only, ghosts up to `ghostMaxPerimeter`: radialCullingConfig with RadialObservers::Objects.
 RadialCullingConfig radialCullingConfig(const model::FlatModel& model, double ghostMaxPerimeter);
 
 class RadialCullingPass {
@@ -70,7 +107,8 @@ class RadialCullingPass {
     static constexpr PassId kId = PassId::RadialCulling;
     static constexpr const char* kName = passName(kId);
 
-    /// Throws Error for an observer index out of range or a surface with no nodes.
+    /// Throws Error for an observer index out of range, a node table that is not one entry per
+    /// node (RadialGhosts::nodeCount), or a cluster surface (no nodes) that no ghost node watches.
     explicit RadialCullingPass(const RadialCullingConfig& config);
 
     /// Binds what the consumers read: the face → observer table, the surfaces' node ranges and
@@ -104,7 +142,7 @@ class RadialCullingPass {
     std::uint32_t m_ghostNodeCount = 0, m_ghostFaceCount = 0;
     std::uint32_t m_largestSurface = 0; ///< real + ghost faces of the largest surface with ghosts
     mutable RadialClassifyPass m_classify;
-    gl::Buffer m_surfaces, m_observerFaces, m_ghostLoops;
+    gl::Buffer m_surfaces, m_observerFaces, m_ghostLoops, m_nodeObservers;
     mutable gl::Buffer m_free;      ///< word 0: the mask holds for this substep; then one bit per face
     mutable gl::Buffer m_moved;     ///< uint: RadialHostCheck's flag
     mutable gl::Buffer m_violated;  ///< uint per observer: RadialViolated's flag

@@ -522,7 +522,7 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p,
                 {"broad_phase", "octree_depth", "precision", "response", "thickness", "stiffness", "damping",
                  "friction", "initial_capacity", "bvh", "detection", "ccd", "energy_guard", "culling",
-                 "ghost_max_perimeter"});
+                 "ghost_max_perimeter", "observers", "cluster_max_angle", "cluster_max_faces"});
     CollisionSettings s;
     if (const json* v = find(j, "broad_phase")) {
         const std::optional<BroadPhase> kind = broadPhaseFromName(string(c, *v, p / "broad_phase"));
@@ -588,6 +588,40 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
             c.fail(p / "ghost_max_perimeter",
                    "ghost triangles close holes for radial culling only: add \"culling\": \"radial\"");
         s.ghostMaxPerimeter = nonNegative(c, *v, p / "ghost_max_perimeter");
+    }
+    if (const json* v = find(j, "observers")) {
+        if (s.culling != Culling::Radial)
+            c.fail(p / "observers", "observers serve radial culling only: add \"culling\": \"radial\"");
+        const std::string name = string(c, *v, p / "observers");
+        if (name == "auto")
+            s.observers = RadialObservers::Auto;
+        else if (name == "objects")
+            s.observers = RadialObservers::Objects;
+        else if (name == "clusters")
+            s.observers = RadialObservers::Clusters;
+        else
+            c.fail(p / "observers",
+                   "unknown observers " + shown(*v) + "; expected \"auto\", \"objects\" or \"clusters\"");
+    }
+    if (const json* v = find(j, "cluster_max_angle")) {
+        if (s.culling != Culling::Radial)
+            c.fail(p / "cluster_max_angle",
+                   "clusters serve radial culling only: add \"culling\": \"radial\"");
+        const double degrees =
+            number(c, *v, p / "cluster_max_angle", "an angle in degrees, above 0 and below 90");
+        if (!(degrees > 0.0 && degrees < 90.0))
+            c.fail(p / "cluster_max_angle",
+                   "expected an angle in degrees, above 0 and below 90, got " + shown(*v));
+        s.clusterMaxAngle = degrees * std::numbers::pi / 180.0;
+    }
+    if (const json* v = find(j, "cluster_max_faces")) {
+        if (s.culling != Culling::Radial)
+            c.fail(p / "cluster_max_faces",
+                   "clusters serve radial culling only: add \"culling\": \"radial\"");
+        if (!v->is_number_integer() || v->get<long long>() < 0 || v->get<long long>() > 0xffffffffLL)
+            c.fail(p / "cluster_max_faces",
+                   "expected a whole number of faces >= 0 (0: no limit), got " + shown(*v));
+        s.clusterMaxFaces = static_cast<std::uint32_t>(v->get<long long>());
     }
     if (const json* v = find(j, "energy_guard")) {
         if (!v->is_boolean()) c.fail(p / "energy_guard", "expected true or false, got " + shown(*v));

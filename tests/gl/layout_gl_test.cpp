@@ -105,6 +105,7 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"RadialGhostPositionsBuf", GLC_BIND_RADIAL_GHOST_POSITIONS},
     {"RadialObserverFacesBuf", GLC_BIND_RADIAL_OBSERVER_FACES},
     {"RadialViolatedBuf", GLC_BIND_RADIAL_VIOLATED},
+    {"RadialNodeObserverBuf", GLC_BIND_RADIAL_NODE_OBSERVER},
     {"RadialUndecidedBuf", GLC_BIND_RADIAL_UNDECIDED},
     {"LineSearchBuf", GLC_BIND_LINE_SEARCH},
     {"LineSearchVelocitiesBuf", GLC_BIND_LINE_SEARCH_VELOCITIES},

@@ -142,7 +142,11 @@ TEST(RadialClassifyGl, TheCullingPassFreesWhatTheTwinFreesAndNothingThatIntersec
         if (s.x0[i].y > 0.3f && s.x0[i].x > 0.0f) x1[i].x -= 0.6f;
     passes::RadialCullingConfig config;
     config.faceObserver.assign(faces, 0u);
-    config.surfaces = {{0u, static_cast<std::uint32_t>(s.x0.size())}};
+    config.surfaces.resize(1);
+    config.surfaces[0].nodeCount = static_cast<std::uint32_t>(s.x0.size());
+    for (std::uint32_t f = 0; f < faces; ++f) config.surfaces[0].faces.push_back(f);
+    config.ghosts.nodeCount = static_cast<std::uint32_t>(s.x0.size());
+    config.nodeObserver.assign(s.x0.size(), 0u);
     passes::RadialCullingPass pass(config);
     passes::AppendLists lists(0);
     test::runRadialCulling(pass, lists, s.x0, x1, s.faces);
