@@ -129,9 +129,9 @@
                                            // another of its faces at x0 (RadialViolated): nothing is free
 #define GLC_BIND_RADIAL_NODE_OBSERVER 71   // uint[nodes]: the observer of every face around the node, or
                                            // GLC_RADIAL_NO_OBSERVER (vertex-face pairs: the vertex on the surface)
-#define GLC_BIND_RADIAL_UNDECIDED 72        // uint[2 + 2 * GLC_RADIAL_UNDECIDED_CAPACITY]: a count, unused, then the
-                                           // (ghost face, face) pairs RadialViolated's filter left undecided
-#define GLC_RADIAL_UNDECIDED_CAPACITY 4096u
+#define GLC_BIND_RADIAL_UNDECIDED 72        // uint[2 + 2 * capacity]: a count, unused, then the (ghost face, face)
+                                           // pairs RadialViolated's filter left undecided (capacity: the
+                                           // uniform u_undecidedCapacity, 4 per ghost face and at least 4,096)
 #define GLC_RADIAL_NO_OBSERVER 0xffffffffu
 // The Newton steps' line search (NewtonLineSearch, decision 0024 "Line search").
 #define GLC_BIND_LINE_SEARCH 73            // GpuLineSearch: the last sum of the incremental potential

@@ -1,8 +1,8 @@
 #version 430 core
 // RadialViolated — violated triangles of radial view-based culling (decision 0025, "The premise
-// without a winding-number pass"; docs/culling.md, "Violated pairs"): one invocation per pair of a
-// ghost face (work-group row y) and a face of its surface (x: the surface's real faces, then its
-// ghost faces before this one, so each ghost pair once). The theorem needs the observer's closed
+// without a winding-number pass"; docs/culling.md, "Violated pairs"): one invocation per ghost
+// face, looping over the faces of its surface (its real faces, then its ghost faces before this
+// one, so each ghost pair once). The theorem needs the observer's closed
 // surface — real and ghost faces — embedded at the start of the substep; the engine's TriTri keeps
 // the real faces apart, this pass checks the rest, at x0: pairs sharing a node are left out (as
 // TriTri leaves out neighbours), then a closed-box test, then the certified filter
@@ -19,6 +19,7 @@
 #include "common/tri_tri_robust.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
+#include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_start[]; };
 layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) readonly buffer PredictedPositionsBuf { vec4 g_end[]; }; // unused here
@@ -26,46 +27,58 @@ layout(std430, binding = GLC_BIND_RADIAL_FACE_OBSERVER) readonly buffer RadialFa
 // Per observer: where its real faces are listed, how many, its first ghost face, how many; then the lists.
 layout(std430, binding = GLC_BIND_RADIAL_OBSERVER_FACES) readonly buffer RadialObserverFacesBuf { uint g_observerFaces[]; };
 layout(std430, binding = GLC_BIND_RADIAL_VIOLATED) buffer RadialViolatedBuf { uint g_violated[]; };
-// uint[2 + 2 * GLC_RADIAL_UNDECIDED_CAPACITY]: the count, unused, then (ghost face, other face) pairs
+// uint[2 + 2 * u_undecidedCapacity]: the count, unused, then (ghost face, other face) pairs
 layout(std430, binding = GLC_BIND_RADIAL_UNDECIDED) buffer RadialUndecidedBuf { uint g_undecided[]; };
 #include "common/radial_ghost.glsl"
 
+uniform uint u_undecidedCapacity; // pairs the undecided list holds
+
 uniform uint u_ghostFaceCount;  // ghost faces in all
-uniform uint u_firstGhostFace; // the ghost face of work-group row 0 (dispatches of at most 65,535 rows)
 
 bool sharesNode(uvec3 a, uvec3 b) {
     return any(equal(a, b.xxx)) || any(equal(a, b.yyy)) || any(equal(a, b.zzz));
 }
 
+// Whether ghost face `face` and face `other` (sharing no node) cross at x0: the closed-box test,
+// then the certified filter; an undecided pair goes to RadialViolatedExact's list (returns false),
+// or, with the list full, counts as crossing.
+bool crosses(uint face, uint other, vec3 g0, vec3 g1, vec3 g2, vec3 gMin, vec3 gMax) {
+    uvec3 o = glcRadialFaceNodes(other);
+    vec3 o0 = glcRadialStart(o.x), o1 = glcRadialStart(o.y), o2 = glcRadialStart(o.z);
+    // Closed boxes: boxes that do not touch hold triangles that do not (touching counts).
+    if (any(lessThan(max(o0, max(o1, o2)), gMin)) || any(lessThan(gMax, min(o0, min(o1, o2))))) return false;
+    if (sharesNode(glcRadialFaceNodes(face), o)) return false;
+    int filtered = glcTriTriFiltered(g0, g1, g2, o0, o1, o2);
+    if (filtered == GLC_UNDECIDED) {
+        uint slot = atomicAdd(g_undecided[0], 1u);
+        if (slot >= u_undecidedCapacity) return true;
+        g_undecided[2u + 2u * slot] = face;
+        g_undecided[3u + 2u * slot] = other;
+        return false;
+    }
+    return filtered != 0;
+}
+
 void main() {
-    uint ghostFace = u_firstGhostFace + gl_WorkGroupID.y;
+    uint ghostFace = globalIndex();
     if (ghostFace >= u_ghostFaceCount) return;
     uint face = u_realFaceCount + ghostFace;
     uint observer = g_faceObserver[face];
     if (observer == GLC_RADIAL_NO_OBSERVER) return;
     uvec4 range = uvec4(g_observerFaces[4u * observer], g_observerFaces[4u * observer + 1u],
                         g_observerFaces[4u * observer + 2u], g_observerFaces[4u * observer + 3u]);
-    uint k = gl_GlobalInvocationID.x;
-    if (k >= range.y + (face - range.z) || g_violated[observer] != 0u) return; // or already marked
-    uint other = k < range.y ? g_observerFaces[range.x + k] : range.z + (k - range.y);
-    uvec3 g = glcRadialFaceNodes(face), o = glcRadialFaceNodes(other);
-    if (sharesNode(g, o)) return;
+    uvec3 g = glcRadialFaceNodes(face);
     vec3 g0 = glcRadialStart(g.x), g1 = glcRadialStart(g.y), g2 = glcRadialStart(g.z);
-    vec3 o0 = glcRadialStart(o.x), o1 = glcRadialStart(o.y), o2 = glcRadialStart(o.z);
-    // Closed boxes: boxes that do not touch hold triangles that do not (touching counts).
-    if (any(lessThan(max(o0, max(o1, o2)), min(g0, min(g1, g2)))) ||
-        any(lessThan(max(g0, max(g1, g2)), min(o0, min(o1, o2)))))
-        return;
-    int filtered = glcTriTriFiltered(g0, g1, g2, o0, o1, o2);
-    if (filtered == GLC_UNDECIDED) {
-        uint slot = atomicAdd(g_undecided[0], 1u);
-        if (slot < GLC_RADIAL_UNDECIDED_CAPACITY) {
-            g_undecided[2u + 2u * slot] = face;
-            g_undecided[3u + 2u * slot] = other;
+    vec3 gMin = min(g0, min(g1, g2)), gMax = max(g0, max(g1, g2));
+    // The surface's real faces, then its ghost faces before this one (each ghost pair once).
+    uint count = range.y + (face - range.z);
+    for (uint k = 0u; k < count; ++k) {
+        if (g_violated[observer] != 0u) return; // already marked
+        uint other = k < range.y ? g_observerFaces[range.x + k] : range.z + (k - range.y);
+        if (crosses(face, other, g0, g1, g2, gMin, gMax)) {
+            if (atomicOr(g_violated[observer], 1u) == 0u)
+                atomicAdd(g_counters.stats[GLC_STAT_RADIAL_VIOLATED], 1u);
             return;
         }
-    } else if (filtered == 0) {
-        return;
     }
-    if (atomicOr(g_violated[observer], 1u) == 0u) atomicAdd(g_counters.stats[GLC_STAT_RADIAL_VIOLATED], 1u);
 }

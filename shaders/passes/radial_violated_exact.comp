@@ -20,9 +20,11 @@ layout(std430, binding = GLC_BIND_RADIAL_VIOLATED) buffer RadialViolatedBuf { ui
 layout(std430, binding = GLC_BIND_RADIAL_UNDECIDED) readonly buffer RadialUndecidedBuf { uint g_undecided[]; };
 #include "common/radial_ghost.glsl"
 
+uniform uint u_undecidedCapacity; // pairs the undecided list holds
+
 void main() {
     uint i = globalIndex();
-    if (i >= min(g_undecided[0], GLC_RADIAL_UNDECIDED_CAPACITY)) return;
+    if (i >= min(g_undecided[0], u_undecidedCapacity)) return;
     uint face = g_undecided[2u + 2u * i], other = g_undecided[3u + 2u * i];
     uint observer = g_faceObserver[face];
     if (g_violated[observer] != 0u) return; // already marked

@@ -55,7 +55,8 @@ glm::dvec3 unitNormal(const Triangle& t, const std::vector<glm::dvec3>& x) {
 /// within that cluster's cone, moves there (a notch filled, a spike cut). Fewer notches, fewer
 /// ghost faces seen from behind. Bounded and in face order: deterministic.
 void smoothBoundaries(SurfaceClusters& c, const std::vector<std::array<std::uint32_t, 3>>& across,
-                      const std::vector<glm::dvec3>& normals, const std::vector<glm::dvec3>& axes, double minCos) {
+                      const std::vector<glm::dvec3>& normals, const std::vector<glm::dvec3>& axes,
+                      double minCos) {
     constexpr int kRounds = 4;
     for (int round = 0; round < kRounds; ++round) {
         bool moved = false;
@@ -67,7 +68,8 @@ void smoothBoundaries(SurfaceClusters& c, const std::vector<std::array<std::uint
                 if (other == c.faceCluster[f]) continue;
                 int there = 0;
                 for (std::uint32_t g : n) there += g != kNone && c.faceCluster[g] == other ? 1 : 0;
-                const bool inCone = normals[f] == glm::dvec3(0.0) || glm::dot(normals[f], axes[other]) >= minCos;
+                const bool inCone =
+                    normals[f] == glm::dvec3(0.0) || glm::dot(normals[f], axes[other]) >= minCos;
                 if (there >= 2 && inCone && axes[other] != glm::dvec3(0.0)) {
                     c.faceCluster[f] = other;
                     moved = true;
@@ -177,21 +179,25 @@ LoopFrame loopFrame(const std::vector<glm::dvec3>& loop) {
     return frame;
 }
 
-glm::dvec3 ghostNodePosition(const ClusterGhostNode& node, const std::vector<std::vector<std::uint32_t>>& loops,
+glm::dvec3 ghostNodePosition(const ClusterGhostNode& node,
+                             const std::vector<std::vector<std::uint32_t>>& loops,
                              const std::vector<glm::dvec3>& positions) {
     std::vector<glm::dvec3> loop;
     for (std::uint32_t n : loops.at(node.loop)) loop.push_back(positions.at(n));
     const LoopFrame f = loopFrame(loop);
     switch (node.kind) {
-    case GhostKind::LoopMean: return f.mean;
-    case GhostKind::Apex: return f.mean - node.depth * f.radius * f.axis;
-    case GhostKind::Skirt: return positions.at(node.hang) - node.depth * f.radius * f.axis;
+    case GhostKind::LoopMean:
+        return f.mean;
+    case GhostKind::Apex:
+        return f.mean - node.depth * f.radius * f.axis;
+    case GhostKind::Skirt:
+        return positions.at(node.hang) - node.depth * f.radius * f.axis;
     }
     return f.mean;
 }
 
-ClusterClosure closeCluster(const std::vector<Triangle>& clusterFaces, const std::vector<glm::dvec3>& positions,
-                            double observerDepth) {
+ClusterClosure closeCluster(const std::vector<Triangle>& clusterFaces,
+                            const std::vector<glm::dvec3>& positions, double observerDepth) {
     // Local node numbers, so the loop search costs the cluster's size, not the surface's.
     std::map<std::uint32_t, std::uint32_t> local;
     for (const Triangle& t : clusterFaces)
@@ -241,7 +247,8 @@ ClusterClosure closeCluster(const std::vector<Triangle>& clusterFaces, const std
         }
         const std::uint32_t apex = ghost({k, GhostKind::Apex, 0, kApexDepth * observerDepth});
         std::vector<std::uint32_t> skirt;
-        for (std::uint32_t x : loop) skirt.push_back(ghost({k, GhostKind::Skirt, x, kSkirtDepth * observerDepth}));
+        for (std::uint32_t x : loop)
+            skirt.push_back(ghost({k, GhostKind::Skirt, x, kSkirtDepth * observerDepth}));
         for (std::size_t i = 0; i < n; ++i) {
             // Loop edge a -> b (as its real face runs it): the skirt runs it b -> a.
             const std::uint32_t a = loop[i], b = loop[(i + 1) % n], sa = skirt[i], sb = skirt[(i + 1) % n];
@@ -250,7 +257,8 @@ ClusterClosure closeCluster(const std::vector<Triangle>& clusterFaces, const std
             c.faces.push_back({sb, sa, apex});
         }
     }
-    for (const ClusterGhostNode& g : c.ghostNodes) c.ghostPositions.push_back(ghostNodePosition(g, c.loops, positions));
+    for (const ClusterGhostNode& g : c.ghostNodes)
+        c.ghostPositions.push_back(ghostNodePosition(g, c.loops, positions));
     std::vector<glm::dvec3> outer;
     for (std::uint32_t n : c.loops[c.outerLoop]) outer.push_back(positions[n]);
     const LoopFrame frame = loopFrame(outer);

@@ -86,15 +86,16 @@ inline constexpr double kApexDepth = 3.0;  ///< the apex's depth, in observer de
 
 /// One ghost node of a closure.
 struct ClusterGhostNode {
-    std::uint32_t loop = 0;    ///< index into ClusterClosure::loops: the frame it is placed by
+    std::uint32_t loop = 0; ///< index into ClusterClosure::loops: the frame it is placed by
     GhostKind kind = GhostKind::LoopMean;
-    std::uint32_t hang = 0;    ///< Skirt: the caller's node it hangs behind
-    double depth = 0.0;        ///< Apex and Skirt: d, in loop radii
+    std::uint32_t hang = 0; ///< Skirt: the caller's node it hangs behind
+    double depth = 0.0;     ///< Apex and Skirt: d, in loop radii
 };
 
 /// A ghost node's position at the given positions (of the caller's nodes): loopFrame of its loop,
 /// then the formula of its kind.
-glm::dvec3 ghostNodePosition(const ClusterGhostNode& node, const std::vector<std::vector<std::uint32_t>>& loops,
+glm::dvec3 ghostNodePosition(const ClusterGhostNode& node,
+                             const std::vector<std::vector<std::uint32_t>>& loops,
                              const std::vector<glm::dvec3>& positions);
 
 /// One cluster closed for the culling: every boundary loop of its faces found (model::boundaryLoops);
@@ -116,7 +117,7 @@ struct ClusterClosure {
     /// positive when they wind outward, seen from the observer's side (decision 0025, "Orientation").
     double volume6 = 0.0;
 };
-ClusterClosure closeCluster(const std::vector<Triangle>& clusterFaces, const std::vector<glm::dvec3>& positions,
-                            double observerDepth);
+ClusterClosure closeCluster(const std::vector<Triangle>& clusterFaces,
+                            const std::vector<glm::dvec3>& positions, double observerDepth);
 
 } // namespace glcollide::model

@@ -322,10 +322,6 @@ RadialCullingPass::RadialCullingPass(const RadialCullingConfig& config)
       m_violated("radialViolated", std::max(m_observerCount, 1u) * sizeof(std::uint32_t)),
       m_observers("radial_observers"), m_freeProgram("radial_free"), m_hostCheck("radial_host_check") {
     for (std::uint32_t o : config.faceObserver) m_observedFaces += o != kNoRadialObserver ? 1u : 0u;
-    for (const RadialSurface& s : config.surfaces)
-        if (s.ghostFaceCount > 0)
-            m_largestSurface =
-                std::max(m_largestSurface, static_cast<std::uint32_t>(s.faces.size()) + s.ghostFaceCount);
     m_freeProgram.set("u_faceCount", m_faceCount);
     m_free.fill32(0u);
     m_violated.fill32(0u);
@@ -337,8 +333,16 @@ RadialCullingPass::RadialCullingPass(const RadialCullingConfig& config)
         m_classify.setGhostUniforms(*m_violatedProgram);
         m_violatedExact.emplace("radial_violated_exact");
         m_classify.setGhostUniforms(*m_violatedExact);
-        m_undecided = gl::Buffer("radialUndecided", (2 + 2 * std::size_t{GLC_RADIAL_UNDECIDED_CAPACITY}) *
-                                                        sizeof(std::uint32_t));
+        // The filter leaves a pair undecided when the pair touches or nearly does: a real face with
+        // a corner on the plane of a skirt face (a straight run of a cluster's rim) is one. Such
+        // pairs grow with the ghost faces; a full list only marks surfaces (culls less), so the
+        // size is about time, measured on a 64 × 64 sheet in 168 clusters (8,790 ghost faces):
+        // between 4,096 and 16,384 undecided pairs.
+        m_undecidedCapacity = std::max(4096u, 4u * m_ghostFaceCount);
+        m_undecided =
+            gl::Buffer("radialUndecided", (2 + 2 * std::size_t{m_undecidedCapacity}) * sizeof(std::uint32_t));
+        m_violatedProgram->set("u_undecidedCapacity", m_undecidedCapacity);
+        m_violatedExact->set("u_undecidedCapacity", m_undecidedCapacity);
     }
 }
 
@@ -368,19 +372,14 @@ void RadialCullingPass::run(AppendLists& lists) const {
     if (m_violatedProgram) { // the ghost faces and positions are still bound by the classification
         m_observerFaces.bindStorage(GLC_BIND_RADIAL_OBSERVER_FACES);
         m_violatedProgram->use();
-        // One work-group row per ghost face, one invocation per face of its surface; at most
-        // 65,535 rows per dispatch (GL's minimum).
-        const std::uint32_t groups = (m_largestSurface + GLC_WORKGROUP_SIZE - 1) / GLC_WORKGROUP_SIZE;
+        // One invocation per ghost face, looping over the faces of its surface.
         m_undecided.fill32(0u);
         m_undecided.bindStorage(GLC_BIND_RADIAL_UNDECIDED);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        for (std::uint32_t first = 0; first < m_ghostFaceCount; first += 65535u) {
-            m_violatedProgram->set("u_firstGhostFace", first);
-            gl::ComputeProgram::dispatch(groups, std::min(65535u, m_ghostFaceCount - first), 1);
-        }
+        m_violatedProgram->dispatch1D(m_ghostFaceCount, GLC_WORKGROUP_SIZE);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         m_violatedExact->use();
-        m_violatedExact->dispatch1D(GLC_RADIAL_UNDECIDED_CAPACITY, GLC_WORKGROUP_SIZE);
+        m_violatedExact->dispatch1D(m_undecidedCapacity, GLC_WORKGROUP_SIZE);
     }
     m_free.fill32(0u);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);

@@ -140,7 +140,7 @@ class RadialCullingPass {
   private:
     std::uint32_t m_faceCount = 0, m_observerCount = 0, m_observedFaces = 0;
     std::uint32_t m_ghostNodeCount = 0, m_ghostFaceCount = 0;
-    std::uint32_t m_largestSurface = 0; ///< real + ghost faces of the largest surface with ghosts
+    std::uint32_t m_undecidedCapacity = 0; ///< pairs RadialViolated may leave to RadialViolatedExact
     mutable RadialClassifyPass m_classify;
     gl::Buffer m_surfaces, m_observerFaces, m_ghostLoops, m_nodeObservers;
     mutable gl::Buffer m_free;      ///< word 0: the mask holds for this substep; then one bit per face

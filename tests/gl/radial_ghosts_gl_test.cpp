@@ -31,6 +31,12 @@
 namespace glcollide {
 namespace {
 
+using test::closedByGhosts;
+using test::ClosedByGhosts;
+using test::CullingRun;
+using test::expectFreeFacesIntersectNothing;
+using test::runCulling;
+
 constexpr std::uint32_t kAround = 24, kAlong = 10;
 
 /// The tube generator's sleeve: radius 0.1 m, 0.4 m long around Y, 24 × 10 nodes (432 faces).
@@ -44,58 +50,6 @@ model::FlatModel sleeveModel() {
 
 std::vector<glm::vec3> floats(const std::vector<glm::dvec3>& xs) {
     return {xs.begin(), xs.end()};
-}
-
-struct CullingRun {
-    std::vector<std::uint8_t> free; ///< per real face, from the GPU
-    std::uint32_t freeCount = 0;
-    std::vector<std::uint32_t> violated; ///< per observer
-    std::uint32_t violatedStat = 0;
-    std::vector<passes::RadialObserver> observers, ghostNodes;
-};
-
-/// One run of the culling pass over x0 -> x1 with the engine's configuration for `model`.
-CullingRun runCulling(const model::FlatModel& model, const passes::RadialCullingConfig& config,
-                      const std::vector<glm::vec3>& x0, const std::vector<glm::vec3>& x1) {
-    passes::RadialCullingPass pass(config);
-    passes::AppendLists lists(0);
-    test::runRadialCulling(pass, lists, x0, x1, model.faceIndices);
-    CullingRun r;
-    const std::vector<std::uint32_t> mask = pass.readFreeMask();
-    for (std::size_t f = 0; f < model.faceCount(); ++f) {
-        r.free.push_back(static_cast<std::uint8_t>(mask[f / 32] >> (f % 32) & 1u));
-        r.freeCount += r.free.back();
-    }
-    EXPECT_EQ(lists.stat(GLC_STAT_RADIAL_FREE), r.freeCount);
-    r.violated = pass.readViolated();
-    r.violatedStat = lists.stat(GLC_STAT_RADIAL_VIOLATED);
-    r.observers = pass.readObservers();
-    r.ghostNodes = pass.readGhostNodes();
-    return r;
-}
-
-/// Real positions followed by the GPU's ghost nodes at one end of the substep.
-std::vector<glm::vec3> withGhosts(std::vector<glm::vec3> x, const std::vector<passes::RadialObserver>& ghosts,
-                                  bool end) {
-    for (const passes::RadialObserver& g : ghosts) x.push_back(end ? g.end : g.start);
-    return x;
-}
-
-/// The sleeve's closed surface for the twins: the real faces, then the ghost faces; each face's
-/// observer; the real nodes followed by the GPU's ghost nodes at both ends of the substep.
-struct ClosedByGhosts {
-    std::vector<std::uint32_t> faces, observers;
-    std::vector<glm::vec3> x0, x1;
-};
-ClosedByGhosts closedByGhosts(const model::FlatModel& model, const passes::RadialCullingConfig& config,
-                              const CullingRun& run, const std::vector<glm::vec3>& x0,
-                              const std::vector<glm::vec3>& x1) {
-    ClosedByGhosts c{model.faceIndices, config.faceObserver, withGhosts(x0, run.ghostNodes, false),
-                     withGhosts(x1, run.ghostNodes, true)};
-    c.faces.insert(c.faces.end(), config.ghosts.faces.begin(), config.ghosts.faces.end());
-    c.observers.insert(c.observers.end(), config.ghosts.faceObserver.begin(),
-                       config.ghosts.faceObserver.end());
-    return c;
 }
 
 /// The ghost nodes against the double mean of their loops. A fixed-order float sum of n terms of
@@ -121,24 +75,6 @@ void expectGhostNodesAreLoopMeans(const passes::RadialCullingConfig& config,
         for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(got[c], mean[c], bound) << "ghost node " << k << ", axis " << c;
     }
-}
-
-/// No face the GPU calls free intersects another face of `model` at t = k/8, k = 1..8, of the
-/// linear motion x0 -> x1 (exact oracle); returns the most pairs intersecting at one of those times.
-std::size_t expectFreeFacesIntersectNothing(const model::FlatModel& model, const std::vector<glm::vec3>& x0,
-                                            const std::vector<glm::vec3>& x1,
-                                            const std::vector<std::uint8_t>& free) {
-    const std::vector<std::uint32_t> faceObject(model.faceCount(), 0u);
-    std::size_t intersecting = 0, k = 0;
-    for (const auto& pairs : cpu::twinIntersectionsAlongMotion(model.faceIndices, faceObject, x0, x1,
-                                                               cpu::PairRules{false, true}, 8)) {
-        ++k;
-        intersecting = std::max(intersecting, pairs.size());
-        for (const cpu::FacePair& p : pairs)
-            EXPECT_FALSE(free[p[0]] || free[p[1]])
-                << "faces " << p[0] << " and " << p[1] << " intersect at t = " << k << "/8, one of them free";
-    }
-    return intersecting;
 }
 
 TEST(RadialGhostsGl, ASleeveClosedByGhostsFreesWhatTheTwinFreesAndNothingThatIntersects) {

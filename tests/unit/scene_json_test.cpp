@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include <filesystem>
+#include <numbers>
 #include <string>
 
 using namespace glcollide;
@@ -434,6 +435,34 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
                                                "ghost_max_perimeter": -1})",
                               self)),
                 HasSubstr("/collision/ghost_max_perimeter: expected a number >= 0, got -1"));
+    const std::string radial = R"("response": "intersection_free", "culling": "radial", )";
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"observers": "clusters"})", self)),
+                HasSubstr("/collision/observers: observers serve radial culling only"));
+    EXPECT_THAT(
+        errorOf(scene(kCloth, R"("collision": {)" + radial + R"("observers": "bones"})", self)),
+        HasSubstr("/collision/observers: unknown observers \"bones\"; expected \"auto\", \"objects\" or "
+                  "\"clusters\""));
+    EXPECT_THAT(
+        errorOf(scene(kCloth, R"("collision": {)" + radial + R"("cluster_max_angle": 90})", self)),
+        HasSubstr(
+            "/collision/cluster_max_angle: expected an angle in degrees, above 0 and below 90, got 90"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"cluster_max_angle": 30})", self)),
+                HasSubstr("/collision/cluster_max_angle: clusters serve radial culling only"));
+    EXPECT_THAT(
+        errorOf(scene(kCloth, R"("collision": {)" + radial + R"("cluster_max_faces": 1.5})", self)),
+        HasSubstr(
+            "/collision/cluster_max_faces: expected a whole number of faces >= 0 (0: no limit), got 1.5"));
+    {
+        const Scene ok = parseScene(
+            scene(kCloth,
+                  R"("collision": {)" + radial +
+                      R"("observers": "clusters", "cluster_max_angle": 30, "cluster_max_faces": 64})",
+                  self),
+            ".", "ok");
+        EXPECT_EQ(ok.collision.observers, RadialObservers::Clusters);
+        EXPECT_NEAR(ok.collision.clusterMaxAngle, std::numbers::pi / 6.0, 1e-15);
+        EXPECT_EQ(ok.collision.clusterMaxFaces, 64u);
+    }
     EXPECT_THAT(
         errorOf(scene(R"({"generator": {"type": "tube", "radius": 0.1, "length": 1, "resolution": [2, 4]},
         "mass": 1, "springs": {"stiffness": 1}})")),

@@ -37,7 +37,8 @@ glm::dvec3 unitNormal(const Triangle& t, const std::vector<glm::dvec3>& x) {
 
 /// Winding number of a closed triangle surface around q: the sum of its faces' signed solid
 /// angles over 4π (Van Oosterom & Strackee 1983).
-double windingNumber(const std::vector<Triangle>& faces, const std::vector<glm::dvec3>& x, const glm::dvec3& q) {
+double windingNumber(const std::vector<Triangle>& faces, const std::vector<glm::dvec3>& x,
+                     const glm::dvec3& q) {
     double sum = 0.0;
     for (const Triangle& t : faces) {
         const glm::dvec3 a = x[t[0]] - q, b = x[t[1]] - q, c = x[t[2]] - q;
@@ -115,7 +116,8 @@ Watched checkClusters(const std::vector<Triangle>& faces, const std::vector<glm:
         for (std::uint32_t n : outer) mean += x[n];
         mean /= static_cast<double>(outer.size());
         for (std::size_t i = 0; i < outer.size(); ++i) {
-            area += glm::cross(x[outer[i]], x[outer[(i + 1) % outer.size()]]); // about the origin: the same sum
+            area +=
+                glm::cross(x[outer[i]], x[outer[(i + 1) % outer.size()]]); // about the origin: the same sum
             radius = std::max(radius, glm::length(x[outer[i]] - mean));
         }
         const glm::dvec3 back = -radius * glm::normalize(area);
@@ -183,8 +185,9 @@ TEST(SurfaceClusters, AFlatClothIsOneClusterWatchedFromBehind) {
     // Far from the origin the cluster is closed and watched the same way.
     std::vector<glm::dvec3> far = cloth.positions;
     for (glm::dvec3& p : far) p += glm::dvec3(1.0e5, -3.0e4, 2.0e4);
-    expectAllWatched(checkClusters(cloth.faces, far, model::surfaceClusters(cloth.faces, far, {}), std::numbers::pi / 4.0),
-                     1u);
+    expectAllWatched(
+        checkClusters(cloth.faces, far, model::surfaceClusters(cloth.faces, far, {}), std::numbers::pi / 4.0),
+        1u);
 }
 
 TEST(SurfaceClusters, ASphereSplitsIntoClosedCapsWithinTheCone) {
@@ -192,7 +195,8 @@ TEST(SurfaceClusters, ASphereSplitsIntoClosedCapsWithinTheCone) {
     for (double degrees : {30.0, 45.0, 60.0}) {
         SCOPED_TRACE(degrees);
         const double angle = degrees * std::numbers::pi / 180.0;
-        const model::SurfaceClusters clusters = model::surfaceClusters(sphere.faces, sphere.positions, {angle});
+        const model::SurfaceClusters clusters =
+            model::surfaceClusters(sphere.faces, sphere.positions, {angle});
         EXPECT_GT(clusters.count, 2u); // no cap under 90 degrees covers a hemisphere
         // A cap on a sphere is a dome: every cluster with manifold, unpinched loops closes.
         expectAllWatched(checkClusters(sphere.faces, sphere.positions, clusters, angle), clusters.count);
@@ -229,7 +233,8 @@ TEST(SurfaceClusters, ADegenerateFaceJoinsItsNeighbours) {
     const model::SurfaceClusters clusters = model::surfaceClusters(faces, x, {});
     EXPECT_EQ(clusters.count, 1u);
     // As a seed it stays alone: listed first, it makes a cluster of its own.
-    const model::SurfaceClusters first = model::surfaceClusters({faces[3], faces[0], faces[1], faces[2]}, x, {});
+    const model::SurfaceClusters first =
+        model::surfaceClusters({faces[3], faces[0], faces[1], faces[2]}, x, {});
     EXPECT_EQ(first.count, 2u);
     EXPECT_EQ(first.faceCluster[0], 0u);
     EXPECT_EQ(first.faceCluster[1], 1u);
