@@ -3,7 +3,8 @@
 
 Runs scenes/cloth_ball.json (a soft ball of cloth crumpling on the ground) at several sizes, and
 the open surfaces that ghost triangles close — scenes/sleeve.json (a twisting tube) at several
-resolutions and scenes/mask_fold.json (DEDO's mask folding over a ball) — with "culling": "none"
+resolutions and scenes/mask_fold.json (DEDO's mask folding over a ball) — and the flat sheet that
+clusters serve (scenes/sheet_fold.json, at several resolutions) with "culling": "none"
 and "radial", through `glcollide run --stats`, and reports per size the medians over the frames
 after the first (the first frame's wall time holds the start-up check of decision 0025, "Culling
 from the first substep"; it gets a table of its own, and is left out of the medians as in earlier
@@ -12,8 +13,9 @@ candidate pairs tested with and without culling, and the GPU time of each detect
 RadialCulling + BvhBuild + BvhRefit + BvhTraverse + TriTri + FeaturePairs + Ccd. The cost exponent
 is the slope of log(detection time) against log(faces) between the smallest and largest size.
 
-usage: bench/culling.py [--glcollide build/src/glcollide] [--frames 45] [--scenes ball,sleeve,mask]
-                        [--subdivisions 3,4,5] [--sleeve-resolutions 32x20,64x40]
+usage: bench/culling.py [--glcollide build/src/glcollide] [--frames 45] [--scenes ball,sleeve,mask,sheet]
+                        [--observers auto|objects|clusters]
+                        [--subdivisions 3,4,5] [--sleeve-resolutions 32x20,64x40] [--sheet-resolutions 32,48,96]
                         [--out bench/results/<device>/culling_<commit>]
        bench/culling.py --write-scenes DIR ...   (only writes the scene variants, for a machine without
                                                 python: run each with `glcollide run X.json --stats X_stats.json`)
@@ -64,8 +66,14 @@ def variants(args):
                 if "mesh" in obj:  # the scene is written elsewhere: name its mesh by absolute path
                     obj["mesh"] = os.path.join(ROOT, "scenes", obj["mesh"])
             out.append(("mask_fold", "mask", scene))
+        elif name == "sheet":
+            base = load_scene(os.path.join(ROOT, "scenes", "sheet_fold.json"))
+            for res in [int(r) for r in args.sheet_resolutions.split(",")]:
+                scene = json.loads(json.dumps(base))
+                scene["objects"][0]["generator"]["resolution"] = [res, res]
+                out.append(("sheet_fold", f"sheet{res}", scene))
         else:
-            sys.exit(f"culling.py: unknown scene {name!r}; expected ball, sleeve or mask")
+            sys.exit(f"culling.py: unknown scene {name!r}; expected ball, sleeve, mask or sheet")
     return out
 
 
@@ -155,6 +163,9 @@ def main():
     ap.add_argument("--scenes", default="ball")
     ap.add_argument("--subdivisions", default="3,4,5")
     ap.add_argument("--sleeve-resolutions", default="32x20,64x40")
+    ap.add_argument("--sheet-resolutions", default="32,48,96")
+    ap.add_argument("--observers", default=None,
+                    help="collision.observers of the radial runs (auto, objects, clusters; default: the scene's)")
     ap.add_argument("--out", default=None)
     ap.add_argument("--write-scenes", default=None)
     ap.add_argument("--stats-dir", default=None)
@@ -167,6 +178,11 @@ def main():
             for culling in ["none", "radial"]:
                 scene = json.loads(json.dumps(base))
                 scene["collision"]["culling"] = culling
+                if culling == "none":  # the observers' settings serve radial culling only
+                    for key in ["observers", "cluster_max_angle", "cluster_max_faces"]:
+                        scene["collision"].pop(key, None)
+                elif args.observers:
+                    scene["collision"]["observers"] = args.observers
                 runs[culling] = run(args.glcollide, scene, args.frames, work, f"{tag}_{culling}", args.stats_dir,
                                     args.write_scenes is not None)
             if args.write_scenes:
