@@ -174,8 +174,10 @@ struct CollisionSettings {
     /// Radial culling's clusters (docs/culling.md, "Clusters"): half-angle (radians) of each
     /// cluster's normal cone at the initial positions. Range (0, π/2); default π/4.
     double clusterMaxAngle = 0.7853981633974483;
-    /// Radial culling's clusters: most faces in one (>= 1; 0: no limit).
-    std::uint32_t clusterMaxFaces = 0;
+    /// Radial culling's clusters: a cluster stops growing after the breadth-first ring that brings
+    /// it to this many faces (0: no limit). Default 64: of 32 … 1,024 and no limit, 64 freed the
+    /// most faces of a folding sheet (docs/culling.md, "Clusters").
+    std::uint32_t clusterMaxFaces = 64;
 };
 
 /// How a substep advances the nodes (docs/integration.md).

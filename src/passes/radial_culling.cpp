@@ -12,6 +12,7 @@
 #include <glm/vec4.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -143,7 +144,7 @@ double signedVolume6(const std::vector<std::uint32_t>& faces, std::uint32_t firs
 /// not one closed, consistently oriented, connected surface. `inward`: the closed surface winds
 /// inward at the model's positions.
 model::GhostTriangles objectGhosts(const model::FlatModel& model, const model::ObjectRange& r,
-                                   double maxPerimeter, bool& inward) {
+                                   double maxPerimeter, bool& inward, double& roundness) {
     std::vector<model::Triangle> faces;
     for (std::uint32_t f = 0; f < r.faceCount; ++f) {
         const std::uint32_t* n = &model.faceIndices[3 * std::size_t{r.firstFace + f}];
@@ -159,9 +160,21 @@ model::GhostTriangles objectGhosts(const model::FlatModel& model, const model::O
     if (ghosts.faces.empty() || !model::isClosedOrientedConnected(closed, 0, all)) return {};
     std::vector<glm::dvec3> withGhosts = positions;
     for (const glm::dvec3& p : model::ghostNodePositions(ghosts, positions)) withGhosts.push_back(p);
-    inward = signedVolume6(closed, 0, all, withGhosts) < 0.0;
+    const double volume6 = signedVolume6(closed, 0, all, withGhosts);
+    inward = volume6 < 0.0;
+    double area = 0.0;
+    for (std::size_t f = 0; f < closed.size(); f += 3)
+        area += 0.5 * glm::length(glm::cross(withGhosts[closed[f + 1]] - withGhosts[closed[f]],
+                                             withGhosts[closed[f + 2]] - withGhosts[closed[f]]));
+    roundness = area > 0.0 ? std::abs(volume6) / 6.0 / std::pow(area, 1.5) : 0.0;
     return ghosts;
 }
+
+/// Below this V / A^1.5 (the volume a closed surface bounds over its area to the power 1.5; a
+/// sphere's is 1 / (6 √π) ≈ 0.094, the sleeve closed by its cuffs' fans about 0.07, a flat sheet
+/// closed by a flat fan 0) an object closed by ghosts is too flat for one observer inside it:
+/// "observers": "auto" cuts it into clusters instead (docs/culling.md, "Clusters").
+constexpr double kFlatRoundness = 0.01;
 
 /// Appends the ghost fans of one surface, in object-local node indices (a node >= `objectNodes` is
 /// the object's ghost node index − objectNodes), to the model's ghosts.
@@ -194,9 +207,12 @@ bool observeObject(RadialCullingConfig& config, const model::FlatModel& model, c
     } else {
         if (settings.observers == RadialObservers::Clusters || !(settings.ghostMaxPerimeter > 0.0))
             return false;
+        double roundness = 0.0;
         const model::GhostTriangles ghosts =
-            objectGhosts(model, r, settings.ghostMaxPerimeter, surface.inward);
+            objectGhosts(model, r, settings.ghostMaxPerimeter, surface.inward, roundness);
         if (ghosts.faces.empty()) return false;
+        // "auto": a closure with (almost) no inside has nowhere to put an observer; clusters serve it.
+        if (settings.observers == RadialObservers::Auto && roundness < kFlatRoundness) return false;
         appendGhostFans(config.ghosts, r, observer, ghosts.faces);
         for (std::uint32_t loop : ghosts.ghostNodeLoop) {
             const std::vector<std::uint32_t>& nodes = ghosts.loops[loop].nodes;

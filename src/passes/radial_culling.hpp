@@ -87,7 +87,7 @@ struct RadialObserverSettings {
     double ghostMaxPerimeter = std::numeric_limits<double>::infinity();
     RadialObservers observers = RadialObservers::Auto;
     double clusterMaxAngle = std::numbers::pi / 4.0;
-    std::uint32_t clusterMaxFaces = 0;
+    std::uint32_t clusterMaxFaces = 64;
 };
 
 /// The engine's observers (decision 0025): one per object of `model` whose surface is closed,
