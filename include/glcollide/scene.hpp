@@ -175,8 +175,8 @@ struct CollisionSettings {
     /// cluster's normal cone at the initial positions. Range (0, π/2); default π/4.
     double clusterMaxAngle = 0.7853981633974483;
     /// Radial culling's clusters: a cluster stops growing after the breadth-first ring that brings
-    /// it to this many faces (0: no limit). Default 64: of 32 … 1,024 and no limit, 64 freed the
-    /// most faces of a folding sheet (docs/culling.md, "Clusters").
+    /// it to this many faces (0: no limit). Default 64: of 64, 256, 1,024 and no limit, 64 freed the
+    /// most faces of a draped sheet (docs/culling.md, "Clusters").
     std::uint32_t clusterMaxFaces = 64;
 };
 
