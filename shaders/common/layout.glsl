@@ -122,16 +122,11 @@
 #define GLC_GHOST_SKIRT 2u                 // its node - depth * radius * axis of its loop (a cluster's skirt)
 #define GLC_BIND_RADIAL_GHOST_POSITIONS 68 // vec4[2 * ghost nodes]: each ghost node at t = 0, then at t = 1
                                            // (the mean of its loop's nodes; RadialGhostNodes)
-#define GLC_BIND_RADIAL_OBSERVER_FACES 69  // uint[4 * observers + listed faces]: per observer where its real faces
-                                           // are listed (from the buffer's start), how many, its first ghost
-                                           // face (classified index), how many; then the lists
-#define GLC_BIND_RADIAL_VIOLATED 70        // uint[observers]: 1 when a ghost face of the surface crosses
-                                           // another of its faces at x0 (RadialViolated): nothing is free
+#define GLC_BIND_RADIAL_WINDING 70         // uint[2 * observers]: per observer the crossings of a ray from it at x0
+                                           // with its surface (a two's complement sum: its winding number)
+                                           // and 1 when a crossing was not proven (RadialWinding)
 #define GLC_BIND_RADIAL_NODE_OBSERVER 71   // uint[nodes]: the observer of every face around the node, or
                                            // GLC_RADIAL_NO_OBSERVER (vertex-face pairs: the vertex on the surface)
-#define GLC_BIND_RADIAL_UNDECIDED 72        // uint[2 + 2 * capacity]: a count, unused, then the (ghost face, face)
-                                           // pairs RadialViolated's filter left undecided (capacity: the
-                                           // uniform u_undecidedCapacity, 4 per ghost face and at least 4,096)
 #define GLC_RADIAL_NO_OBSERVER 0xffffffffu
 // The Newton steps' line search (NewtonLineSearch, decision 0024 "Line search").
 #define GLC_BIND_LINE_SEARCH 73            // GpuLineSearch: the last sum of the incremental potential
@@ -266,7 +261,8 @@ struct GpuListCounter {
 #define GLC_STAT_RADIAL_CULLED_CCD 14     // radial culling: feature pairs the CCD left out (a face is free)
 #define GLC_STAT_RADIAL_NON_POSITIVE 15  // radial culling: observed faces not proven positive over the substep
 #define GLC_STAT_RADIAL_FREE 16          // radial culling: free faces (positive, footprint meets no non-positive one)
-#define GLC_STAT_RADIAL_VIOLATED 17      // radial culling: surfaces whose ghost faces cross their faces at x0
+#define GLC_STAT_RADIAL_VIOLATED 17      // radial culling: surfaces whose premise fails (not wound exactly once
+                                         // around their observer at x0, or not proven so: RadialWinding)
 #define GLC_STAT_COUNT 18
 
 struct GpuCollisionCounters {

@@ -96,4 +96,43 @@ bool glcRadialPositive(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, vec3 p1End
            coefficient2 > error2 + GLC_RADIAL_FLUSH_BOUND && coefficient3 > error3 + GLC_RADIAL_FLUSH_BOUND;
 }
 
+// The observer check (decision 0025, "The winding number"): how a ray from q along d crosses
+// the triangle (p0, p1, p2), all at one instant, decided by certified signs of triple products of
+// the `precise` differences e_i = p_i - q (and the exact direction d), each with the bound of
+// glcRadialTripleError:
+//   s_i = D(e_i, e_{i+1}, d): the line q + t d passes through the triangle's interior exactly when
+//         s_0, s_1, s_2 are all nonzero with one sign (the ray runs on the same side of each edge);
+//   D(e_0, e_1, e_2) = n . (p0 - q): q's side of the plane (n = (p1 - p0) x (p2 - p0));
+//   n . d = s_0 + s_1 + s_2: the side the ray leaves through (no cancellation when the s_i share
+//         their sign).
+// The ray (t > 0) crosses when the line does and n . (p0 - q) has the sign of n . d. Returns +1
+// (it leaves through the side n points to), -1 (through the back), 0 (no crossing), or
+// GLC_RADIAL_RAY_UNDECIDED when a sign the answer needs is not proven (the ray through an edge or
+// vertex, q on the triangle's plane within rounding): the caller then proves nothing.
+const int GLC_RADIAL_RAY_UNDECIDED = 2;
+// The ray the observer check casts (any direction serves; one with no simple relation to the axes
+// makes a ray through an edge of an axis-aligned mesh unlikely, and such a ray only proves nothing).
+const vec3 GLC_RADIAL_RAY = vec3(0.31415927f, 0.57721566f, 0.75366311f);
+
+int glcRadialSignOf(float value, float error) {
+    if (value > error + GLC_RADIAL_FLUSH_BOUND) return 1;
+    if (value < -(error + GLC_RADIAL_FLUSH_BOUND)) return -1;
+    return 0; // NaN included
+}
+
+int glcRadialRayCrossing(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 d) {
+    GLC_PRECISE vec3 e0 = p0 - q;
+    GLC_PRECISE vec3 e1 = p1 - q;
+    GLC_PRECISE vec3 e2 = p2 - q;
+    int s0 = glcRadialSignOf(glcRadialTriple(e0, e1, d), glcRadialTripleError(e0, e1, d));
+    int s1 = glcRadialSignOf(glcRadialTriple(e1, e2, d), glcRadialTripleError(e1, e2, d));
+    int s2 = glcRadialSignOf(glcRadialTriple(e2, e0, d), glcRadialTripleError(e2, e0, d));
+    // A proven pair of opposite signs: the line misses, whatever the third.
+    if ((s0 * s1 < 0) || (s1 * s2 < 0) || (s2 * s0 < 0)) return 0;
+    if (s0 == 0 || s1 == 0 || s2 == 0) return GLC_RADIAL_RAY_UNDECIDED;
+    int side = glcRadialSignOf(glcRadialTriple(e0, e1, e2), glcRadialTripleError(e0, e1, e2));
+    if (side == 0) return GLC_RADIAL_RAY_UNDECIDED;
+    return side == s0 ? s0 : 0;
+}
+
 #endif

@@ -5,10 +5,10 @@
 // RadialClassify appended). By the decision's theorem a free face intersects nothing of its
 // observer's surface during the substep; common/radial_cull.glsl leaves its pairs out of the exact
 // tests. Brute force over its observer's non-positive list (RadialClassify's bucket of that
-// observer: its length is the culling's cost; a bin of cone axes would bound it). Sets bit f of words 1.. of the free mask (atomicOr into a cleared mask) and
-// word 0 = 1: the mask holds for this substep. Ghost faces are in the list (they bound where the
-// surface may fold) but are never free themselves; a surface that RadialViolated marked frees
-// nothing. CPU twin: cpu::radialFreeFaces.
+// observer: its length is the culling's cost; a bin of cone axes would bound it). Sets bit f of
+// words 1.. of the free mask (atomicOr into a cleared mask) and word 0 = 1: the mask holds for this substep. Ghost faces are in the list (they bound where the
+// surface may fold) but are never free themselves; a surface that does not wind exactly once
+// around its observer (RadialWinding) frees nothing. CPU twin: cpu::radialFreeFaces.
 #include "common/layout.glsl"
 #include "common/lists.glsl" // g_counters: the statistics
 
@@ -21,9 +21,15 @@ layout(std430, binding = GLC_BIND_RADIAL_POSITIVE) readonly buffer RadialPositiv
 layout(std430, binding = GLC_BIND_RADIAL_CONES) readonly buffer RadialConesBuf { vec4 g_cones[]; };
 layout(std430, binding = GLC_BIND_RADIAL_NONPOSITIVE) readonly buffer RadialNonPositiveBuf { uint g_nonPositive[]; };
 layout(std430, binding = GLC_BIND_RADIAL_FREE) buffer RadialFreeBuf { uint g_free[]; };
-layout(std430, binding = GLC_BIND_RADIAL_VIOLATED) readonly buffer RadialViolatedBuf { uint g_violated[]; };
+layout(std430, binding = GLC_BIND_RADIAL_WINDING) readonly buffer RadialWindingBuf { uint g_winding[]; };
 
-uniform uint u_faceCount; // real faces (the non-positive list may hold ghost faces past them)
+uniform uint u_faceCount;     // real faces (the non-positive list may hold ghost faces past them)
+uniform uint u_observerCount;
+
+// The theorem's premise for `observer` (RadialWinding): its surface winds exactly once around it.
+bool windsOnce(uint observer) {
+    return g_winding[2u * observer] == 1u && g_winding[2u * observer + 1u] == 0u;
+}
 
 void main() {
     uint face = globalIndex();
@@ -31,10 +37,12 @@ void main() {
         g_free[0] = 1u;
         g_counters.stats[GLC_STAT_RADIAL_NON_POSITIVE] = g_nonPositive[0];
     }
+    if (face < u_observerCount && !windsOnce(face)) // one invocation per observer counts the failures
+        atomicAdd(g_counters.stats[GLC_STAT_RADIAL_VIOLATED], 1u);
     if (face >= u_faceCount) return;
     if ((g_positive[face / 32u] & (1u << (face % 32u))) == 0u) return;
     uint observer = g_faceObserver[face];
-    if (g_violated[observer] != 0u) return; // a ghost crosses the surface at x0: no premise
+    if (!windsOnce(observer)) return; // no premise: nothing of this surface is free
     vec4 cone = g_cones[face];
     uint first = g_nonPositive[2u + 2u * observer], count = g_nonPositive[1u + 2u * observer];
     for (uint k = 0u; k < count; ++k)

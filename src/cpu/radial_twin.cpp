@@ -7,6 +7,7 @@
 #include <glm/vector_relational.hpp>
 
 #include <algorithm>
+#include <utility>
 #include <string>
 
 namespace glcollide::cpu {
@@ -55,6 +56,28 @@ std::vector<std::uint8_t> radialFreeFaces(const std::vector<std::uint32_t>& face
         free[f] = meets ? 0 : 1;
     }
     return free;
+}
+
+std::vector<RadialWindingNumber> radialWindingNumbers(const std::vector<std::uint32_t>& faceIndices,
+                                                      const std::vector<glm::vec3>& x0,
+                                                      const std::vector<std::uint32_t>& faceObserver,
+                                                      const std::vector<glm::vec3>& observers,
+                                                      const std::vector<bool>& inward) {
+    std::vector<RadialWindingNumber> out(observers.size());
+    for (std::size_t f = 0; f < faceObserver.size(); ++f) {
+        const std::uint32_t o = faceObserver[f];
+        if (o == 0xffffffffu) continue;
+        const glm::vec3 p0 = x0[faceIndices[3 * f]];
+        glm::vec3 p1 = x0[faceIndices[3 * f + 1]], p2 = x0[faceIndices[3 * f + 2]];
+        if (inward.at(o)) std::swap(p1, p2);
+        const int crossing =
+            shader::glcRadialRayCrossing(p0, p1, p2, observers.at(o), shader::GLC_RADIAL_RAY);
+        if (crossing == shader::GLC_RADIAL_RAY_UNDECIDED)
+            out[o].undecided = true;
+        else
+            out[o].number += crossing;
+    }
+    return out;
 }
 
 std::vector<RadialFacePair> radialViolatedPairs(const std::vector<std::uint32_t>& faceIndices,

@@ -30,6 +30,21 @@ std::vector<std::uint8_t> radialFreeFaces(const std::vector<std::uint32_t>& face
                                           const std::vector<std::uint32_t>& faceObserver,
                                           const std::vector<glm::vec3>& observers);
 
+/// RadialWinding's twin (decision 0025, "The winding number"): per observer, the signed crossings
+/// of the ray from observers[k] (its position at x0) along GLC_RADIAL_RAY with the faces whose
+/// faceObserver is k (each turned round when inward[k]), by the same certified predicate
+/// (glcRadialRayCrossing), and whether some crossing was undecided. `faceIndices`, `x0`: real and
+/// ghost faces and nodes together.
+struct RadialWindingNumber {
+    std::int32_t number = 0;
+    bool undecided = false;
+};
+std::vector<RadialWindingNumber> radialWindingNumbers(const std::vector<std::uint32_t>& faceIndices,
+                                                      const std::vector<glm::vec3>& x0,
+                                                      const std::vector<std::uint32_t>& faceObserver,
+                                                      const std::vector<glm::vec3>& observers,
+                                                      const std::vector<bool>& inward);
+
 /// A face pair of a closed surface made of real and ghost faces: indices into the concatenation of
 /// the real faces and then the ghost faces (face f >= realFaces is ghost face f - realFaces).
 using RadialFacePair = std::array<std::uint32_t, 2>;

@@ -31,23 +31,6 @@ std::vector<std::uint32_t> surfaceRanges(const std::vector<RadialSurface>& surfa
     return ranges;
 }
 
-/// RadialViolated's table: per observer a uvec4 (where its real faces are listed, counted from
-/// the buffer's start; how many; its first ghost face as a classified index, after the
-/// `realFaces`; how many), then the lists.
-std::vector<std::uint32_t> observerFaceTable(const RadialCullingConfig& config) {
-    const auto realFaces = static_cast<std::uint32_t>(config.faceObserver.size());
-    std::vector<std::uint32_t> table;
-    auto listed = static_cast<std::uint32_t>(4 * std::max<std::size_t>(config.surfaces.size(), 1));
-    for (const RadialSurface& s : config.surfaces) {
-        const auto count = static_cast<std::uint32_t>(s.faces.size());
-        table.insert(table.end(), {listed, count, realFaces + s.firstGhostFace, s.ghostFaceCount});
-        listed += count;
-    }
-    if (table.empty()) table = {0u, 0u, 0u, 0u};
-    for (const RadialSurface& s : config.surfaces) table.insert(table.end(), s.faces.begin(), s.faces.end());
-    return table;
-}
-
 /// The classified faces' observers: the real faces', then the ghost faces'.
 std::vector<std::uint32_t> classifiedFaceObservers(const RadialCullingConfig& config) {
     std::vector<std::uint32_t> all = config.faceObserver;
@@ -113,9 +96,6 @@ RadialGhostFaces checkedGhosts(const RadialCullingConfig& config) {
         }
     for (std::size_t o = 0; o < config.surfaces.size(); ++o) {
         const RadialSurface& s = config.surfaces[o];
-        for (std::uint32_t f : s.faces)
-            if (f >= config.faceObserver.size())
-                throw Error(name + ": observer " + std::to_string(o) + "'s faces lie outside the faces");
         if (std::uint64_t{s.firstGhostFace} + s.ghostFaceCount > g.faceObserver.size())
             throw Error(name + ": observer " + std::to_string(o) +
                         "'s ghost faces lie outside the ghost faces");
@@ -200,8 +180,8 @@ std::uint32_t appendLoop(RadialGhosts& g, const model::ObjectRange& r,
 bool observeObject(RadialCullingConfig& config, const model::FlatModel& model, const model::ObjectRange& r,
                    const RadialObserverSettings& settings) {
     const auto observer = static_cast<std::uint32_t>(config.surfaces.size());
-    RadialSurface surface{
-        r.firstNode, r.nodeCount, {}, static_cast<std::uint32_t>(config.ghosts.faceObserver.size()), 0};
+    RadialSurface surface{r.firstNode, r.nodeCount,
+                          static_cast<std::uint32_t>(config.ghosts.faceObserver.size()), 0};
     if (model::isClosedOrientedConnected(model.faceIndices, r.firstFace, r.faceCount)) {
         surface.inward = signedVolume6(model.faceIndices, r.firstFace, r.faceCount, model.positions) < 0.0;
     } else {
@@ -224,7 +204,6 @@ bool observeObject(RadialCullingConfig& config, const model::FlatModel& model, c
         surface.ghostFaceCount = static_cast<std::uint32_t>(ghosts.faces.size());
     }
     for (std::uint32_t f = 0; f < r.faceCount; ++f) {
-        surface.faces.push_back(r.firstFace + f);
         config.faceObserver[r.firstFace + f] = observer;
     }
     config.surfaces.push_back(std::move(surface));
@@ -256,12 +235,8 @@ void observeClusters(RadialCullingConfig& config, const model::FlatModel& model,
             continue;
         }
         const auto observer = static_cast<std::uint32_t>(config.surfaces.size());
-        RadialSurface surface{r.firstNode,
-                              0,
-                              {},
-                              static_cast<std::uint32_t>(config.ghosts.faceObserver.size()),
-                              static_cast<std::uint32_t>(closure.faces.size()),
-                              closure.volume6 < 0.0};
+        RadialSurface surface{r.firstNode, 0, static_cast<std::uint32_t>(config.ghosts.faceObserver.size()),
+                              static_cast<std::uint32_t>(closure.faces.size()), closure.volume6 < 0.0};
         appendGhostFans(config.ghosts, r, observer, closure.faces);
         std::vector<std::uint32_t> loopFirst;
         for (const std::vector<std::uint32_t>& loop : closure.loops)
@@ -280,7 +255,6 @@ void observeClusters(RadialCullingConfig& config, const model::FlatModel& model,
             config.ghosts.nodes.push_back(node);
         }
         for (std::uint32_t f : member) {
-            surface.faces.push_back(r.firstFace + f);
             config.faceObserver[r.firstFace + f] = observer;
         }
         config.surfaces.push_back(std::move(surface));
@@ -328,37 +302,25 @@ RadialCullingPass::RadialCullingPass(const RadialCullingConfig& config)
       m_ghostFaceCount(static_cast<std::uint32_t>(config.ghosts.faceObserver.size())),
       m_classify(classifiedFaceObservers(config), m_observerCount, checkedGhosts(config)),
       m_surfaces(gl::makeBuffer("radialSurfaces", surfaceRanges(config.surfaces))),
-      m_observerFaces(gl::makeBuffer("radialObserverFaces", observerFaceTable(config))),
       m_ghostLoops(gl::makeBuffer("radialGhostLoops", ghostNodeTable(config.ghosts))),
       m_nodeObservers(gl::makeBuffer(
           "radialNodeObservers",
           config.nodeObserver.empty() ? std::vector<std::uint32_t>{kNoRadialObserver} : config.nodeObserver)),
       m_free("radialFree", (1u + (m_faceCount + 31u) / 32u) * sizeof(std::uint32_t)),
       m_moved("radialMoved", sizeof(std::uint32_t)),
-      m_violated("radialViolated", std::max(m_observerCount, 1u) * sizeof(std::uint32_t)),
-      m_observers("radial_observers"), m_freeProgram("radial_free"), m_hostCheck("radial_host_check") {
+      m_winding("radialWinding", 2 * std::size_t{std::max(m_observerCount, 1u)} * sizeof(std::uint32_t)),
+      m_observers("radial_observers"), m_windingProgram("radial_winding"), m_freeProgram("radial_free"),
+      m_hostCheck("radial_host_check") {
     for (std::uint32_t o : config.faceObserver) m_observedFaces += o != kNoRadialObserver ? 1u : 0u;
     m_freeProgram.set("u_faceCount", m_faceCount);
+    m_freeProgram.set("u_observerCount", m_observerCount);
+    m_windingProgram.set("u_faceCount", m_faceCount + m_ghostFaceCount);
+    m_classify.setGhostUniforms(m_windingProgram);
     m_free.fill32(0u);
-    m_violated.fill32(0u);
+    m_winding.fill32(0u);
     if (m_ghostFaceCount > 0) { // compiled only for scenes with ghosts (start-up cost)
         m_ghostNodes.emplace("radial_ghost_nodes");
         m_ghostNodes->set("u_ghostNodeCount", m_ghostNodeCount);
-        m_violatedProgram.emplace("radial_violated");
-        m_violatedProgram->set("u_ghostFaceCount", m_ghostFaceCount);
-        m_classify.setGhostUniforms(*m_violatedProgram);
-        m_violatedExact.emplace("radial_violated_exact");
-        m_classify.setGhostUniforms(*m_violatedExact);
-        // The filter leaves a pair undecided when the pair touches or nearly does: a real face with
-        // a corner on the plane of a skirt face (a straight run of a cluster's rim) is one. Such
-        // pairs grow with the ghost faces; a full list only marks surfaces (culls less), so the
-        // size is about time, measured on a 64 × 64 sheet in 168 clusters (8,790 ghost faces):
-        // between 4,096 and 16,384 undecided pairs.
-        m_undecidedCapacity = std::max(4096u, 4u * m_ghostFaceCount);
-        m_undecided =
-            gl::Buffer("radialUndecided", (2 + 2 * std::size_t{m_undecidedCapacity}) * sizeof(std::uint32_t));
-        m_violatedProgram->set("u_undecidedCapacity", m_undecidedCapacity);
-        m_violatedExact->set("u_undecidedCapacity", m_undecidedCapacity);
     }
 }
 
@@ -375,28 +337,20 @@ void RadialCullingPass::run(AppendLists& lists) const {
     m_classify.observers().bindStorage(GLC_BIND_RADIAL_OBSERVERS);
     m_observers.use();
     gl::ComputeProgram::dispatch(m_observerCount, 1, 1); // one work group per observer; counted
-    m_violated.fill32(0u);
     if (m_ghostNodes) {
         m_ghostLoops.bindStorage(GLC_BIND_RADIAL_GHOST_LOOPS);
         m_classify.ghostPositions().bindStorage(GLC_BIND_RADIAL_GHOST_POSITIONS);
         m_ghostNodes->use();
         m_ghostNodes->dispatch1D(m_ghostNodeCount, GLC_WORKGROUP_SIZE);
     }
+    m_winding.fill32(0u);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     m_classify.dispatchOnBoundPositions();
-    m_violated.bindStorage(GLC_BIND_RADIAL_VIOLATED);
-    if (m_violatedProgram) { // the ghost faces and positions are still bound by the classification
-        m_observerFaces.bindStorage(GLC_BIND_RADIAL_OBSERVER_FACES);
-        m_violatedProgram->use();
-        // One invocation per ghost face, looping over the faces of its surface.
-        m_undecided.fill32(0u);
-        m_undecided.bindStorage(GLC_BIND_RADIAL_UNDECIDED);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        m_violatedProgram->dispatch1D(m_ghostFaceCount, GLC_WORKGROUP_SIZE);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        m_violatedExact->use();
-        m_violatedExact->dispatch1D(m_undecidedCapacity, GLC_WORKGROUP_SIZE);
-    }
+    // The observer check over the same stored positions (the ghost faces and positions are still
+    // bound by the classification).
+    m_winding.bindStorage(GLC_BIND_RADIAL_WINDING);
+    m_windingProgram.use();
+    m_windingProgram.dispatch1D(m_faceCount + m_ghostFaceCount, GLC_WORKGROUP_SIZE);
     m_free.fill32(0u);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     m_freeProgram.use();
@@ -445,11 +399,14 @@ std::vector<RadialObserver> RadialCullingPass::readGhostNodes() const {
     return out;
 }
 
-std::vector<std::uint32_t> RadialCullingPass::readViolated() const {
+std::vector<RadialWinding> RadialCullingPass::readWinding() const {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<std::uint32_t> flags(m_observerCount);
-    if (!flags.empty()) m_violated.download(0, flags.size() * sizeof(std::uint32_t), flags.data());
-    return flags;
+    std::vector<std::uint32_t> words(2 * std::size_t{m_observerCount});
+    if (!words.empty()) m_winding.download(0, words.size() * sizeof(std::uint32_t), words.data());
+    std::vector<RadialWinding> out;
+    for (std::size_t o = 0; o < m_observerCount; ++o)
+        out.push_back({static_cast<std::int32_t>(words[2 * o]), words[2 * o + 1] != 0});
+    return out;
 }
 
 std::vector<RadialObserver> RadialCullingPass::readObservers() const {

@@ -1,11 +1,12 @@
 #pragma once
 // RadialCulling — radial view-based culling (issue 24, decision 0025, docs/culling.md "Culling"):
 // the first stage of a substep's collision detection when the scene asks for it. Its dispatches:
-// RadialObservers (each observer is the centroid of its surface's nodes at x0 and at x1), with
-// ghost triangles RadialGhostNodes (each ghost node the mean of its loop) and, after the
-// classification, RadialViolated (a ghost face crossing its surface at x0 voids the premise),
-// RadialClassify (positive faces, footprint cones, the non-positive list) and RadialFree (a
-// positive face whose cone meets no non-positive cone of its observer is free). TriTri and the
+// RadialObservers (an object's observer is the centroid of its nodes at x0 and at x1), with ghost
+// triangles RadialGhostNodes (ghost nodes from their loops; a cluster's observer behind it),
+// RadialClassify (positive faces, footprint cones, the non-positive lists), RadialWinding (the
+// observer check: each surface must wind exactly once around its observer at x0) and RadialFree
+// (a positive face whose cone meets no non-positive cone of its observer, on a surface that winds
+// once, is free). TriTri and the
 // CCD at zero separation then leave out the pairs of a surface with a free face
 // (common/radial_cull.glsl): by the decision's theorem such a pair cannot intersect, so culling
 // changes the work, never the answers. CPU twin of the free set: cpu::radialFreeFaces.
@@ -29,13 +30,13 @@
 
 namespace glcollide::passes {
 
-/// One observer's surface: its real faces and its ghost faces [firstGhostFace, firstGhostFace +
-/// ghostFaceCount) (indices into the ghost faces, 0-based). An object's observer is the centroid
+/// One observer's surface: its real faces (those whose RadialCullingConfig::faceObserver names it)
+/// and its ghost faces [firstGhostFace, firstGhostFace + ghostFaceCount) (indices into the ghost
+/// faces, 0-based). An object's observer is the centroid
 /// of its real nodes [firstNode, firstNode + nodeCount); a cluster's (nodeCount 0) stands behind
 /// the cluster, set back from the ghost node of its outer loop (RadialGhosts::observerOf).
 struct RadialSurface {
     std::uint32_t firstNode = 0, nodeCount = 0;
-    std::vector<std::uint32_t> faces; ///< its real faces, ascending
     std::uint32_t firstGhostFace = 0, ghostFaceCount = 0;
     /// The surface's faces (real and ghost) wind inward: its signed volume is negative. The
     /// classification then turns every face round (decision 0025, "Orientation"); a wrong value
@@ -65,6 +66,14 @@ struct RadialGhosts {
     std::vector<RadialGhostNode> nodes;
     std::vector<std::uint32_t> faces;        ///< 3 per ghost face
     std::vector<std::uint32_t> faceObserver; ///< per ghost face
+};
+
+/// RadialWinding's answer for one observer: the signed crossings of a ray from it with its
+/// surface at x0 (the winding number), and whether some crossing could not be proven.
+struct RadialWinding {
+    std::int32_t number = 0;
+    bool undecided = false;
+    bool operator==(const RadialWinding&) const = default;
 };
 
 /// Which faces culling may consider: per face its observer's index or kNoRadialObserver, and per
@@ -132,23 +141,22 @@ class RadialCullingPass {
     [[nodiscard]] std::vector<RadialObserver> readObservers() const;
     /// The ghost nodes of the last run(): start and end of each.
     [[nodiscard]] std::vector<RadialObserver> readGhostNodes() const;
-    /// Per observer, 1 when the last run() found a ghost face crossing its surface at x0.
-    [[nodiscard]] std::vector<std::uint32_t> readViolated() const;
+    /// Per observer, the winding number of its surface around it at x0 of the last run()
+    /// (RadialWinding); its faces are freed only when it is 1 and decided.
+    [[nodiscard]] std::vector<RadialWinding> readWinding() const;
     [[nodiscard]] std::uint32_t observedFaces() const { return m_observedFaces; }
     [[nodiscard]] std::uint32_t ghostFaces() const { return m_ghostFaceCount; }
 
   private:
     std::uint32_t m_faceCount = 0, m_observerCount = 0, m_observedFaces = 0;
     std::uint32_t m_ghostNodeCount = 0, m_ghostFaceCount = 0;
-    std::uint32_t m_undecidedCapacity = 0; ///< pairs RadialViolated may leave to RadialViolatedExact
     mutable RadialClassifyPass m_classify;
-    gl::Buffer m_surfaces, m_observerFaces, m_ghostLoops, m_nodeObservers;
-    mutable gl::Buffer m_free;      ///< word 0: the mask holds for this substep; then one bit per face
-    mutable gl::Buffer m_moved;     ///< uint: RadialHostCheck's flag
-    mutable gl::Buffer m_violated;  ///< uint per observer: RadialViolated's flag
-    mutable gl::Buffer m_undecided; ///< RadialViolated's pairs for RadialViolatedExact (with ghosts)
-    gl::ComputeProgram m_observers, m_freeProgram, m_hostCheck;
-    std::optional<gl::ComputeProgram> m_ghostNodes, m_violatedProgram, m_violatedExact; ///< only with ghosts
+    gl::Buffer m_surfaces, m_ghostLoops, m_nodeObservers;
+    mutable gl::Buffer m_free;    ///< word 0: the mask holds for this substep; then one bit per face
+    mutable gl::Buffer m_moved;   ///< uint: RadialHostCheck's flag
+    mutable gl::Buffer m_winding; ///< uint[2 * observers]: RadialWinding's crossings and undecided flags
+    gl::ComputeProgram m_observers, m_windingProgram, m_freeProgram, m_hostCheck;
+    std::optional<gl::ComputeProgram> m_ghostNodes; ///< only with ghosts
 };
 
 } // namespace glcollide::passes

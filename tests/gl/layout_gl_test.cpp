@@ -103,10 +103,8 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"RadialGhostFacesBuf", GLC_BIND_RADIAL_GHOST_FACES},
     {"RadialGhostLoopsBuf", GLC_BIND_RADIAL_GHOST_LOOPS},
     {"RadialGhostPositionsBuf", GLC_BIND_RADIAL_GHOST_POSITIONS},
-    {"RadialObserverFacesBuf", GLC_BIND_RADIAL_OBSERVER_FACES},
-    {"RadialViolatedBuf", GLC_BIND_RADIAL_VIOLATED},
+    {"RadialWindingBuf", GLC_BIND_RADIAL_WINDING},
     {"RadialNodeObserverBuf", GLC_BIND_RADIAL_NODE_OBSERVER},
-    {"RadialUndecidedBuf", GLC_BIND_RADIAL_UNDECIDED},
     {"LineSearchBuf", GLC_BIND_LINE_SEARCH},
     {"LineSearchVelocitiesBuf", GLC_BIND_LINE_SEARCH_VELOCITIES},
 };

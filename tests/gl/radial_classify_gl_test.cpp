@@ -144,7 +144,6 @@ TEST(RadialClassifyGl, TheCullingPassFreesWhatTheTwinFreesAndNothingThatIntersec
     config.faceObserver.assign(faces, 0u);
     config.surfaces.resize(1);
     config.surfaces[0].nodeCount = static_cast<std::uint32_t>(s.x0.size());
-    for (std::uint32_t f = 0; f < faces; ++f) config.surfaces[0].faces.push_back(f);
     config.ghosts.nodeCount = static_cast<std::uint32_t>(s.x0.size());
     config.nodeObserver.assign(s.x0.size(), 0u);
     passes::RadialCullingPass pass(config);

@@ -113,13 +113,17 @@ TEST(RadialClustersGl, AFlatSheetIsCutIntoClustersWatchedFromBehind) {
     // or nothing at all when the border stays open.
     EXPECT_EQ(passes::radialCullingConfig(model, 0.0).surfaces.size(), 0u);
 
-    // Standing still: nothing violated, the ghosts where the formulas put them, and every face
-    // the twin frees is free on the GPU (bit for bit where GLSL runs as written).
+    // Standing still: every cluster wound once around its observer, the ghosts where the formulas put them,
+    // and every face the twin frees is free on the GPU (bit for bit where GLSL runs as written).
     const std::vector<glm::vec3> x0 = floats(model.positions);
     const test::CullingRun run = test::runCulling(model, config, x0, x0);
     expectGhostsWhereTheFormulasPutThem(config, run, x0, false);
     expectGhostsWhereTheFormulasPutThem(config, run, x0, true);
     EXPECT_EQ(run.violatedStat, 0u);
+    for (const passes::RadialWinding& w : run.winding) {
+        EXPECT_EQ(w.number, 1) << "every cluster winds once around its observer";
+        EXPECT_FALSE(w.undecided);
+    }
     const std::vector<std::uint8_t> twin = twinFree(model, config, run, x0, x0);
     if (test::deviceEvaluatesGlslAsWritten()) {
         EXPECT_EQ(run.free, twin);
@@ -141,7 +145,7 @@ TEST(RadialClustersGl, ASheetFoldedThroughItselfFreesNothingThatIntersectsItsClu
         if (p.x > 0.1f) p = {0.2f - p.x, p.y, 0.25f * p.y};
     const test::CullingRun run = test::runCulling(model, config, x0, x1);
     expectGhostsWhereTheFormulasPutThem(config, run, x1, true);
-    EXPECT_EQ(run.violatedStat, 0u) << "the flat start crosses no ghost";
+    EXPECT_EQ(run.violatedStat, 0u) << "the flat start winds once around every observer";
     const std::vector<std::uint8_t> twin = twinFree(model, config, run, x0, x1);
     if (test::deviceEvaluatesGlslAsWritten()) {
         EXPECT_EQ(run.free, twin);

@@ -5,8 +5,9 @@
 // (model::ghostNodePositions), the free mask against the twin (cpu::radialFreeFaces over the same
 // real and ghost faces, bit for bit where the GPU evaluates the GLSL as written), the free faces
 // against the exact TriTri oracle along the motion (a free face intersects nothing), and the
-// violated check against cpu::radialViolatedPairs (exact): a real face that crosses a ghost fan at
-// the start of the substep voids the theorem's premise, and then nothing may be freed.
+// observer check (RadialWinding) against its twin: a real face that crosses a ghost fan at the
+// start of the substep (cpu::radialViolatedPairs, exact) is never free, and a surface that does not
+// wind once around its observer frees nothing.
 
 #include "cpu/collision_twin.hpp"
 #include "cpu/radial_twin.hpp"
@@ -24,6 +25,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <initializer_list>
 #include <limits>
 #include <string>
 #include <utility>
@@ -46,6 +49,13 @@ model::FlatModel sleeveModel() {
       "objects": [{"name": "sleeve", "generator": {"type": "tube", "radius": 0.1, "length": 0.4,
                    "resolution": [24, 10]}, "mass": 1}]})";
     return model::flatten(parseScene(json, ".", "sleeve"));
+}
+
+/// Decided winding numbers, one per observer, as RadialCullingPass::readWinding gives them.
+std::vector<passes::RadialWinding> wound(std::initializer_list<std::int32_t> numbers) {
+    std::vector<passes::RadialWinding> out;
+    for (std::int32_t n : numbers) out.push_back({n, false});
+    return out;
 }
 
 std::vector<glm::vec3> floats(const std::vector<glm::dvec3>& xs) {
@@ -106,7 +116,7 @@ TEST(RadialGhostsGl, ASleeveClosedByGhostsFreesWhatTheTwinFreesAndNothingThatInt
     const CullingRun run = runCulling(model, config, x0, x1);
     expectGhostNodesAreLoopMeans(config, run.ghostNodes, x0, false);
     expectGhostNodesAreLoopMeans(config, run.ghostNodes, x1, true);
-    ASSERT_EQ(run.violated, std::vector<std::uint32_t>{0u});
+    ASSERT_EQ(run.winding, wound({1}));
     EXPECT_EQ(run.violatedStat, 0u);
 
     // The twin over the same real and ghost faces, with the GPU's ghost nodes and observer.
@@ -159,7 +169,7 @@ TEST(RadialGhostsGl, AGhostFanFoldingPastTheObserverIsNotPositiveAndTheFreeFaces
     for (std::size_t i = (kAlong - 1) * kAround; i < kAlong * kAround; ++i) x1[i].x = -x0[i].x;
     const CullingRun run = runCulling(model, config, x0, x1);
     ASSERT_EQ(run.observers.size(), 1u);
-    EXPECT_EQ(run.violated, std::vector<std::uint32_t>{0u});
+    EXPECT_EQ(run.winding, wound({1}));
 
     const ClosedByGhosts all = closedByGhosts(model, config, run, x0, x1);
     const std::vector<glm::vec3> observer = {run.observers[0].start, run.observers[0].end};
@@ -182,11 +192,12 @@ TEST(RadialGhostsGl, AGhostFanFoldingPastTheObserverIsNotPositiveAndTheFreeFaces
 }
 
 // A real face that crosses a ghost fan at the start of the substep: the closed surface is not
-// embedded, the winding argument fails, and culling must free nothing of it — although every
-// face stays positive and no real faces intersect (so without the violated check all would be
-// free). Node 0 of the second ring is pulled up over the centre of the top opening: the faces
-// from it down to the third ring pierce the top fan.
-TEST(RadialGhostsGl, AGhostCrossedByARealFaceAtTheStartFreesNothing) {
+// embedded. The theorem needs no embedding, only that the surface winds once around the observer
+// (RadialWinding, decision 0025 "The winding number"): then the crossing faces are never free, the
+// faces away from them may be. Node 0 of the second ring is pulled up over the centre of the top
+// opening: the faces from it down to the third ring pierce the top fan. And a surface that does not
+// wind once (the same sleeve classified as if wound inward: -1) frees nothing.
+TEST(RadialGhostsGl, AGhostCrossedByARealFaceAtTheStartIsNeverFree) {
     const model::FlatModel model = sleeveModel();
     const auto faces = static_cast<std::uint32_t>(model.faceCount());
     const passes::RadialCullingConfig config =
@@ -201,19 +212,39 @@ TEST(RadialGhostsGl, AGhostCrossedByARealFaceAtTheStartFreesNothing) {
     ASSERT_TRUE(atStart.at(0).empty()) << atStart[0].size() << " real pairs intersect at the start";
 
     const CullingRun run = runCulling(model, config, x0, x0);
-    // ... but real faces cross the ghost fan: the exact twin finds the pairs, the GPU the surface.
+    // ... but real faces cross the ghost fan (the exact twin finds the pairs); the surface still
+    // winds once around its observer (the GPU and the twin agree), so culling goes on, and no face
+    // of a crossing pair is free.
     const ClosedByGhosts all = closedByGhosts(model, config, run, x0, x0);
     const std::vector<cpu::RadialFacePair> violated = cpu::radialViolatedPairs(all.faces, faces, all.x0);
     ASSERT_FALSE(violated.empty());
-    for (const cpu::RadialFacePair& p : violated)
+    const std::vector<glm::vec3> observer{run.observers[0].start};
+    const std::vector<cpu::RadialWindingNumber> twin =
+        cpu::radialWindingNumbers(all.faces, all.x0, all.observers, observer, {false});
+    ASSERT_EQ(twin.size(), 1u);
+    EXPECT_EQ(twin[0].number, run.winding.at(0).number);
+    EXPECT_EQ(twin[0].undecided, run.winding.at(0).undecided);
+    ASSERT_EQ(run.winding, wound({1}));
+    EXPECT_EQ(run.violatedStat, 0u);
+    for (const cpu::RadialFacePair& p : violated) {
         EXPECT_GE(p[1], faces) << "a violated pair has a ghost face";
-    EXPECT_EQ(run.violated, std::vector<std::uint32_t>{1u});
-    EXPECT_EQ(run.violatedStat, 1u);
-    EXPECT_EQ(run.freeCount, 0u) << "a violated surface freed faces";
+        EXPECT_FALSE(run.free[p[0]]) << "face " << p[0] << " crosses ghost face " << p[1] - faces
+                                     << ", yet is free";
+    }
+    EXPECT_GT(run.freeCount, 0u);
+    EXPECT_LT(run.freeCount, faces);
 
-    // The same start without the pulled node: nothing violated, and culling frees faces.
+    // Classified as if wound inward, the surface winds -1 around its observer: nothing is free.
+    passes::RadialCullingConfig turned = config;
+    turned.surfaces[0].inward = true;
+    const CullingRun wrong = runCulling(model, turned, floats(model.positions), floats(model.positions));
+    EXPECT_EQ(wrong.winding, wound({-1}));
+    EXPECT_EQ(wrong.violatedStat, 1u);
+    EXPECT_EQ(wrong.freeCount, 0u) << "a surface that does not wind once freed faces";
+
+    // The same start without the pulled node: wound once, and every face free.
     const CullingRun straight = runCulling(model, config, floats(model.positions), floats(model.positions));
-    EXPECT_EQ(straight.violated, std::vector<std::uint32_t>{0u});
+    EXPECT_EQ(straight.winding, wound({1}));
     EXPECT_EQ(straight.freeCount, faces);
 }
 
@@ -238,7 +269,7 @@ TEST(RadialGhostsGl, TheDedoMaskAtRestIsClosedByItsFansAndFree) {
         cpu::radialViolatedPairs(all.faces, model.faceCount(), all.x0);
     for (const cpu::RadialFacePair& p : violated)
         ADD_FAILURE() << "faces " << p[0] << " and " << p[1] << " cross";
-    EXPECT_EQ(run.violated, (std::vector<std::uint32_t>{0u, 0u}));
+    EXPECT_EQ(run.winding, wound({1, 1}));
     EXPECT_EQ(run.freeCount, model.faceCount());
 }
 

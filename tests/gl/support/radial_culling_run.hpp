@@ -37,7 +37,7 @@ inline void runRadialCulling(const passes::RadialCullingPass& pass, passes::Appe
 struct CullingRun {
     std::vector<std::uint8_t> free; ///< per real face, from the GPU
     std::uint32_t freeCount = 0;
-    std::vector<std::uint32_t> violated; ///< per observer
+    std::vector<passes::RadialWinding> winding; ///< per observer
     std::uint32_t violatedStat = 0;
     std::vector<passes::RadialObserver> observers, ghostNodes;
 };
@@ -55,7 +55,7 @@ inline CullingRun runCulling(const model::FlatModel& model, const passes::Radial
         r.freeCount += r.free.back();
     }
     EXPECT_EQ(lists.stat(GLC_STAT_RADIAL_FREE), r.freeCount);
-    r.violated = pass.readViolated();
+    r.winding = pass.readWinding();
     r.violatedStat = lists.stat(GLC_STAT_RADIAL_VIOLATED);
     r.observers = pass.readObservers();
     r.ghostNodes = pass.readGhostNodes();
