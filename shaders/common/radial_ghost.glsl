@@ -2,7 +2,7 @@
 // the classified faces are the real faces [0, u_realFaceCount), then the ghost faces that close
 // the observed surfaces' holes; the nodes are the real nodes [0, u_nodeCount), then the ghost nodes
 // (each the mean of its loop's nodes, written by RadialGhostNodes at both ends of the substep).
-// Ghosts are only ever classified and checked for crossings (RadialViolated); they never collide.
+// Ghosts are only ever classified and counted by the observer check (RadialWinding); they never collide.
 // Include after common/layout.glsl and common/face_nodes.glsl, with the real start and end
 // positions declared as g_start[] and g_end[].
 #ifndef GLC_RADIAL_GHOST_GLSL
