@@ -21,6 +21,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <random>
 #include <string>
@@ -200,6 +201,45 @@ TEST(RadialClassifyGl, BadObserverIndicesAreRefused) {
     EXPECT_THROW(passes::RadialClassifyPass(outOfRange, 2u), Error);
     passes::RadialClassifyPass pass(std::vector<std::uint32_t>{0u, passes::kNoRadialObserver}, 1u);
     EXPECT_THROW(pass.setObservers({}), Error);
+}
+
+// Why the observer check (RadialWinding): two nested spheres given to one observer at their centre
+// form a surface that winds twice around it. Every face is positive and no cone meets a
+// non-positive one, so without the check all would be free — yet the inner sphere, growing to
+// three times its radius during the substep, passes through the outer one (the exact oracle finds
+// the pairs). The winding number is 2: nothing may be freed. (The engine never builds such a
+// surface: its objects are connected; this is the theorem's premise tested on its own.)
+TEST(RadialClassifyGl, ASurfaceWoundTwiceAroundItsObserverFreesNothing) {
+    const Surface outer = sphereSurface(2);
+    Surface both = outer;
+    const auto offset = static_cast<std::uint32_t>(outer.x0.size());
+    for (const glm::vec3& p : outer.x0) both.x0.push_back(0.5f * p); // the inner sphere, radius 0.25 m
+    for (std::uint32_t n : outer.faces) both.faces.push_back(offset + n);
+    std::vector<glm::vec3> x1 = both.x0;
+    for (std::size_t i = offset; i < x1.size(); ++i) x1[i] *= 3.0f; // grows through the outer one
+    const auto faces = static_cast<std::uint32_t>(both.faces.size() / 3);
+
+    passes::RadialCullingConfig config;
+    config.faceObserver.assign(faces, 0u);
+    config.surfaces.resize(1);
+    config.surfaces[0].nodeCount = static_cast<std::uint32_t>(both.x0.size());
+    config.ghosts.nodeCount = static_cast<std::uint32_t>(both.x0.size());
+    config.nodeObserver.assign(both.x0.size(), 0u);
+    passes::RadialCullingPass pass(config);
+    passes::AppendLists lists(0);
+    test::runRadialCulling(pass, lists, both.x0, x1, both.faces);
+
+    ASSERT_EQ(pass.readWinding(), (std::vector<passes::RadialWinding>{{2, false}}));
+    EXPECT_EQ(lists.stat(GLC_STAT_RADIAL_NON_POSITIVE), 0u)
+        << "every face positive: only the winding stops it";
+    EXPECT_EQ(lists.stat(GLC_STAT_RADIAL_FREE), 0u);
+    EXPECT_EQ(lists.stat(GLC_STAT_RADIAL_VIOLATED), 1u);
+    const std::vector<std::uint32_t> faceObject(faces, 0u);
+    std::size_t intersecting = 0;
+    for (const auto& pairs : cpu::twinIntersectionsAlongMotion(both.faces, faceObject, both.x0, x1,
+                                                               cpu::PairRules{false, true}, 8))
+        intersecting = std::max(intersecting, pairs.size());
+    EXPECT_GT(intersecting, 0u) << "the inner sphere must really pass through the outer one";
 }
 
 } // namespace

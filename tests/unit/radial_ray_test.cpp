@@ -46,14 +46,16 @@ int sign(const mpq_class& v) {
 
 /// (a x b) . c, exactly.
 mpq_class triple(const Vq& a, const Vq& b, const Vq& c) {
-    return (a[1] * b[2] - a[2] * b[1]) * c[0] + (a[2] * b[0] - a[0] * b[2]) * c[1] + (a[0] * b[1] - a[1] * b[0]) * c[2];
+    return (a[1] * b[2] - a[2] * b[1]) * c[0] + (a[2] * b[0] - a[0] * b[2]) * c[1] +
+           (a[0] * b[1] - a[1] * b[0]) * c[2];
 }
 
 /// The exact crossing of the ray from q along d with (p0, p1, p2): +1, -1, 0, or 2 when the ray
 /// touches the triangle's boundary or q lies on its plane (where the predicate must not answer).
 int exactCrossing(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& q,
                   const glm::vec3& d) {
-    const Vq e0 = minus(exact(p0), exact(q)), e1 = minus(exact(p1), exact(q)), e2 = minus(exact(p2), exact(q));
+    const Vq e0 = minus(exact(p0), exact(q)), e1 = minus(exact(p1), exact(q)),
+             e2 = minus(exact(p2), exact(q));
     const Vq dq = exact(d);
     const int s0 = sign(triple(e0, e1, dq)), s1 = sign(triple(e1, e2, dq)), s2 = sign(triple(e2, e0, dq));
     if (s0 * s1 < 0 || s1 * s2 < 0 || s2 * s0 < 0) return 0;
@@ -70,7 +72,8 @@ struct Tally {
 };
 
 /// The predicate's answer is the exact one whenever it answers.
-void expectAgrees(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& q, Tally& t) {
+void expectAgrees(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& q,
+                  Tally& t) {
     const int got = shader::glcRadialRayCrossing(p0, p1, p2, q, kRay);
     if (got == shader::GLC_RADIAL_RAY_UNDECIDED) {
         ++t.undecided;
@@ -78,9 +81,9 @@ void expectAgrees(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
     }
     ++t.decided;
     const int want = exactCrossing(p0, p1, p2, q, kRay);
-    EXPECT_EQ(got, want) << "triangle (" << p0.x << ", " << p0.y << ", " << p0.z << ") (" << p1.x << ", " << p1.y
-                         << ", " << p1.z << ") (" << p2.x << ", " << p2.y << ", " << p2.z << "), q (" << q.x << ", "
-                         << q.y << ", " << q.z << ")";
+    EXPECT_EQ(got, want) << "triangle (" << p0.x << ", " << p0.y << ", " << p0.z << ") (" << p1.x << ", "
+                         << p1.y << ", " << p1.z << ") (" << p2.x << ", " << p2.y << ", " << p2.z << "), q ("
+                         << q.x << ", " << q.y << ", " << q.z << ")";
 }
 
 TEST(RadialRay, AnswersAreExactOnRandomAndNearDegenerateCases) {
@@ -108,7 +111,8 @@ TEST(RadialRay, AnswersAreExactOnRandomAndNearDegenerateCases) {
     }
     std::printf("separated: %d decided, %d undecided; hard: %d decided, %d undecided\n", separated.decided,
                 separated.undecided, hard.decided, hard.undecided);
-    EXPECT_LT(separated.undecided * 100, separated.decided) << "the predicate must decide well-separated cases";
+    EXPECT_LT(separated.undecided * 100, separated.decided)
+        << "the predicate must decide well-separated cases";
     EXPECT_GT(hard.undecided, 0) << "the hard cases must reach the undecided answer";
 }
 
@@ -126,7 +130,8 @@ TEST(RadialRay, TheSphereWindsOnceAroundAPointInside) {
         const auto turned = cpu::radialWindingNumbers(faces, x, observer, {q}, {true});
         EXPECT_EQ(turned.at(0).number, -1);
     }
-    const auto outside = cpu::radialWindingNumbers(faces, x, observer, {glm::vec3(1.5f, 0.2f, -0.1f)}, {false});
+    const auto outside =
+        cpu::radialWindingNumbers(faces, x, observer, {glm::vec3(1.5f, 0.2f, -0.1f)}, {false});
     EXPECT_EQ(outside.at(0).number, 0);
     EXPECT_FALSE(outside[0].undecided);
 }
