@@ -119,19 +119,29 @@ double signedVolume6(const std::vector<std::uint32_t>& faces, std::uint32_t firs
     return sum;
 }
 
+/// Object `r`'s faces in its own node indices.
+std::vector<model::Triangle> objectFaces(const model::FlatModel& model, const model::ObjectRange& r) {
+    std::vector<model::Triangle> faces;
+    for (std::uint32_t f = 0; f < r.faceCount; ++f) {
+        const std::uint32_t* n = &model.faceIndices[3 * std::size_t{r.firstFace + f}];
+        faces.push_back({n[0] - r.firstNode, n[1] - r.firstNode, n[2] - r.firstNode});
+    }
+    return faces;
+}
+
+/// Object `r`'s initial node positions.
+std::vector<glm::dvec3> objectPositions(const model::FlatModel& model, const model::ObjectRange& r) {
+    return {model.positions.begin() + r.firstNode, model.positions.begin() + r.firstNode + r.nodeCount};
+}
+
 /// The ghost closure of one object (docs/culling.md, "Ghost triangles"), in the object's own node
 /// indices (ghost node g is nodeCount + g); empty when no loop is filled or the closed surface is
 /// not one closed, consistently oriented, connected surface. `inward`: the closed surface winds
 /// inward at the model's positions.
 model::GhostTriangles objectGhosts(const model::FlatModel& model, const model::ObjectRange& r,
                                    double maxPerimeter, bool& inward, double& roundness) {
-    std::vector<model::Triangle> faces;
-    for (std::uint32_t f = 0; f < r.faceCount; ++f) {
-        const std::uint32_t* n = &model.faceIndices[3 * std::size_t{r.firstFace + f}];
-        faces.push_back({n[0] - r.firstNode, n[1] - r.firstNode, n[2] - r.firstNode});
-    }
-    const std::vector<glm::dvec3> positions(model.positions.begin() + r.firstNode,
-                                            model.positions.begin() + r.firstNode + r.nodeCount);
+    const std::vector<model::Triangle> faces = objectFaces(model, r);
+    const std::vector<glm::dvec3> positions = objectPositions(model, r);
     model::GhostTriangles ghosts = model::ghostTriangles(faces, positions, {maxPerimeter});
     std::vector<std::uint32_t> closed;
     for (const model::Triangle& t : faces) closed.insert(closed.end(), t.begin(), t.end());
@@ -214,13 +224,8 @@ bool observeObject(RadialCullingConfig& config, const model::FlatModel& model, c
 /// model::closeCluster and watched from behind; a cluster whose loops cannot all be filled gets none.
 void observeClusters(RadialCullingConfig& config, const model::FlatModel& model, const model::ObjectRange& r,
                      const RadialObserverSettings& settings) {
-    std::vector<model::Triangle> faces;
-    for (std::uint32_t f = 0; f < r.faceCount; ++f) {
-        const std::uint32_t* n = &model.faceIndices[3 * std::size_t{r.firstFace + f}];
-        faces.push_back({n[0] - r.firstNode, n[1] - r.firstNode, n[2] - r.firstNode});
-    }
-    const std::vector<glm::dvec3> positions(model.positions.begin() + r.firstNode,
-                                            model.positions.begin() + r.firstNode + r.nodeCount);
+    const std::vector<model::Triangle> faces = objectFaces(model, r);
+    const std::vector<glm::dvec3> positions = objectPositions(model, r);
     const model::SurfaceClusters clusters =
         model::surfaceClusters(faces, positions, {settings.clusterMaxAngle, settings.clusterMaxFaces});
     std::vector<std::vector<std::uint32_t>> members(clusters.count);

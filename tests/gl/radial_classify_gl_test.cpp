@@ -47,6 +47,17 @@ Surface sphereSurface(int subdivisions) {
     return s;
 }
 
+/// Every face and node given to one observer at the centroid of all nodes, no ghosts.
+passes::RadialCullingConfig oneObserver(std::uint32_t faces, std::size_t nodes) {
+    passes::RadialCullingConfig config;
+    config.faceObserver.assign(faces, 0u);
+    config.surfaces.resize(1);
+    config.surfaces[0].nodeCount = static_cast<std::uint32_t>(nodes);
+    config.ghosts.nodeCount = static_cast<std::uint32_t>(nodes);
+    config.nodeObserver.assign(nodes, 0u);
+    return config;
+}
+
 struct Outcome {
     std::uint32_t positive = 0, faces = 0;
 };
@@ -141,12 +152,7 @@ TEST(RadialClassifyGl, TheCullingPassFreesWhatTheTwinFreesAndNothingThatIntersec
     std::vector<glm::vec3> x1 = s.x0;
     for (std::size_t i = 0; i < x1.size(); ++i)
         if (s.x0[i].y > 0.3f && s.x0[i].x > 0.0f) x1[i].x -= 0.6f;
-    passes::RadialCullingConfig config;
-    config.faceObserver.assign(faces, 0u);
-    config.surfaces.resize(1);
-    config.surfaces[0].nodeCount = static_cast<std::uint32_t>(s.x0.size());
-    config.ghosts.nodeCount = static_cast<std::uint32_t>(s.x0.size());
-    config.nodeObserver.assign(s.x0.size(), 0u);
+    const passes::RadialCullingConfig config = oneObserver(faces, s.x0.size());
     passes::RadialCullingPass pass(config);
     passes::AppendLists lists(0);
     test::runRadialCulling(pass, lists, s.x0, x1, s.faces);
@@ -219,12 +225,7 @@ TEST(RadialClassifyGl, ASurfaceWoundTwiceAroundItsObserverFreesNothing) {
     for (std::size_t i = offset; i < x1.size(); ++i) x1[i] *= 3.0f; // grows through the outer one
     const auto faces = static_cast<std::uint32_t>(both.faces.size() / 3);
 
-    passes::RadialCullingConfig config;
-    config.faceObserver.assign(faces, 0u);
-    config.surfaces.resize(1);
-    config.surfaces[0].nodeCount = static_cast<std::uint32_t>(both.x0.size());
-    config.ghosts.nodeCount = static_cast<std::uint32_t>(both.x0.size());
-    config.nodeObserver.assign(both.x0.size(), 0u);
+    const passes::RadialCullingConfig config = oneObserver(faces, both.x0.size());
     passes::RadialCullingPass pass(config);
     passes::AppendLists lists(0);
     test::runRadialCulling(pass, lists, both.x0, x1, both.faces);
