@@ -150,9 +150,10 @@ struct CollisionStats {
     /// (their start was known intersection-free); of the last substep that culled, the faces with an
     /// observer, those not proven positive, the free ones, and the candidate pairs TriTri and the
     /// feature pairs the CCD left out; over the frame, the pairs left out. Ghost triangles
-    /// (docs/culling.md): the ghost faces that close observed open surfaces; of the last substep
-    /// that culled, the surfaces a ghost face crossed at its start (nothing of them freed), and
-    /// the frame's substeps with such a surface.
+    /// (docs/culling.md): the ghost faces that close observed open surfaces and clusters; of the
+    /// last substep that culled, the surfaces that did not wind exactly once around their observer
+    /// at its start (the observer check; nothing of them freed), and the frame's substeps with such
+    /// a surface.
     std::uint32_t radialSubsteps = 0;
     std::uint32_t radialObservedFaces = 0, radialNonPositiveFaces = 0, radialFreeFaces = 0;
     std::uint32_t radialGhostFaces = 0, radialViolatedSurfaces = 0, radialSubstepsViolated = 0;
