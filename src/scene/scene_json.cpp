@@ -518,6 +518,12 @@ CcdSettings parseCcd(const Ctx& c, const json& j, const Ptr& p) {
     return s;
 }
 
+/// A setting of radial culling's: refused unless the scene asks for that culling; `why` says what
+/// the setting serves.
+void requireRadial(const Ctx& c, const CollisionSettings& s, const Ptr& p, const std::string& why) {
+    if (s.culling != Culling::Radial) c.fail(p, why + ": add \"culling\": \"radial\"");
+}
+
 CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p,
                 {"broad_phase", "octree_depth", "precision", "response", "thickness", "stiffness", "damping",
@@ -584,14 +590,11 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
                    "substep that starts intersection-free, which only that response keeps; decision 0025)");
     }
     if (const json* v = find(j, "ghost_max_perimeter")) {
-        if (s.culling != Culling::Radial)
-            c.fail(p / "ghost_max_perimeter",
-                   "ghost triangles close holes for radial culling only: add \"culling\": \"radial\"");
+        requireRadial(c, s, p / "ghost_max_perimeter", "ghost triangles close holes for radial culling only");
         s.ghostMaxPerimeter = nonNegative(c, *v, p / "ghost_max_perimeter");
     }
     if (const json* v = find(j, "observers")) {
-        if (s.culling != Culling::Radial)
-            c.fail(p / "observers", "observers serve radial culling only: add \"culling\": \"radial\"");
+        requireRadial(c, s, p / "observers", "observers serve radial culling only");
         const std::string name = string(c, *v, p / "observers");
         if (name == "auto")
             s.observers = RadialObservers::Auto;
@@ -604,9 +607,7 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
                    "unknown observers " + shown(*v) + "; expected \"auto\", \"objects\" or \"clusters\"");
     }
     if (const json* v = find(j, "cluster_max_angle")) {
-        if (s.culling != Culling::Radial)
-            c.fail(p / "cluster_max_angle",
-                   "clusters serve radial culling only: add \"culling\": \"radial\"");
+        requireRadial(c, s, p / "cluster_max_angle", "clusters serve radial culling only");
         const double degrees =
             number(c, *v, p / "cluster_max_angle", "an angle in degrees, above 0 and below 90");
         if (!(degrees > 0.0 && degrees < 90.0))
@@ -615,9 +616,7 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
         s.clusterMaxAngle = degrees * std::numbers::pi / 180.0;
     }
     if (const json* v = find(j, "cluster_max_faces")) {
-        if (s.culling != Culling::Radial)
-            c.fail(p / "cluster_max_faces",
-                   "clusters serve radial culling only: add \"culling\": \"radial\"");
+        requireRadial(c, s, p / "cluster_max_faces", "clusters serve radial culling only");
         if (!v->is_number_integer() || v->get<long long>() < 0 || v->get<long long>() > 0xffffffffLL)
             c.fail(p / "cluster_max_faces",
                    "expected a whole number of faces >= 0 (0: no limit), got " + shown(*v));
