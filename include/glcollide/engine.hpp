@@ -146,6 +146,13 @@ struct CollisionStats {
     std::uint64_t substepsUntilIntersectionFree = 0;
     bool reachedIntersectionFree = false;
     std::uint32_t ccdTangledPairs = 0;
+    /// Untangling (decision 0024, "Deep intersections"), over the frame: substeps whose start
+    /// intersected and whose intersecting pairs pushed their nodes apart, the node steps moved
+    /// (summed over those substeps), and intersecting pairs without a segment to shrink (coplanar or
+    /// touching: no push).
+    std::uint32_t untangleSubsteps = 0;
+    std::uint32_t untangledNodes = 0;
+    std::uint32_t untangleUnresolvedPairs = 0;
     /// Radial culling (collision.culling "radial", decision 0025): substeps of the frame that culled
     /// (their start was known intersection-free); of the last substep that culled, the faces with an
     /// observer, those not proven positive, the free ones, and the candidate pairs TriTri and the

@@ -132,6 +132,10 @@
 #define GLC_BIND_LINE_SEARCH 73            // GpuLineSearch: the last sum of the incremental potential
 #define GLC_BIND_LINE_SEARCH_VELOCITIES 74 // vec4[3 * nodes]: v0 (the substep's start), the Newton step's
                                            // start, its full step's end
+// Recovery from intersections deeper than the thickness (Untangle, decision 0024 "Deep intersections").
+#define GLC_BIND_UNTANGLE_PUSH 69          // ivec4[nodes]: the sum of a node's pushes in fixed point
+                                           // (u_pushScale units per unit push), w the number of parts
+#define GLC_BIND_UNTANGLE_COUNTS 72        // uint[2]: nodes moved, intersecting pairs without two piercings
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer

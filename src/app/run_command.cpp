@@ -86,7 +86,12 @@ nlohmann::json frameRecord(const Engine& engine) {
         record["collision"]["substeps_until_intersection_free"] =
             c.reachedIntersectionFree ? nlohmann::json(c.substepsUntilIntersectionFree)
                                       : nlohmann::json(nullptr);
-        if (s.safeStep) record["safe_step"]["ccd_pairs_left_out_intersecting"] = c.ccdTangledPairs;
+        if (s.safeStep) {
+            record["safe_step"]["ccd_pairs_left_out_intersecting"] = c.ccdTangledPairs;
+            record["safe_step"]["untangle"] = {{"substeps", c.untangleSubsteps},
+                                               {"node_steps", c.untangledNodes},
+                                               {"pairs_without_segment", c.untangleUnresolvedPairs}};
+        }
         if (c.radialObservedFaces > 0)
             record["radial_culling"] = {{"substeps_culled", c.radialSubsteps},
                                         {"observed_faces", c.radialObservedFaces},

@@ -21,6 +21,7 @@
 #include "passes/row_layout.hpp"
 #include "passes/energy_guard.hpp"
 #include "passes/safe_step.hpp"
+#include "passes/untangle.hpp"
 
 #include <glcollide/error.hpp>
 #include <glcollide/gl_info.hpp>
@@ -75,6 +76,7 @@ struct Engine::Impl {
     std::optional<passes::NodePredictPass> nodePredict;
     std::optional<passes::SafeStepPass> safeStep;
     std::optional<passes::EnergyGuardPass> energyGuard;
+    std::optional<passes::UntanglePass> untangle;
     std::optional<passes::NewtonLineSearchPass> lineSearch;
     std::uint64_t tangledSubsteps = 0;    ///< CollisionStats::substepsUntilIntersectionFree
     bool reachedIntersectionFree = false; ///< CollisionStats::reachedIntersectionFree
@@ -349,6 +351,9 @@ void Engine::Impl::makePass(engine::Stage stage) {
     case Stage::NewtonLineSearch:
         lineSearch.emplace(plan.lineSearchParams, buffers.nodeCount, buffers.springCount);
         break;
+    case Stage::Untangle:
+        untangle.emplace(buffers.nodeCount, passes::kUntangleStepPerThickness * plan.contact.thickness);
+        break;
     case Stage::Commit:
         break; // SafeStepPass::commit: a copy
     case Stage::NewtonDetection:
@@ -584,6 +589,15 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
         case Stage::EnergyGuard: {
             const passes::ContactInputs inputs = contactInputs();
             run(*energyGuard, &inputs, *collision);
+            break;
+        }
+        case Stage::Untangle: {
+            // Only while this substep's start intersects (the detection above found pairs at x0).
+            if (!lastStartIntersected) break;
+            const passes::UntangleCounts counts = run(*untangle, *collision);
+            ++stats.collision.untangleSubsteps;
+            stats.collision.untangledNodes += counts.movedNodes;
+            stats.collision.untangleUnresolvedPairs += counts.unresolvedPairs;
             break;
         }
         case Stage::Commit:

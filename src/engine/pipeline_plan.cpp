@@ -64,6 +64,10 @@ std::vector<Stage> PipelinePlan::safeStepStages() const {
     s.push_back(implicitSolve ? Stage::RecoveryIterations : Stage::ContactIterations);
     s.insert(s.end(), {Stage::CollisionDetection, Stage::SafeStep});
     if (energyGuard) s.push_back(Stage::EnergyGuard);
+    // Intersections deeper than the thickness: no contact reaches them, and the CCD leaves their
+    // pairs out; the pairs that intersect at x0 push x1 apart, after the guard (which would take the
+    // push back out as a rise of the springs' energy) and unchecked by the CCD, like every tangled node.
+    s.push_back(Stage::Untangle);
     s.push_back(Stage::Commit);
     return s;
 }
@@ -109,6 +113,9 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
             break;
         case Stage::EnergyGuard:
             p.push_back(PassId::EnergyGuard);
+            break;
+        case Stage::Untangle:
+            p.push_back(PassId::Untangle);
             break;
         case Stage::Commit:
             break; // a buffer copy: no pass of its own

@@ -32,6 +32,8 @@ enum class Stage : std::uint8_t {
     ContactResponse,    ///< contact forces or impulses on the feature pairs
     SafeStep,           ///< intersection-free response: steps cut to before the first contact, committed
     EnergyGuard,        ///< intersection-free response: a rise of the total energy taken out of v or x1
+    Untangle,           ///< intersection-free response: pairs intersecting at x0 push x1 apart (only
+                        ///< while the start intersects; decision 0024, "Deep intersections")
     Commit,             ///< intersection-free response: the checked x1 becomes the positions
     ContactIterations,  ///< intersection-free response: (ContactResponse, ContactApply) × responseIterations
     RecoveryIterations, ///< intersection-free response under implicit Euler: ContactIterations with

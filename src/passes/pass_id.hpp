@@ -25,6 +25,7 @@ enum class PassId : std::uint8_t {
     Ccd,          ///< continuous detection: vertex-face and edge-edge CCD over the substep, times of impact
     SafeStep,     ///< intersection-free response: cut the steps of nodes that may touch, re-check, commit
     EnergyGuard,  ///< intersection-free response: a rise of the total energy taken out of the velocities
+    Untangle,     ///< intersection-free response: pairs intersecting at x0 push x1 apart (deep intersections)
     ContactResponse,
     ContactApply,     ///< intersection-free response: a response iteration's forces into v and x1
     ImplicitSolve,    ///< implicit Euler: assemble A·Δv = b, conjugate gradients, v += Δv
@@ -33,13 +34,13 @@ enum class PassId : std::uint8_t {
     FrameStep ///< a small scene's whole frame (SpringUpdate + NodeUpdate per substep) in one dispatch
 };
 
-inline constexpr std::size_t kPassCount = 20;
+inline constexpr std::size_t kPassCount = 21;
 
 inline constexpr std::array<const char*, kPassCount> kPassNames = {
-    "NodeForce",    "SpringUpdate",  "NodePredict",      "RadialCulling", "BBUpdate",
-    "BBCollision",  "BvhBuild",      "BvhRefit",         "BvhTraverse",   "TriTri",
-    "FeaturePairs", "Ccd",           "SafeStep",         "EnergyGuard",   "ContactResponse",
-    "ContactApply", "ImplicitSolve", "NewtonLineSearch", "NodeUpdate",    "FrameStep"};
+    "NodeForce",        "SpringUpdate", "NodePredict", "RadialCulling",   "BBUpdate",     "BBCollision",
+    "BvhBuild",         "BvhRefit",     "BvhTraverse", "TriTri",          "FeaturePairs", "Ccd",
+    "SafeStep",         "EnergyGuard",  "Untangle",    "ContactResponse", "ContactApply", "ImplicitSolve",
+    "NewtonLineSearch", "NodeUpdate",   "FrameStep"};
 
 constexpr const char* passName(PassId id) {
     return kPassNames[static_cast<std::size_t>(id)];

@@ -107,6 +107,8 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"RadialNodeObserverBuf", GLC_BIND_RADIAL_NODE_OBSERVER},
     {"LineSearchBuf", GLC_BIND_LINE_SEARCH},
     {"LineSearchVelocitiesBuf", GLC_BIND_LINE_SEARCH_VELOCITIES},
+    {"UntanglePushBuf", GLC_BIND_UNTANGLE_PUSH},
+    {"UntangleCountsBuf", GLC_BIND_UNTANGLE_COUNTS},
 };
 
 GLint resourceProperty(GLuint program, GLenum interface, const char* name, GLenum property) {

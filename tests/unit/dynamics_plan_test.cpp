@@ -117,12 +117,14 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     scene.collision.response = ContactResponse::IntersectionFree;
     engine::PipelinePlan plan = engine::planPipeline(scene);
     EXPECT_TRUE(plan.safeStep);
-    EXPECT_EQ(plan.stages(), (std::vector<Stage>{Stage::SpringUpdate, Stage::NodePredict,
-                                                 Stage::ContactIterations, Stage::CollisionDetection,
-                                                 Stage::SafeStep, Stage::EnergyGuard, Stage::Commit}));
-    EXPECT_EQ(plan.passes(), (std::vector<std::string>{"SpringUpdate", "NodePredict", "ContactResponse",
-                                                       "ContactApply", "BBUpdate", "BBCollision", "TriTri",
-                                                       "FeaturePairs", "Ccd", "SafeStep", "EnergyGuard"}));
+    EXPECT_EQ(plan.stages(),
+              (std::vector<Stage>{Stage::SpringUpdate, Stage::NodePredict, Stage::ContactIterations,
+                                  Stage::CollisionDetection, Stage::SafeStep, Stage::EnergyGuard,
+                                  Stage::Untangle, Stage::Commit}));
+    EXPECT_EQ(plan.passes(),
+              (std::vector<std::string>{"SpringUpdate", "NodePredict", "ContactResponse", "ContactApply",
+                                        "BBUpdate", "BBCollision", "TriTri", "FeaturePairs", "Ccd",
+                                        "SafeStep", "EnergyGuard", "Untangle"}));
     // The guard sums what the forces derive from: gravity, springs, contacts, no ground penalty
     // under symplectic Euler (the ground is a velocity response there).
     EXPECT_TRUE(plan.energyGuard);
@@ -153,7 +155,7 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     EXPECT_EQ(plan.stages(),
               (std::vector<Stage>{Stage::SpringUpdate, Stage::ContactIterations, Stage::ImplicitSolve,
                                   Stage::NodePredict, Stage::RecoveryIterations, Stage::CollisionDetection,
-                                  Stage::SafeStep, Stage::EnergyGuard, Stage::Commit}));
+                                  Stage::SafeStep, Stage::EnergyGuard, Stage::Untangle, Stage::Commit}));
     EXPECT_FALSE(plan.contact.repulsion);
     EXPECT_TRUE(plan.contact.predictedForces);
     EXPECT_FALSE(plan.nodePredictParams.bandResponse);
@@ -167,16 +169,16 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     plan = engine::planPipeline(scene);
     EXPECT_EQ(plan.implicitParams.newtonSteps, 2);
     EXPECT_TRUE(plan.lineSearch);
-    EXPECT_EQ(
-        plan.stages(),
-        (std::vector<Stage>{Stage::SpringUpdate, Stage::ContactIterations, Stage::ImplicitSolve,
-                            Stage::NodePredict, Stage::NewtonDetection, Stage::ImplicitNewton,
-                            Stage::NewtonLineSearch, Stage::NodePredict, Stage::RecoveryIterations,
-                            Stage::CollisionDetection, Stage::SafeStep, Stage::EnergyGuard, Stage::Commit}));
+    EXPECT_EQ(plan.stages(),
+              (std::vector<Stage>{Stage::SpringUpdate, Stage::ContactIterations, Stage::ImplicitSolve,
+                                  Stage::NodePredict, Stage::NewtonDetection, Stage::ImplicitNewton,
+                                  Stage::NewtonLineSearch, Stage::NodePredict, Stage::RecoveryIterations,
+                                  Stage::CollisionDetection, Stage::SafeStep, Stage::EnergyGuard,
+                                  Stage::Untangle, Stage::Commit}));
     EXPECT_EQ(plan.passes(),
               (std::vector<std::string>{"SpringUpdate", "ContactResponse", "ContactApply", "ImplicitSolve",
                                         "NodePredict", "BBUpdate", "BBCollision", "TriTri", "FeaturePairs",
-                                        "Ccd", "NewtonLineSearch", "SafeStep", "EnergyGuard"}));
+                                        "Ccd", "NewtonLineSearch", "SafeStep", "EnergyGuard", "Untangle"}));
     // Φ sums what the guard sums, from the same levels, plus inertia and dissipation.
     EXPECT_EQ(plan.lineSearchParams.potentials.groundStiffness, plan.energyGuardParams.groundStiffness);
     EXPECT_EQ(plan.lineSearchParams.potentials.groundLevel, plan.energyGuardParams.groundLevel);
@@ -199,7 +201,8 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     plan = engine::planPipeline(scene);
     EXPECT_FALSE(plan.energyGuard);
     EXPECT_EQ(plan.stages().back(), Stage::Commit);
-    EXPECT_EQ(plan.stages()[plan.stages().size() - 2], Stage::SafeStep);
+    EXPECT_EQ(plan.stages()[plan.stages().size() - 2], Stage::Untangle);
+    EXPECT_EQ(plan.stages()[plan.stages().size() - 3], Stage::SafeStep);
 }
 
 // The responses as types (issue 23, item 6): the factory maps every setting to its class, each
