@@ -35,7 +35,8 @@ glm::dvec3 clampLength(const glm::dvec3& v, double most) {
 
 } // namespace
 
-std::vector<Piercing> intersectionPiercings(const std::array<glm::dvec3, 3>& a, const std::array<glm::dvec3, 3>& b) {
+std::vector<Piercing> intersectionPiercings(const std::array<glm::dvec3, 3>& a,
+                                            const std::array<glm::dvec3, 3>& b) {
     std::vector<Piercing> found;
     for (const bool first : {true, false}) {
         const std::array<glm::dvec3, 3>& edges = first ? a : b;

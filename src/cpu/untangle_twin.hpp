@@ -41,15 +41,16 @@ struct Piercing {
 /// the second, then the second's through the first), at most two: an edge crosses the other's
 /// plane strictly (its ends on opposite sides) at a point inside the closed triangle. Generic
 /// intersecting triangles have exactly two (the segment's ends); touching or coplanar ones fewer.
-std::vector<Piercing> intersectionPiercings(const std::array<glm::dvec3, 3>& a, const std::array<glm::dvec3, 3>& b);
+std::vector<Piercing> intersectionPiercings(const std::array<glm::dvec3, 3>& a,
+                                            const std::array<glm::dvec3, 3>& b);
 
 struct UntangleInput {
-    std::vector<glm::dvec3> positions;                 ///< x0 per node
-    std::vector<double> inverseMass;                   ///< per node (0: pinned)
-    std::vector<std::array<std::uint32_t, 3>> faces;   ///< node indices
-    std::vector<bool> faceOnClosedObject;              ///< per face: its object is closed (outward normals)
-    std::vector<std::array<std::uint32_t, 2>> pairs;   ///< face pairs that intersect at x0
-    double step = 0.0;                                 ///< m: the most a node moves
+    std::vector<glm::dvec3> positions;               ///< x0 per node
+    std::vector<double> inverseMass;                 ///< per node (0: pinned)
+    std::vector<std::array<std::uint32_t, 3>> faces; ///< node indices
+    std::vector<bool> faceOnClosedObject;            ///< per face: its object is closed (outward normals)
+    std::vector<std::array<std::uint32_t, 2>> pairs; ///< face pairs that intersect at x0
+    double step = 0.0;                               ///< m: the most a node moves
 };
 
 struct UntangleResult {

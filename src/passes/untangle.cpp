@@ -13,9 +13,9 @@
 namespace glcollide::passes {
 
 UntanglePass::UntanglePass(std::uint32_t nodeCount, double step)
-    : m_step(step), m_push(gl::makeBuffer("untanglePush", std::vector<std::int32_t>(4 * std::size_t{nodeCount}, 0))),
-      m_counts(gl::makeBuffer("untangleCounts", std::vector<std::uint32_t>(2, 0u))), m_pairs("untangle_pairs"),
-      m_apply("untangle_apply") {
+    : m_push(gl::makeBuffer("untanglePush", std::vector<std::int32_t>(4 * std::size_t{nodeCount}, 0))),
+      m_counts(gl::makeBuffer("untangleCounts", std::vector<std::uint32_t>(2, 0u))),
+      m_pairs("untangle_pairs"), m_apply("untangle_apply") {
     if (!(step > 0.0)) throw Error("Untangle: step must be > 0, got " + std::to_string(step));
     m_pairs.set("u_pushScale", kPushScale);
     m_apply.set("u_pushScale", kPushScale);

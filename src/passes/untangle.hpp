@@ -20,8 +20,9 @@ namespace glcollide::passes {
 
 /// What one untangling step did.
 struct UntangleCounts {
-    std::uint32_t movedNodes = 0;      ///< nodes whose step moved
-    std::uint32_t unresolvedPairs = 0; ///< intersecting pairs without two piercings (coplanar, touching): no push
+    std::uint32_t movedNodes = 0; ///< nodes whose step moved
+    std::uint32_t unresolvedPairs =
+        0; ///< intersecting pairs without two piercings (coplanar, touching): no push
 };
 
 /// The most a node moves per substep while untangling, in contact thicknesses: half keeps a push
@@ -45,7 +46,6 @@ class UntanglePass {
     UntangleCounts dispatch(const DeviceBuffers& buffers, const CollisionDetection& collision) const;
 
   private:
-    double m_step;
     mutable gl::Buffer m_push;   ///< ivec4 per node: the fixed-point sum of its pushes, the parts
     mutable gl::Buffer m_counts; ///< uint[2]: moved nodes, unresolved pairs
     gl::ComputeProgram m_pairs;

@@ -40,8 +40,8 @@ Topology topology(const Engine& engine) {
             t.faceObject.push_back(b);
         }
         t.nodeObject.insert(t.nodeObject.end(), scene.bodies[b].positions.size(), b);
-        t.objectClosed.push_back(model::isClosedSurface(t.faceIndices, firstFace,
-                                                        static_cast<std::uint32_t>(scene.bodies[b].faces.size())));
+        t.objectClosed.push_back(model::isClosedSurface(
+            t.faceIndices, firstFace, static_cast<std::uint32_t>(scene.bodies[b].faces.size())));
     }
     return t;
 }
@@ -56,7 +56,8 @@ std::size_t intersectingPairs(const Engine& engine, const Topology& t) {
 }
 
 double deepestPenetration(const Engine& engine, const Topology& t) {
-    return cpu::deepestPenetration(t.faceIndices, t.faceObject, t.nodeObject, engine.readPositions(), t.objectClosed)
+    return cpu::deepestPenetration(t.faceIndices, t.faceObject, t.nodeObject, engine.readPositions(),
+                                   t.objectClosed)
         .depth;
 }
 
@@ -65,15 +66,17 @@ double deepestPenetration(const Engine& engine, const Topology& t) {
 // the two faces around the edge holds it: a choice of direction, never of an answer). Nothing but
 // collisions: at rest and without forces x1 = x0 until Untangle (the first substep has no
 // contacts yet), so one step moves exactly the twin's displacement.
-constexpr const char* kTurnedBoxes = R"({"name": "a", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]}, "mass": 0.2},
+constexpr const char* kTurnedBoxes =
+    R"({"name": "a", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]}, "mass": 0.2},
     {"name": "b", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]},
      "transform": {"translate": [0.0713, 0.0689, 0.0127], "rotate_deg": [7, 11, 3]}, "mass": 0.2})";
 
 Scene scene(const std::string& effects, const std::string& time, const std::string& objects) {
-    const std::string json = R"({"format_version": 1, "name": "untangle", "effects": [)" + effects +
-                             R"(], "time": )" + time +
-                             R"(, "collision": {"broad_phase": "bvh", "thickness": 0.01, "stiffness": 500, "response": "intersection_free"},
-        "objects": [)" + objects + "]}";
+    const std::string json =
+        R"({"format_version": 1, "name": "untangle", "effects": [)" + effects + R"(], "time": )" + time +
+        R"(, "collision": {"broad_phase": "bvh", "thickness": 0.01, "stiffness": 500, "response": "intersection_free"},
+        "objects": [)" +
+        objects + "]}";
     return parseScene(json, ".", "untangle");
 }
 
@@ -141,17 +144,19 @@ void expectComesApart(Engine& engine, int within, int frames) {
 }
 
 TEST(UntangleGl, BoxesIntersectingDeeperThanTheThicknessComeApartUnderImplicitEuler) {
-    Engine engine(scene(R"("springs", "collisions")",
-                        R"({"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 1})",
-                        R"({"name": "a", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]}, "mass": 0.2, "springs": {"stiffness": 400}},
+    Engine engine(scene(
+        R"("springs", "collisions")",
+        R"({"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 1})",
+        R"({"name": "a", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]}, "mass": 0.2, "springs": {"stiffness": 400}},
     {"name": "b", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]},
      "transform": {"translate": [0.07, 0.07, 0.013]}, "mass": 0.2, "springs": {"stiffness": 400}})"));
     expectComesApart(engine, 24, 40);
 }
 
 TEST(UntangleGl, BoxesIntersectingDeeperThanTheThicknessComeApartUnderSymplecticEuler) {
-    Engine engine(scene(R"("springs", "collisions")", R"({"dt": 0.016666666666666666, "substeps": 4})",
-                        R"({"name": "a", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]}, "mass": 0.2, "springs": {"stiffness": 400}},
+    Engine engine(scene(
+        R"("springs", "collisions")", R"({"dt": 0.016666666666666666, "substeps": 4})",
+        R"({"name": "a", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]}, "mass": 0.2, "springs": {"stiffness": 400}},
     {"name": "b", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]},
      "transform": {"translate": [0.07, 0.07, 0.013]}, "mass": 0.2, "springs": {"stiffness": 400}})"));
     expectComesApart(engine, 24, 40); // frames of 4 substeps: 6 frames would do
@@ -161,8 +166,9 @@ TEST(UntangleGl, BoxesIntersectingDeeperThanTheThicknessComeApartUnderSymplectic
 // the box's outward normals push the cloth's edges out. Without springs (their pull would bring
 // the node back by itself), so every move is the untangling's.
 TEST(UntangleGl, AClothDentedIntoAPinnedBoxIsPushedOut) {
-    Scene s = scene(R"("collisions", "self_collisions")", R"({"dt": 0.016666666666666666, "substeps": 1})",
-                    R"({"name": "box", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]}, "mass": 0.2},
+    Scene s = scene(
+        R"("collisions", "self_collisions")", R"({"dt": 0.016666666666666666, "substeps": 1})",
+        R"({"name": "box", "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]}, "mass": 0.2},
     {"name": "cloth", "generator": {"type": "cloth", "size": [0.2, 0.2], "resolution": [11, 11]},
      "transform": {"translate": [0.004, 0.003, 0.065]}, "mass": 0.05})");
     s.bodies[0].pinned.assign(s.bodies[0].positions.size(), 1);
@@ -171,13 +177,13 @@ TEST(UntangleGl, AClothDentedIntoAPinnedBoxIsPushedOut) {
     expectComesApart(engine, 24, 40);
 }
 
-
 // Two open sheets 1 cm apart, the lower one's middle node lifted 3 cm, through the upper one:
 // no closed object tells the side, the contour's shrinking does (the tent is pulled back, or the
 // upper sheet lifted over it).
 TEST(UntangleGl, ATentPokedThroughASheetIsPulledBack) {
-    Scene s = scene(R"("collisions")", R"({"dt": 0.016666666666666666, "substeps": 1})",
-                    R"({"name": "upper", "generator": {"type": "cloth", "size": [0.2, 0.2], "resolution": [11, 11]}, "mass": 0.05},
+    Scene s = scene(
+        R"("collisions")", R"({"dt": 0.016666666666666666, "substeps": 1})",
+        R"({"name": "upper", "generator": {"type": "cloth", "size": [0.2, 0.2], "resolution": [11, 11]}, "mass": 0.05},
     {"name": "lower", "generator": {"type": "cloth", "size": [0.2, 0.2], "resolution": [11, 11]},
      "transform": {"translate": [0.003, 0.002, -0.01]}, "mass": 0.05})");
     s.bodies[1].positions[60].z = 0.02;

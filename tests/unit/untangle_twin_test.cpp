@@ -26,7 +26,8 @@ using cpu::Piercing;
 TEST(UntangleTwin, PiercingsAreTheSegmentsEnds) {
     // A lies in z = 0; B stands in x = 0.2 and its edges 01 and 20 cross z = 0 at their middles.
     const std::array<glm::dvec3, 3> a = {glm::dvec3(-1, -1, 0), glm::dvec3(2, -1, 0), glm::dvec3(-1, 2, 0)};
-    const std::array<glm::dvec3, 3> b = {glm::dvec3(0.2, 0, -1), glm::dvec3(0.2, 0.6, 1), glm::dvec3(0.2, -0.4, 1)};
+    const std::array<glm::dvec3, 3> b = {glm::dvec3(0.2, 0, -1), glm::dvec3(0.2, 0.6, 1),
+                                         glm::dvec3(0.2, -0.4, 1)};
     const std::vector<Piercing> p = intersectionPiercings(a, b);
     ASSERT_EQ(p.size(), 2u);
     EXPECT_FALSE(p[0].edgeOfFirst);
@@ -45,10 +46,12 @@ TEST(UntangleTwin, PiercingsAreTheSegmentsEnds) {
 
 TEST(UntangleTwin, CoplanarAndTouchingPairsHaveNoSegmentToShrink) {
     const std::array<glm::dvec3, 3> a = {glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0)};
-    const std::array<glm::dvec3, 3> coplanar = {glm::dvec3(0.2, 0.2, 0), glm::dvec3(2, 0.2, 0), glm::dvec3(0.2, 2, 0)};
+    const std::array<glm::dvec3, 3> coplanar = {glm::dvec3(0.2, 0.2, 0), glm::dvec3(2, 0.2, 0),
+                                                glm::dvec3(0.2, 2, 0)};
     EXPECT_TRUE(intersectionPiercings(a, coplanar).empty());
     // A vertex resting on A's interior: its edges end on A's plane, not across it.
-    const std::array<glm::dvec3, 3> touching = {glm::dvec3(0.2, 0.2, 0), glm::dvec3(0.5, 0.2, 1), glm::dvec3(0.2, 0.5, 1)};
+    const std::array<glm::dvec3, 3> touching = {glm::dvec3(0.2, 0.2, 0), glm::dvec3(0.5, 0.2, 1),
+                                                glm::dvec3(0.2, 0.5, 1)};
     EXPECT_TRUE(intersectionPiercings(a, touching).empty());
     cpu::UntangleInput in;
     in.positions = {a[0], a[1], a[2], touching[0], touching[1], touching[2]};
@@ -70,8 +73,8 @@ struct Model {
 };
 
 Model modelOf(const std::string& objectsJson) {
-    const std::string json = R"({"format_version": 1, "name": "t", "effects": ["collisions"], "objects": [)" +
-                             objectsJson + "]}";
+    const std::string json =
+        R"({"format_version": 1, "name": "t", "effects": ["collisions"], "objects": [)" + objectsJson + "]}";
     Model m;
     m.flat = model::flatten(parseScene(json, ".", "untangle"));
     for (std::uint32_t o = 0; o < m.flat.objects.size(); ++o) {
@@ -95,7 +98,8 @@ int untangle(Model& m, double step, int most) {
     cpu::UntangleInput in;
     in.inverseMass = m.flat.inverseMasses;
     for (std::size_t f = 0; f < m.faceObject.size(); ++f) {
-        in.faces.push_back({m.flat.faceIndices[3 * f], m.flat.faceIndices[3 * f + 1], m.flat.faceIndices[3 * f + 2]});
+        in.faces.push_back(
+            {m.flat.faceIndices[3 * f], m.flat.faceIndices[3 * f + 1], m.flat.faceIndices[3 * f + 2]});
         in.faceOnClosedObject.push_back(m.objectClosed[m.faceObject[f]]);
     }
     in.step = step;
@@ -113,7 +117,8 @@ int untangle(Model& m, double step, int most) {
 }
 
 double deepest(const Model& m) {
-    return cpu::deepestPenetration(m.flat.faceIndices, m.faceObject, m.nodeObject, m.flat.positions, m.objectClosed)
+    return cpu::deepestPenetration(m.flat.faceIndices, m.faceObject, m.nodeObject, m.flat.positions,
+                                   m.objectClosed)
         .depth;
 }
 
@@ -126,7 +131,8 @@ int budget(double depth) {
 }
 
 TEST(UntangleTwin, TwoBoxesOverlappingAtAnEdgeComeApart) {
-    Model m = modelOf(R"({"name": "a", "mass": 0.1, "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]}},
+    Model m = modelOf(
+        R"({"name": "a", "mass": 0.1, "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]}},
         {"name": "b", "mass": 0.1, "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]},
          "transform": {"translate": [0.07, 0.07, 0.013]}})");
     ASSERT_TRUE(m.objectClosed[0] && m.objectClosed[1]);
@@ -140,7 +146,8 @@ TEST(UntangleTwin, TwoBoxesOverlappingAtAnEdgeComeApart) {
 TEST(UntangleTwin, ABoxSunkIntoAnotherFromAboveComesOut) {
     // A's side walls are parallel to the contour's direction of shrinking: ICM alone has no push
     // for them (the prism case); B's outward normal pushes them out.
-    Model m = modelOf(R"({"name": "b", "mass": 0.1, "generator": {"type": "tet_box", "size": [0.2, 0.1, 0.2], "resolution": [4, 2, 4]}},
+    Model m = modelOf(
+        R"({"name": "b", "mass": 0.1, "generator": {"type": "tet_box", "size": [0.2, 0.1, 0.2], "resolution": [4, 2, 4]}},
         {"name": "a", "mass": 0.1, "generator": {"type": "tet_box", "size": [0.06, 0.06, 0.06], "resolution": [2, 2, 2]},
          "transform": {"translate": [0.011, 0.06, 0.007]}})");
     ASSERT_FALSE(intersecting(m).empty());
@@ -152,7 +159,8 @@ TEST(UntangleTwin, ABoxSunkIntoAnotherFromAboveComesOut) {
 
 TEST(UntangleTwin, ATentPokedThroughASheetIsPulledBack) {
     // Two open sheets 1 cm apart; the lower one's middle node lifted 3 cm, through the upper one.
-    Model m = modelOf(R"({"name": "upper", "mass": 0.1, "generator": {"type": "cloth", "size": [0.2, 0.2], "resolution": [11, 11]}},
+    Model m = modelOf(
+        R"({"name": "upper", "mass": 0.1, "generator": {"type": "cloth", "size": [0.2, 0.2], "resolution": [11, 11]}},
         {"name": "lower", "mass": 0.1, "generator": {"type": "cloth", "size": [0.2, 0.2], "resolution": [11, 11]},
          "transform": {"translate": [0.003, 0.002, -0.01]}})");
     ASSERT_FALSE(m.objectClosed[0] || m.objectClosed[1]);
@@ -167,7 +175,8 @@ TEST(UntangleTwin, ATentPokedThroughASheetIsPulledBack) {
 TEST(UntangleTwin, AClothDentedIntoABoxIsPushedOut) {
     // The box's top face is at z = 0.05; the cloth lies 5 mm above it with its middle node 3 cm
     // inside the box.
-    Model m = modelOf(R"({"name": "box", "mass": 0.1, "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]}},
+    Model m = modelOf(
+        R"({"name": "box", "mass": 0.1, "generator": {"type": "tet_box", "size": [0.1, 0.1, 0.1], "resolution": [2, 2, 2]}},
         {"name": "cloth", "mass": 0.1, "generator": {"type": "cloth", "size": [0.2, 0.2], "resolution": [11, 11]},
          "transform": {"translate": [0.004, 0.003, 0.055]}})");
     m.flat.positions[m.flat.objects[1].firstNode + 60].z = 0.02;
