@@ -4,8 +4,9 @@
 // TriTri's output; indirect dispatch from its count). The pair's intersection segment ends at two
 // piercings, an edge of one triangle through the other (first triangle's edges 01, 12, 20 through
 // the second, then the second's through the first; the first two found). At each, the edge is
-// pushed relative to the face along R: the face's unit normal when its object is closed (normals
-// point outwards, so the push brings the edge's inner end out), else the normal's sign that moves
+// pushed relative to the face along R: the face's unit normal when its object is closed and not the
+// edge's (normals point outwards, so the push brings the edge's inner end out; within one closed
+// surface neither side of a self-intersection is known to be wrong), else the normal's sign that moves
 // the piercing towards the segment's other end (a push δ·n moves it by −δ·e∥/(n·e) in the face's
 // plane), which shortens the intersection contour (intersection contour minimisation). The unit
 // relative push is split like a constraint projection: node i of (edge 0, edge 1, face 0, 1, 2)
@@ -99,7 +100,8 @@ void main() {
         vec3 f0 = g_positions[face.x].xyz, f1 = g_positions[face.y].xyz, f2 = g_positions[face.z].xyz;
         vec3 n = normalize(cross(f1 - f0, f2 - f0));
         vec3 push;
-        if (g_objects[g_faceInfo[faceId].object].closed != 0u) {
+        uint faceObject = g_faceInfo[faceId].object, edgeObject = g_faceInfo[p.edgeOfFirst ? pair.x : pair.y].object;
+        if (faceObject != edgeObject && g_objects[faceObject].closed != 0u) {
             push = n;
         } else {
             vec3 e = g_positions[p.edge.y].xyz - g_positions[p.edge.x].xyz;

@@ -78,7 +78,9 @@ UntangleResult untangleStep(const UntangleInput& in) {
             const std::uint32_t e0 = edgeFace[p.edge[0]], e1 = edgeFace[p.edge[1]];
             const glm::dvec3 n = glm::normalize(glm::cross(f[1] - f[0], f[2] - f[0]));
             glm::dvec3 push(0.0);
-            if (in.faceOnClosedObject[p.edgeOfFirst ? pair[1] : pair[0]]) {
+            const std::uint32_t faceObject = in.faceObject[p.edgeOfFirst ? pair[1] : pair[0]];
+            const std::uint32_t edgeObject = in.faceObject[p.edgeOfFirst ? pair[0] : pair[1]];
+            if (faceObject != edgeObject && in.objectClosed[faceObject]) {
                 push = n;
             } else {
                 const glm::dvec3 e = in.positions[e1] - in.positions[e0];

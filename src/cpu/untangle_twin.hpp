@@ -8,12 +8,13 @@
 // - the segment of two intersecting triangles ends at two piercings: an edge of one triangle
 //   through the other (intersectionPiercings);
 // - at a piercing of edge (p0, p1) through face F (unit normal n), the edge is pushed relative to
-//   the face along R: n when F belongs to a closed object (its normals point outwards: the edge's
-//   end behind F is inside the object, and the push brings it out), otherwise the sign of n that
-//   moves the piercing point towards the segment's other end (for a push δ·n the point moves in
-//   F's plane by −δ·e∥/(n·e), e = p1 − p0: towards Q − P when δ·(u·e)/(n·e) < 0), which shortens
-//   the intersection contour (zero when the edge is perpendicular to the contour: a straight
-//   contour of two crossing sheets does not shrink, ICM's known limit);
+//   the face along R: n when F belongs to a closed object other than the edge's (its normals point
+//   outwards: the edge's end behind F is inside the object, and the push brings it out; within one
+//   closed surface neither side of a self-intersection is known to be the wrong one), otherwise the sign of n
+//   that moves the piercing point towards the segment's other end (for a push δ·n the point moves in F's
+//   plane by −δ·e∥/(n·e), e = p1 − p0: towards Q − P when δ·(u·e)/(n·e) < 0), which shortens the intersection
+//   contour (zero when the edge is perpendicular to the contour: a straight contour of two crossing sheets
+//   does not shrink, ICM's known limit);
 // - the unit relative push is split over the five nodes like a constraint projection: weights
 //   a = (1 − s, s, −b0, −b1, −b2) (s along the edge, b the piercing's barycentrics in F), node i
 //   moves by a_i·w_i/W·R with W = Σ a_j²·w_j (w the inverse masses, pinned nodes 0), each part
@@ -48,7 +49,8 @@ struct UntangleInput {
     std::vector<glm::dvec3> positions;               ///< x0 per node
     std::vector<double> inverseMass;                 ///< per node (0: pinned)
     std::vector<std::array<std::uint32_t, 3>> faces; ///< node indices
-    std::vector<bool> faceOnClosedObject;            ///< per face: its object is closed (outward normals)
+    std::vector<std::uint32_t> faceObject;           ///< per face: its object
+    std::vector<bool> objectClosed;                  ///< per object: closed (outward normals)
     std::vector<std::array<std::uint32_t, 2>> pairs; ///< face pairs that intersect at x0
     double step = 0.0;                               ///< m: the most a node moves
 };
