@@ -134,7 +134,7 @@
                                            // start, its full step's end
 // Recovery from intersections deeper than the thickness (Untangle, decision 0024 "Deep intersections").
 #define GLC_BIND_UNTANGLE_PUSH 69          // ivec4[nodes]: the sum of a node's pushes in fixed point
-                                           // (u_pushScale units per unit push), w the number of parts
+                                           // (u_pushScale units per unit push) in xyz; w unused (alignment)
 #define GLC_BIND_UNTANGLE_COUNTS 72        // uint[2]: nodes moved, intersecting pairs without two piercings
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the

@@ -62,7 +62,6 @@ void addPart(uint node, vec3 part) {
     if (q.x != 0) atomicAdd(g_push[node].x, q.x);
     if (q.y != 0) atomicAdd(g_push[node].y, q.y);
     if (q.z != 0) atomicAdd(g_push[node].z, q.z);
-    atomicAdd(g_push[node].w, 1);
 }
 
 void main() {

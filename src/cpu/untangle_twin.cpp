@@ -58,7 +58,6 @@ UntangleResult untangleStep(const UntangleInput& in) {
     UntangleResult r;
     r.pushSum.assign(nodes, glm::dvec3(0.0));
     r.displacement.assign(nodes, glm::dvec3(0.0));
-    std::vector<bool> touched(nodes, false);
     for (const std::array<std::uint32_t, 2>& pair : in.pairs) {
         const std::array<std::uint32_t, 3>& fa = in.faces[pair[0]];
         const std::array<std::uint32_t, 3>& fb = in.faces[pair[1]];
@@ -96,12 +95,10 @@ UntangleResult untangleStep(const UntangleInput& in) {
             for (int i = 0; i < 5; ++i) {
                 const double part = weight[i] * in.inverseMass[node[i]] / w;
                 r.pushSum[node[i]] += clampLength(part * push, 1.0);
-                touched[node[i]] = true;
             }
         }
     }
     for (std::size_t i = 0; i < nodes; ++i) {
-        if (!touched[i]) continue;
         const double l = glm::length(r.pushSum[i]);
         r.displacement[i] = in.step * r.pushSum[i] / std::max(1.0, l);
         if (l > 0.0) ++r.movedNodes;

@@ -46,7 +46,7 @@ class UntanglePass {
     UntangleCounts dispatch(const DeviceBuffers& buffers, const CollisionDetection& collision) const;
 
   private:
-    mutable gl::Buffer m_push;   ///< ivec4 per node: the fixed-point sum of its pushes, the parts
+    mutable gl::Buffer m_push;   ///< ivec4 per node: the fixed-point sum of its pushes (w unused)
     mutable gl::Buffer m_counts; ///< uint[2]: moved nodes, unresolved pairs
     gl::ComputeProgram m_pairs;
     gl::ComputeProgram m_apply;
