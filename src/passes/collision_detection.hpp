@@ -34,10 +34,21 @@
 
 namespace glcollide::passes {
 
+/// Collision settings with discrete detection and the penalty response: the AABB-octree paper's
+/// pipeline, the building blocks' plain use.
+[[nodiscard]] inline CollisionSettings discreteSettings() {
+    CollisionSettings s;
+    s.response = ContactResponse::Penalty;
+    s.detection = Detection::Discrete;
+    return s;
+}
+
 struct CollisionConfig {
     bool betweenObjects = false; ///< effect `collisions`: faces of different objects
     bool selfCollisions = false; ///< effect `self_collisions`: faces of one object sharing no node
-    CollisionSettings settings;
+    /// The engine passes the scene's settings. Built alone, the pass detects discretely (the scene's
+    /// default, continuous detection, needs predicted positions that only the engine allocates).
+    CollisionSettings settings = discreteSettings();
     /// First size of one list; 0 = settings.initialCapacity. Lets a test overflow one list at a time.
     std::uint32_t boxPairCapacity = 0, candidateCapacity = 0, intersectionCapacity = 0;
     std::uint32_t vertexFaceCapacity = 0, edgeEdgeCapacity = 0;

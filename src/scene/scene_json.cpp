@@ -563,18 +563,26 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
         else
             c.fail(p / "precision", "unknown precision " + shown(*v) + "; expected \"fast\" or \"robust\"");
     }
-    if (const json* v = find(j, "response")) {
-        const std::optional<ContactResponse> kind = responseFromName(string(c, *v, p / "response"));
-        if (!kind) c.fail(p / "response", "unknown response " + shown(*v) + "; expected " + kResponseNames);
+    // The default response is intersection_free (decision 0024, "The default"). Each response
+    // brings its detection unless the scene names one: the safe step reads the continuous
+    // detection's times of impact and cannot work without them; penalty and bridson were built for
+    // the discrete one.
+    const json* response = find(j, "response");
+    if (response) {
+        const std::optional<ContactResponse> kind = responseFromName(string(c, *response, p / "response"));
+        if (!kind)
+            c.fail(p / "response", "unknown response " + shown(*response) + "; expected " + kResponseNames);
         s.response = *kind;
-        // The safe step reads the continuous detection's times of impact: it is this response's
-        // default detection, and discrete detection cannot serve it.
-        if (s.response == ContactResponse::IntersectionFree) {
-            if (!find(j, "detection"))
-                s.detection = Detection::Continuous;
-            else if (s.detection != Detection::Continuous)
-                c.fail(p / "detection", "the intersection_free response needs \"detection\": \"continuous\"");
-        }
+    }
+    const bool detectionGiven = find(j, "detection") != nullptr;
+    if (s.response == ContactResponse::IntersectionFree) {
+        if (detectionGiven && s.detection != Detection::Continuous)
+            c.fail(p / "detection",
+                   response ? "the intersection_free response needs \"detection\": \"continuous\""
+                            : "the default response, intersection_free, needs \"detection\": \"continuous\"; "
+                              "name \"response\": \"penalty\" or \"bridson\" to detect discretely");
+    } else if (!detectionGiven) {
+        s.detection = Detection::Discrete;
     }
     if (const json* v = find(j, "culling")) {
         const std::string name = string(c, *v, p / "culling");
@@ -716,8 +724,10 @@ Scene parseRoot(const Ctx& c, const json& root) {
                                     "(remove it or add an effect)");
         scene.collision = parseCollision(c, *v, p / "collision");
         const CollisionSettings& col = scene.collision;
-        if (col.response == ContactResponse::IntersectionFree && col.energyGuard &&
-            scene.effects.has(Effect::Wind))
+        // Only a guard the scene asks for is refused: by default the engine leaves it out where
+        // the wind blows (PipelinePlan's energyGuard).
+        const json* guard = find(*v, "energy_guard");
+        if (guard && col.energyGuard && scene.effects.has(Effect::Wind))
             c.fail(p / "collision" / "energy_guard",
                    "the energy guard needs a closed scene and the wind does work on it: set "
                    "\"energy_guard\": false (decision 0024)");

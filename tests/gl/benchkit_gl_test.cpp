@@ -32,6 +32,7 @@ const RunResult& run(const ExperimentResult& r, const std::string& scene, const 
 
 const char* kBoxes = R"({"name": "boxes", "scene": {
   "format_version": 1, "effects": ["springs", "collisions"], "time": {"dt": 0.0001, "substeps": "auto"},
+  "collision": {"response": "penalty"},
   "objects": [
     {"name": "a", "generator": {"type": "tet_box", "size": [1, 1, 1], "resolution": [4, 4, 4]}, "mass": 1, "springs": {"stiffness": 100}},
     {"name": "b", "generator": {"type": "tet_box", "size": [1, 1, 1], "resolution": [4, 4, 4]},

@@ -37,7 +37,7 @@ Scene twoBalls(const std::string& effects, const std::string& collision, double 
     return parseScene(json, ".", "two balls");
 }
 
-const char* kCollision = R"("collision": {"thickness": 0.02, "stiffness": 300},)";
+const char* kCollision = R"("collision": {"response": "penalty", "thickness": 0.02, "stiffness": 300},)";
 
 struct BodyMotion {
     glm::dvec3 centre{0.0}, momentum{0.0};
@@ -132,13 +132,14 @@ std::vector<glm::dvec3> trajectory(const std::string& collision, int frames,
 TEST(CollisionPhysicsGl, EveryBroadPhaseGivesBitIdenticalMotion) {
     const int frames = 3; // in contact from the second frame
     const std::vector<glm::dvec3> reference = trajectory(
-        R"("collision": {"thickness": 0.02, "stiffness": 300, "precision": "fast", "broad_phase": "all_pairs"},)",
+        R"("collision": {"response": "penalty", "thickness": 0.02, "stiffness": 300, "precision": "fast", "broad_phase": "all_pairs"},)",
         frames);
     for (const char* mode :
          {R"("broad_phase": "octree", "octree_depth": 1)", R"("broad_phase": "octree", "octree_depth": 2)",
           R"("broad_phase": "octree", "octree_depth": 3)", R"("broad_phase": "masked")"}) {
         const std::string collision =
-            std::string(R"("collision": {"thickness": 0.02, "stiffness": 300, "precision": "fast", )") +
+            std::string(
+                R"("collision": {"response": "penalty", "thickness": 0.02, "stiffness": 300, "precision": "fast", )") +
             mode + "},";
         EXPECT_EQ(trajectory(collision, frames), reference) << mode;
     }
@@ -148,7 +149,8 @@ TEST(CollisionPhysicsGl, ATinyListCapacityGrowsAndChangesNothing) {
     const int frames = 3;
     std::uint32_t growths = 0;
     const std::vector<glm::dvec3> tiny = trajectory(
-        R"("collision": {"thickness": 0.02, "stiffness": 300, "initial_capacity": 1},)", frames, &growths);
+        R"("collision": {"response": "penalty", "thickness": 0.02, "stiffness": 300, "initial_capacity": 1},)",
+        frames, &growths);
     EXPECT_GT(growths, 0u);
     EXPECT_EQ(tiny, trajectory(kCollision, frames));
 }

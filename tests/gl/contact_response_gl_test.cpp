@@ -143,6 +143,7 @@ cpu::ContactResult runCpu(const Soup& s, const ContactParams& params) {
 
 ContactParams testParams(double thickness, double friction = 0.0) {
     CollisionSettings settings;
+    settings.response = ContactResponse::Penalty; // the forces these tests check (not the default)
     settings.thickness = thickness;
     settings.stiffness = 1000.0;
     settings.damping = 0.5;

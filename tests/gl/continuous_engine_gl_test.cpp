@@ -25,7 +25,7 @@ Scene fastBall(const std::string& detection) {
     const std::string json =
         R"({"format_version": 1, "name": "fast ball", "effects": ["springs", "collisions"],
       "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 1},
-      "collision": {"broad_phase": "bvh", "thickness": 0.01, "detection": ")" +
+      "collision": {"response": "penalty", "broad_phase": "bvh", "thickness": 0.01, "detection": ")" +
         detection + R"("},
       "objects": [
         {"name": "cloth", "generator": {"type": "cloth", "size": [0.6, 0.6], "resolution": [12, 12]},

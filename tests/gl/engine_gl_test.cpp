@@ -207,8 +207,8 @@ TEST(EngineGl, ImplicitEulerWarnsWhenPenaltyContactsNeedMoreSubsteps) {
     // Penalty contacts enter the implicit step explicitly (docs/integration.md): at 10⁶ N/m on
     // nodes of ~6 g one substep per frame is beyond their explicit limit; Bridson's are not limited.
     const std::string implicit = R"("time": {"integrator": "implicit_euler"},)";
-    Engine penalty(
-        sceneWith(R"(["springs", "collisions"])", implicit + R"("collision": {"stiffness": 1e6},)"));
+    Engine penalty(sceneWith(R"(["springs", "collisions"])",
+                             implicit + R"("collision": {"stiffness": 1e6, "response": "penalty"},)"));
     ASSERT_EQ(penalty.warnings().size(), 1u);
     EXPECT_NE(penalty.warnings()[0].find("penalty contact"), std::string::npos) << penalty.warnings()[0];
     Engine bridson(sceneWith(R"(["springs", "collisions"])",
@@ -241,7 +241,7 @@ TEST(EngineGl, CollisionEffectsAddTheirPassesAndBuffers) {
                                     "boxFaceList",   "boxPairs",        "candidates",    "undecided",
                                     "intersections", "vertexFacePairs", "edgeEdgePairs", "collisionCounters",
                                     "dispatchArgs"};
-    Engine engine(sceneWith(R"(["collisions", "springs"])"));
+    Engine engine(sceneWith(R"(["collisions", "springs"])", R"("collision": {"response": "penalty"},)"));
     EXPECT_EQ(engine.pipeline(), (Names{"SpringUpdate", "BBUpdate", "BBCollision", "TriTri", "FeaturePairs",
                                         "ContactResponse", "NodeUpdate"}));
     Names buffers = {"positions",         "velocities",     "faces",      "forces",        "springs",
@@ -251,8 +251,17 @@ TEST(EngineGl, CollisionEffectsAddTheirPassesAndBuffers) {
     engine.step();
     EXPECT_TRUE(engine.lastStep().collisions);
     EXPECT_EQ(engine.lastStep().passes.size(), 7u);
+    // A scene that names no response gets the intersection-free one (decision 0024, "The
+    // default"): continuous detection (the CCD) and the checked, cut and guarded step.
+    Engine defaults(sceneWith(R"(["collisions", "springs", "gravity"])"));
+    const Names pipeline = defaults.pipeline();
+    for (const char* pass : {"NodePredict", "Ccd", "SafeStep", "EnergyGuard"})
+        EXPECT_NE(std::find(pipeline.begin(), pipeline.end(), pass), pipeline.end()) << pass;
+    EXPECT_EQ(std::find(pipeline.begin(), pipeline.end(), "NodeUpdate"), pipeline.end())
+        << "the checked step is committed, not integrated again";
     // All pairs needs no leaf boxes (no BBUpdate); its face-pair stage is timed as BBCollision.
-    Engine allPairs(sceneWith(R"(["self_collisions"])", R"("collision": {"broad_phase": "all_pairs"},)"));
+    Engine allPairs(sceneWith(R"(["self_collisions"])",
+                              R"("collision": {"broad_phase": "all_pairs", "response": "penalty"},)"));
     EXPECT_EQ(allPairs.pipeline(),
               (Names{"BBCollision", "TriTri", "FeaturePairs", "ContactResponse", "NodeUpdate"}));
     allPairs.step();

@@ -54,10 +54,18 @@ TEST(PipelinePlan, PassesFollowEffects) {
     EXPECT_EQ(plan.buffers(), (std::vector<std::string>{"positions", "velocities", "faces", "health"}));
 }
 
+/// The penalty response with discrete detection: the AABB-octree paper's pipeline (not the
+/// default, which is intersection_free with continuous detection; decision 0024, "The default").
+void usePenalty(Scene& scene) {
+    scene.collision.response = ContactResponse::Penalty;
+    scene.collision.detection = Detection::Discrete;
+}
+
 TEST(PipelinePlan, StagesStateTheSubstepOrderOnce) {
     using engine::Stage;
     Scene scene = defaultScene();
     scene.effects = {Effect::Gravity, Effect::Springs, Effect::Collisions};
+    usePenalty(scene);
     engine::PipelinePlan plan = engine::planPipeline(scene);
     EXPECT_EQ(plan.stages(), (std::vector<Stage>{Stage::SpringUpdate, Stage::CollisionDetection,
                                                  Stage::ContactResponse, Stage::NodeUpdate}));
@@ -78,6 +86,7 @@ TEST(PipelinePlan, ContinuousDetectionPredictsBeforeItDetects) {
     Scene scene = twoNodeScene(10, 0, 1);
     scene.bodies[0].faces = {{0, 1, 0}};
     scene.effects = {Effect::Gravity, Effect::Springs, Effect::Collisions};
+    scene.collision.response = ContactResponse::Penalty;
     scene.collision.detection = Detection::Continuous;
     engine::PipelinePlan plan = engine::planPipeline(scene);
     EXPECT_TRUE(plan.continuous);
@@ -242,6 +251,7 @@ TEST(PipelinePlan, CollisionEffectsAddTheBroadPhaseNarrowPhaseAndResponse) {
     Scene scene = twoNodeScene(10, 0, 1);
     scene.bodies[0].faces = {{0, 1, 0}};
     scene.effects = {Effect::Gravity, Effect::Collisions};
+    usePenalty(scene);
     engine::PipelinePlan plan = engine::planPipeline(scene);
     EXPECT_TRUE(plan.betweenObjects);
     EXPECT_FALSE(plan.selfCollisions);

@@ -258,7 +258,26 @@ TEST(SceneJson, SettingsAndEffects) {
     EXPECT_EQ(s.collision.broadPhase, BroadPhase::Octree) << "documented default";
     EXPECT_EQ(s.collision.octreeDepth, 2);
     EXPECT_EQ(s.collision.precision, TriTriPrecision::Robust);
-    EXPECT_EQ(s.collision.response, ContactResponse::Penalty) << "documented default";
+    // The default response is intersection_free, with continuous detection (decision 0024, "The
+    // default"); penalty and bridson bring discrete detection unless a scene names one.
+    EXPECT_EQ(s.collision.response, ContactResponse::IntersectionFree) << "documented default";
+    EXPECT_EQ(s.collision.detection, Detection::Continuous) << "documented default";
+    const Scene noCollisionObject = parse(scene(kCloth, "", R"(["springs", "self_collisions"])"));
+    EXPECT_EQ(noCollisionObject.collision.response, ContactResponse::IntersectionFree);
+    EXPECT_EQ(noCollisionObject.collision.detection, Detection::Continuous);
+    EXPECT_EQ(
+        parse(scene(kCloth, R"("collision": {"response": "penalty"})", R"(["springs", "self_collisions"])"))
+            .collision.detection,
+        Detection::Discrete);
+    EXPECT_EQ(parse(scene(kCloth, R"("collision": {"response": "penalty", "detection": "continuous"})",
+                          R"(["springs", "self_collisions"])"))
+                  .collision.detection,
+              Detection::Continuous);
+    EXPECT_THAT(
+        errorOf(
+            scene(kCloth, R"("collision": {"detection": "discrete"})", R"(["springs", "self_collisions"])")),
+        HasSubstr("/collision/detection: the default response, intersection_free, needs \"detection\": "
+                  "\"continuous\"; name \"response\": \"penalty\" or \"bridson\" to detect discretely"));
     const Scene c = parse(scene(kCloth, R"("collision": {"broad_phase": "masked", "octree_depth": 3,
         "precision": "fast", "response": "bridson", "thickness": 0.002, "stiffness": 500, "damping": 0.1, "friction": 0.4, "initial_capacity": 1})",
                                 R"(["springs", "self_collisions"])"));
@@ -282,8 +301,9 @@ TEST(SceneJson, SettingsAndEffects) {
                       R"(["springs", "self_collisions"])")),
         HasSubstr(
             "/collision/detection: the intersection_free response needs \"detection\": \"continuous\""));
-    // Its energy guard: on by default, a boolean, its own response's only, and refused with wind
-    // (which does work on the scene) unless switched off.
+    // Its energy guard: on by default, a boolean, its own response's only, and refused where the
+    // scene asks for it with wind (which does work on the scene); by default the engine leaves it
+    // out there.
     EXPECT_TRUE(safe.collision.energyGuard) << "documented default";
     EXPECT_FALSE(
         parse(scene(kCloth, R"("collision": {"response": "intersection_free", "energy_guard": false})",
@@ -297,10 +317,13 @@ TEST(SceneJson, SettingsAndEffects) {
                       R"(["springs", "self_collisions"])")),
         HasSubstr("/collision/energy_guard: only the \"intersection_free\" response has an energy guard"));
     EXPECT_THAT(
-        errorOf(scene(kCloth,
-                      R"("wind": {"velocity": [1, 0, 0]}, "collision": {"response": "intersection_free"})",
-                      R"(["springs", "wind", "self_collisions"])")),
+        errorOf(scene(
+            kCloth,
+            R"("wind": {"velocity": [1, 0, 0]}, "collision": {"response": "intersection_free", "energy_guard": true})",
+            R"(["springs", "wind", "self_collisions"])")),
         HasSubstr("/collision/energy_guard: the energy guard needs a closed scene"));
+    EXPECT_NO_THROW(parse(
+        scene(kCloth, R"("wind": {"velocity": [1, 0, 0]})", R"(["springs", "wind", "self_collisions"])")));
     EXPECT_NO_THROW(parse(scene(
         kCloth,
         R"("wind": {"velocity": [1, 0, 0]}, "collision": {"response": "intersection_free", "energy_guard": false})",

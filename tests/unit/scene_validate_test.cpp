@@ -50,7 +50,7 @@ TEST(SceneValidate, AcceptsAValidScene) {
 }
 
 TEST(SceneValidate, RejectsBrokenInvariants) {
-    EXPECT_THAT(errorAfter([](Scene& s) { s.collision.response = ContactResponse::IntersectionFree; }),
+    EXPECT_THAT(errorAfter([](Scene& s) { s.collision.detection = Detection::Discrete; }),
                 HasSubstr("intersection_free needs collision.detection continuous"));
     EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].masses.pop_back(); }),
                 HasSubstr("body 0 'pair': per-node vectors differ in length"));

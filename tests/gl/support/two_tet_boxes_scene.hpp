@@ -11,7 +11,7 @@ namespace glcollide::test {
 
 inline Scene twoOverlappingTetBoxes(const std::string& precision) {
     const std::string json = R"({"format_version": 1, "name": "two tet boxes",
-      "effects": ["springs", "collisions"], "collision": {"precision": ")" +
+      "effects": ["springs", "collisions"], "collision": {"response": "penalty", "precision": ")" +
                              precision + R"("},
       "objects": [
         {"name": "a", "generator": {"type": "tet_box", "size": [1, 1, 1], "resolution": [1, 1, 1]},
