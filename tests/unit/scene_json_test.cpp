@@ -324,6 +324,9 @@ TEST(SceneJson, SettingsAndEffects) {
         HasSubstr("/collision/energy_guard: the energy guard needs a closed scene"));
     EXPECT_NO_THROW(parse(
         scene(kCloth, R"("wind": {"velocity": [1, 0, 0]})", R"(["springs", "wind", "self_collisions"])")));
+    EXPECT_NO_THROW(
+        parse(scene(kCloth, R"("wind": {"velocity": [1, 0, 0]}, "collision": {"thickness": 0.01})",
+                    R"(["springs", "wind", "self_collisions"])")));
     EXPECT_NO_THROW(parse(scene(
         kCloth,
         R"("wind": {"velocity": [1, 0, 0]}, "collision": {"response": "intersection_free", "energy_guard": false})",
