@@ -262,6 +262,10 @@ const char* broadPhaseName(BroadPhase kind);
 std::optional<BroadPhase> broadPhaseFromName(std::string_view name);
 /// The response named `name` in scenes ("penalty", "bridson", "intersection_free"); nullopt if unknown.
 std::optional<ContactResponse> responseFromName(std::string_view name);
+/// The detection a response brings when the scene names none (decision 0024, "The default"):
+/// intersection_free's safe step reads the continuous detection's times of impact; penalty and
+/// bridson were built for, and are measured with, the discrete one.
+Detection detectionOf(ContactResponse response);
 
 /// Replaces the scene's broad phase by the one named (the CLI's --broad-phase). Throws
 /// glcollide::Error when the name is unknown or the scene has no collision effect.

@@ -286,9 +286,9 @@ std::vector<ConfigEntry> responseConfigs(const json& e, const Where& at) {
                          [&](const char* n) { return response == n; }))
             (at / "responses" / i).fail("unknown response (expected penalty, bridson or intersection_free)");
         if (!seen.insert(response).second) (at / "responses" / i).fail("duplicate response");
-        json patch = {{"collision",
-                       {{"response", response},
-                        {"detection", response == "intersection_free" ? "continuous" : "discrete"}}}};
+        // The scene's own detection is removed (a merge patch's null): the response brings its
+        // own (detectionOf), as it does in a scene that names none.
+        json patch = {{"collision", {{"response", response}, {"detection", nullptr}}}};
         if (substeps.empty()) {
             configs.push_back({response, patch.dump(), 1});
             continue;

@@ -564,9 +564,7 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
             c.fail(p / "precision", "unknown precision " + shown(*v) + "; expected \"fast\" or \"robust\"");
     }
     // The default response is intersection_free (decision 0024, "The default"). Each response
-    // brings its detection unless the scene names one: the safe step reads the continuous
-    // detection's times of impact and cannot work without them; penalty and bridson were built for
-    // the discrete one.
+    // brings its detection (detectionOf) unless the scene names one.
     const json* response = find(j, "response");
     if (response) {
         const std::optional<ContactResponse> kind = responseFromName(string(c, *response, p / "response"));
@@ -582,7 +580,7 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
                             : "the default response, intersection_free, needs \"detection\": \"continuous\"; "
                               "name \"response\": \"penalty\" or \"bridson\" to detect discretely");
     } else if (!detectionGiven) {
-        s.detection = Detection::Discrete;
+        s.detection = detectionOf(s.response);
     }
     if (const json* v = find(j, "culling")) {
         const std::string name = string(c, *v, p / "culling");
@@ -891,6 +889,10 @@ std::optional<ContactResponse> responseFromName(std::string_view name) {
     if (name == "bridson") return ContactResponse::Bridson;
     if (name == "intersection_free") return ContactResponse::IntersectionFree;
     return std::nullopt;
+}
+
+Detection detectionOf(ContactResponse response) {
+    return response == ContactResponse::IntersectionFree ? Detection::Continuous : Detection::Discrete;
 }
 
 std::optional<BroadPhase> broadPhaseFromName(std::string_view name) {

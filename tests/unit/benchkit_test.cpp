@@ -192,16 +192,21 @@ TEST(BenchkitSuite, ResponseConfigsAreEveryResponseAtEverySubstepCount) {
     EXPECT_EQ(names,
               (std::vector<std::string>{"intersection_free, 1 substep", "intersection_free, 4 substeps",
                                         "penalty, 1 substep", "penalty, 4 substeps"}));
-    // intersection_free with continuous detection (the only one it accepts), the others as measured
-    // in the issue: discrete; the substep count replaces the scene's.
+    // The response replaces the scene's and the scene's detection goes (a merge patch's null), so
+    // each response brings its own (detectionOf), whatever the scene named; the substep count
+    // replaces the scene's.
     const nlohmann::json first = nlohmann::json::parse(e.configs[1].patchJson);
-    EXPECT_EQ(first["collision"]["response"], "intersection_free");
-    EXPECT_EQ(first["collision"]["detection"], "continuous");
-    EXPECT_EQ(first["time"]["substeps"], 4);
+    nlohmann::json patched = {{"collision", {{"response", "bridson"}, {"detection", "discrete"}}}};
+    patched.merge_patch(first);
+    EXPECT_EQ(patched["collision"]["response"], "intersection_free");
+    EXPECT_FALSE(patched["collision"].contains("detection"));
+    EXPECT_EQ(patched["time"]["substeps"], 4);
     const nlohmann::json third = nlohmann::json::parse(e.configs[2].patchJson);
-    EXPECT_EQ(third["collision"]["response"], "penalty");
-    EXPECT_EQ(third["collision"]["detection"], "discrete");
-    EXPECT_EQ(third["time"]["substeps"], 1);
+    patched = {{"collision", {{"response", "intersection_free"}, {"detection", "continuous"}}}};
+    patched.merge_patch(third);
+    EXPECT_EQ(patched["collision"]["response"], "penalty");
+    EXPECT_FALSE(patched["collision"].contains("detection"));
+    EXPECT_EQ(patched["time"]["substeps"], 1);
     // Without substeps: one configuration per response at the scene's own count.
     const Suite own = parseSuite(suiteWith(R"("kind": "response", "responses": ["bridson"], )" + sceneList()),
                                  {}, "t.json");
