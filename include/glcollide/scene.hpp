@@ -161,6 +161,13 @@ struct CollisionSettings {
     /// of its sum) is taken out of the velocities (decision 0024, "Energy guard"). Needs a closed
     /// scene: no wind, which does work on it (the engine leaves it out where the wind blows).
     bool energyGuard = true;
+    /// intersection_free only: how many times per substep Bridson's velocity response runs on the
+    /// contacts, each followed by ContactApply (decision 0024, "Response iterations"). Each pass
+    /// moves a node by the average of its contacts' corrections (Jacobi), so a body resting on many
+    /// contacts needs several to stop its approach; too few under symplectic Euler let a pile sink
+    /// until the safe step froze it. Range 1 ... 64; 0 (default): automatic, 8 under symplectic
+    /// Euler, 4 before an implicit solve (the solve holds the contacts there).
+    int responseIterations = 0;
     std::uint32_t initialCapacity = 4096; ///< >= 1: first size of every pair list (grown on overflow)
     BvhSettings bvh;                      ///< used by BroadPhase::Bvh
     Detection detection = Detection::Continuous;

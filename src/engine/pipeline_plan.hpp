@@ -72,7 +72,8 @@ struct PipelinePlan {
     bool safeStep = false;
     /// Safe step: the velocity response runs this many times, each followed by ContactApply (its
     /// forces into v and x1), so a node in several contacts converges towards stopping all of
-    /// their approaches instead of the single Jacobi average (decision 0024).
+    /// their approaches instead of the single Jacobi average (decision 0024, "Response
+    /// iterations"; CollisionSettings::responseIterations, automaticResponseIterations()).
     int responseIterations = 4;
     NodeUpdateParams contactApplyParams; ///< safe step: ContactApply (contacts and ground only)
     /// Safe step under implicit Euler: the penalty contacts of the last substep's feature pairs
@@ -107,6 +108,9 @@ struct PipelinePlan {
 };
 
 PipelinePlan planPipeline(const Scene& scene);
+/// The intersection-free response's velocity-response iterations per substep when the scene sets
+/// none (CollisionSettings::responseIterations 0): 8 under symplectic Euler, 4 under implicit.
+int automaticResponseIterations(Integrator integrator);
 /// The intersection-free response's part of the plan (its ResponseModel calls it).
 void planSafeStep(const Scene& scene, PipelinePlan& plan);
 

@@ -527,8 +527,9 @@ void requireRadial(const Ctx& c, const CollisionSettings& s, const Ptr& p, const
 CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p,
                 {"broad_phase", "octree_depth", "precision", "response", "thickness", "stiffness", "damping",
-                 "friction", "initial_capacity", "bvh", "detection", "ccd", "energy_guard", "culling",
-                 "ghost_max_perimeter", "observers", "cluster_max_angle", "cluster_max_faces"});
+                 "friction", "initial_capacity", "bvh", "detection", "ccd", "energy_guard",
+                 "response_iterations", "culling", "ghost_max_perimeter", "observers", "cluster_max_angle",
+                 "cluster_max_faces"});
     CollisionSettings s;
     if (const json* v = find(j, "broad_phase")) {
         const std::optional<BroadPhase> kind = broadPhaseFromName(string(c, *v, p / "broad_phase"));
@@ -633,6 +634,12 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
         if (s.response != ContactResponse::IntersectionFree)
             c.fail(p / "energy_guard", "only the \"intersection_free\" response has an energy guard");
         s.energyGuard = v->get<bool>();
+    }
+    if (const json* v = find(j, "response_iterations")) {
+        if (s.response != ContactResponse::IntersectionFree)
+            c.fail(p / "response_iterations",
+                   "only the \"intersection_free\" response iterates its velocity response");
+        s.responseIterations = integer(c, *v, p / "response_iterations", 1, 64);
     }
     if (const json* v = find(j, "thickness")) {
         s.thickness = number(c, *v, p / "thickness", "a positive number of metres");

@@ -51,6 +51,9 @@ void validateScene(const Scene& scene) {
     if (col.initialCapacity < 1) fail("collision.initial_capacity must be >= 1");
     if (col.response == ContactResponse::IntersectionFree && col.detection != Detection::Continuous)
         fail("collision.response intersection_free needs collision.detection continuous");
+    if (col.responseIterations < 0 || col.responseIterations > 64)
+        fail("collision.response_iterations must be 1 … 64 (or 0: automatic), got " +
+             std::to_string(col.responseIterations));
     const int newtonSteps = scene.time.solver.newtonSteps;
     if (newtonSteps < 0 || newtonSteps > 4)
         fail("time.solver.newton_steps must be 1 … 4 (or 0: automatic), got " + std::to_string(newtonSteps));

@@ -153,6 +153,13 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     EXPECT_TRUE(plan.contact.velocityResponse);
     EXPECT_TRUE(plan.contact.repulsion);
     EXPECT_TRUE(plan.nodePredictParams.bandResponse);
+    // The velocity response's iterations: automatic (8 under symplectic Euler, where they are the
+    // contacts' only support), or the scene's.
+    EXPECT_EQ(plan.responseIterations, 8);
+    EXPECT_EQ(plan.responseIterations, engine::automaticResponseIterations(Integrator::SymplecticEuler));
+    scene.collision.responseIterations = 3;
+    EXPECT_EQ(engine::planPipeline(scene).responseIterations, 3);
+    scene.collision.responseIterations = 0;
     // Under implicit Euler the velocity filters (inelastic impulses, friction, the ground's
     // response) act on the start velocity before the solve, and nothing changes v after it: the
     // penalties are in the matrix, so the iterations do not push (no repulsion).
@@ -166,6 +173,7 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
                                   Stage::NodePredict, Stage::RecoveryIterations, Stage::CollisionDetection,
                                   Stage::SafeStep, Stage::EnergyGuard, Stage::Untangle, Stage::Commit}));
     EXPECT_FALSE(plan.contact.repulsion);
+    EXPECT_EQ(plan.responseIterations, 4) << "before the solve, which holds the contacts";
     EXPECT_TRUE(plan.contact.predictedForces);
     EXPECT_FALSE(plan.nodePredictParams.bandResponse);
     EXPECT_TRUE(plan.contactApplyParams.bandResponse);

@@ -316,6 +316,20 @@ TEST(SceneJson, SettingsAndEffects) {
         errorOf(scene(kCloth, R"("collision": {"response": "bridson", "energy_guard": true})",
                       R"(["springs", "self_collisions"])")),
         HasSubstr("/collision/energy_guard: only the \"intersection_free\" response has an energy guard"));
+    // Its velocity-response iterations: automatic (0) unless set, 1 ... 64, its own response's only.
+    EXPECT_EQ(safe.collision.responseIterations, 0) << "documented default: automatic";
+    EXPECT_EQ(parse(scene(kCloth, R"("collision": {"response_iterations": 12})",
+                          R"(["springs", "self_collisions"])"))
+                  .collision.responseIterations,
+              12);
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"response_iterations": 65})",
+                              R"(["springs", "self_collisions"])")),
+                HasSubstr("/collision/response_iterations: expected an integer in [1, 64], got 65"));
+    EXPECT_THAT(
+        errorOf(scene(kCloth, R"("collision": {"response": "penalty", "response_iterations": 8})",
+                      R"(["springs", "self_collisions"])")),
+        HasSubstr("/collision/response_iterations: only the \"intersection_free\" response iterates its "
+                  "velocity response"));
     EXPECT_THAT(
         errorOf(scene(
             kCloth,
