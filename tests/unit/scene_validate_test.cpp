@@ -52,6 +52,8 @@ TEST(SceneValidate, AcceptsAValidScene) {
 TEST(SceneValidate, RejectsBrokenInvariants) {
     EXPECT_THAT(errorAfter([](Scene& s) { s.collision.detection = Detection::Discrete; }),
                 HasSubstr("intersection_free needs collision.detection continuous"));
+    EXPECT_THAT(errorAfter([](Scene& s) { s.collision.responseIterations = -1; }),
+                HasSubstr("collision.response_iterations must be 1 … 64 (or 0: automatic), got -1"));
     EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].masses.pop_back(); }),
                 HasSubstr("body 0 'pair': per-node vectors differ in length"));
     EXPECT_THAT(errorAfter([](Scene& s) { s.bodies[0].masses[1] = 0; }),
