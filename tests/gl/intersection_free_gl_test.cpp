@@ -75,6 +75,24 @@ EnergyReport expectNoEnergyGain(const Engine& engine, const EnergyReport& start,
     return end;
 }
 
+/// What a run of frames showed the safe step and the contacts do, each frame checked for energy gain.
+struct FramesRun {
+    std::uint32_t cutSubsteps = 0; ///< substeps the safe step cut
+    std::uint32_t maxContacts = 0; ///< the most contacts of a frame's last substep
+};
+
+FramesRun runFramesWithoutEnergyGain(Engine& engine, int frames) {
+    FramesRun run;
+    EnergyReport last = engine.energy();
+    for (int frame = 1; frame <= frames; ++frame) {
+        engine.step();
+        last = expectNoEnergyGain(engine, last, frame);
+        run.cutSubsteps += engine.lastStep().collision.safeStepSubsteps;
+        run.maxContacts = std::max(run.maxContacts, engine.lastStep().collision.contacts);
+    }
+    return run;
+}
+
 std::string pinnedBorder(int n) {
     std::ostringstream s;
     s << "[";
@@ -270,17 +288,10 @@ TEST(IntersectionFreeGl, ATwistedSleeveIsNotFrozenByPairsThatNothingPushesApart)
          "angular_velocity": [0, 40, 0],
          "pinned": {"inside": {"min": [-0.1, 0.749, -0.1], "max": [0.1, 0.751, 0.1]}}}]})";
     Engine engine(parseScene(json, ".", "twisted sleeve"));
-    EnergyReport last = engine.energy();
-    std::uint32_t cutSubsteps = 0, maxContacts = 0;
     const int frames = 30;
-    for (int frame = 1; frame <= frames; ++frame) {
-        engine.step();
-        last = expectNoEnergyGain(engine, last, frame);
-        cutSubsteps += engine.lastStep().collision.safeStepSubsteps;
-        maxContacts = std::max(maxContacts, engine.lastStep().collision.contacts);
-    }
-    EXPECT_GT(maxContacts, 20u) << "the sleeve must wrap onto itself, or the test shows nothing";
-    EXPECT_LE(cutSubsteps, static_cast<std::uint32_t>(2 * frames / 20))
+    const FramesRun run = runFramesWithoutEnergyGain(engine, frames);
+    EXPECT_GT(run.maxContacts, 20u) << "the sleeve must wrap onto itself, or the test shows nothing";
+    EXPECT_LE(run.cutSubsteps, static_cast<std::uint32_t>(2 * frames / 20))
         << "safe-step cuts in " << 2 * frames << " substeps";
     EXPECT_EQ(exactIntersectingPairs(engine), 0u);
 }
@@ -312,18 +323,11 @@ TEST(IntersectionFreeGl, APileUnderSymplecticEulerIsHeldByItsContactsNotFrozen) 
         {"name": "d", "transform": {"translate": [0.02, 1.25, 0.1]}, )" +
         ball + R"(}]})";
     Engine engine(parseScene(json, ".", "pile"));
-    EnergyReport last = engine.energy();
-    std::uint32_t cutSubsteps = 0, maxContacts = 0;
     const int frames = 45;
-    for (int frame = 1; frame <= frames; ++frame) {
-        engine.step();
-        last = expectNoEnergyGain(engine, last, frame);
-        cutSubsteps += engine.lastStep().collision.safeStepSubsteps;
-        maxContacts = std::max(maxContacts, engine.lastStep().collision.contacts);
-    }
+    const FramesRun run = runFramesWithoutEnergyGain(engine, frames);
     const std::uint32_t substeps = static_cast<std::uint32_t>(frames * engine.substepInfo().substeps);
-    EXPECT_GT(maxContacts, 10u) << "the balls must land on each other, or the test shows nothing";
-    EXPECT_LE(cutSubsteps, substeps / 20) << "safe-step cuts in " << substeps << " substeps";
+    EXPECT_GT(run.maxContacts, 10u) << "the balls must land on each other, or the test shows nothing";
+    EXPECT_LE(run.cutSubsteps, substeps / 20) << "safe-step cuts in " << substeps << " substeps";
     EXPECT_EQ(exactIntersectingPairs(engine), 0u);
 }
 
