@@ -15,6 +15,9 @@
 //        (1.0 when false); glcCcdCapped, true when the budget of boxes ran out (the answer is then
 //        "may collide" with the lower bound reached); glcCcdBoxes, boxes evaluated.
 //
+// First, a separating-plane certificate decided in integers (glcCcdPlaneSeparated; docs/ccd.md,
+// "Separating plane"): a plane that keeps the primitives' nodes more than minSeparation apart at
+// t = 0 and at t = 1 answers "no collision" without a box.
 // Method: inclusion-based bisection over (t, u, v) in the style of Tight-Inclusion (Wang et al.
 // 2021). F(t, u, v) = (point on one primitive) - (point on the other) is multilinear in t, u and
 // v, so over a box it is a convex combination of its 8 corner values: a box whose corner values
@@ -68,6 +71,9 @@ const float GLC_CCD_FLUSH_BOUND = 7.8886090522101181e-31f; // 2^-100
 // separate it from the error). Range > 0; smaller gives fewer false positives and more boxes.
 // Suggested 1.
 const float GLC_CCD_ACCEPT_WIDTH = 1.0f;
+// GLC_CCD_SEPARATION_ACCEPT: with a minimum separation delta > 0, a box that cannot be dropped is
+// also accepted once the image of every coordinate is no wider than this fraction of delta.
+const float GLC_CCD_SEPARATION_ACCEPT = 0.25f;
 
 // GLC_CCD_DIRECTION_ROUNDINGS (N_D): as N, for the projection n . F of the corner values on a
 // direction n: fully expanded, 54 monomials of at most four factors, 56 roundings in the worst
@@ -147,21 +153,33 @@ float glcCcdGamma(float roundings) {
 // drops it with the same guarantee as the axis test: |F|_inf > minSeparation on the whole box
 // (a rounding cover that widens minSeparation per coordinate stays valid, see query ccd).
 
-// A direction for the box: the normal of the triangle (vertex-face) or the cross product of the two
-// edges (edge-edge) at time t, rounded to integers of magnitude < 2^11 (zero when the cross product
-// is below 2^-100, a degenerate triangle or parallel edges). Any direction is sound; integers make
-// |n|_1 exact, and the rounding through trunc() keeps a compiler from expanding n into the
-// projection (the error bounds below hold for the values of n, not of its formula).
-vec3 glcCcdDirection(bool edgeEdge, vec3 p, vec3 a, vec3 b, vec3 c) {
-    vec3 raw = edgeEdge ? cross(a - p, c - b) : cross(b - a, c - a);
+// A vector rounded to integers of magnitude < 2^bits (bits in 1 ... 24) in the same direction
+// (zero when it is below 2^-100, and for NaN). Integers make |n|_1 exact, and the rounding through
+// trunc() keeps a compiler from expanding n's formula into a projection (the error bounds below
+// hold for the values of n, not of its formula).
+vec3 glcCcdIntegerDirectionBits(vec3 raw, int bits) {
     vec3 m = abs(raw);
     float largest = max(m.x, max(m.y, m.z));
     if (!(largest >= 7.8886090522101181e-31f)) return vec3(0.0f); // 2^-100; also NaN
     // largest in [2^(E-127), 2^(E-126)) with E its biased exponent (27 ... 254): times
-    // 2^(137 - E) it lies in [2^10, 2^11). The scale's biased exponent 264 - E is in [10, 237].
+    // 2^(126 + bits - E) it lies in [2^(bits-1), 2^bits). The scale's biased exponent
+    // 253 + bits - E is in [bits - 1, 226 + bits]: a normal float.
     int biasedExponent = int((floatBitsToUint(largest) >> 23) & 255u);
-    float scale = uintBitsToFloat(uint(264 - biasedExponent) << 23);
+    float scale = uintBitsToFloat(uint(253 + bits - biasedExponent) << 23);
     return trunc(raw * scale);
+}
+
+// The float search's directions: integers below 2^11, so that its projections' error bounds stay
+// small (GLC_CCD_DIRECTION_ROUNDINGS).
+vec3 glcCcdIntegerDirection(vec3 raw) {
+    return glcCcdIntegerDirectionBits(raw, 11);
+}
+
+// A direction for the box: the normal of the triangle (vertex-face) or the cross product of the two
+// edges (edge-edge) at time t, as an integer direction (zero for a degenerate triangle or parallel
+// edges). Any direction is sound.
+vec3 glcCcdDirection(bool edgeEdge, vec3 p, vec3 a, vec3 b, vec3 c) {
+    return glcCcdIntegerDirection(edgeEdge ? cross(a - p, c - b) : cross(b - a, c - a));
 }
 
 // |n|_1 of an integer direction (exact: three integers below 2^11).
@@ -327,6 +345,145 @@ bool glcCcdProjectionClear(vec3 n, vec3 f0, vec3 f1, vec3 f2, vec3 f3, vec3 f4, 
     return sides == 8 || sides == -8;
 }
 
+// ---------------------------------------------------------------------------------------------
+// The separating-plane certificate (normalized inputs; docs/ccd.md, "Separating plane"), decided
+// before the search, in integers. Every point of a primitive is a convex combination of its nodes,
+// and every node moves linearly, so when n . (x_a - x_b) > delta |n|_1 holds for every node a of
+// the first primitive and b of the second at t = 0 and at t = 1, it holds at every t between (each
+// is linear in t) and for every pair of points of the two primitives (convex combinations):
+// |F|_inf >= n . F / |n|_1 > delta throughout the substep, and no box needs searching. Decided
+// exactly on the refutation's grid: X = int(x 2^29) is within one unit of x 2^29, so
+// n . (x_a - x_b) 2^29 > N - 2 |n|_1 with N = n . (X_a - X_b), an integer below 2^52 (96-bit
+// limbs, glcCcdTimes); with D >= delta 2^29 an integer, N > (D + 2) |n|_1 proves the inequality.
+// n is an integer direction below 2^20 (exact |n|_1); which one does not matter for soundness: the offset
+// between the primitives' closest points at t = 0, then at t = 1, then at t = 1/2, computed in
+// float without a division. It separates pairs that stay apart while they move — resting contacts sliding, bodies
+// falling together — at gaps down to a few units of 2^-29 of the coordinates, where the float
+// search is below its error bound (about 2^-15) and the refutation gives up at GLC_CCD_REFUTE_WIDTH
+// (2^-12) in the configurations its projection on the normal cannot decide (a vertex beside a
+// face's edge or corner, edges meeting near their ends). No floating-point operation decides.
+
+// The offset from the closest point of triangle abc to p (Ericson, Real-Time Collision Detection,
+// 5.1.5), times a positive factor: written without a division, so that every device that
+// evaluates the GLSL as written (llvmpipe divides by a reciprocal) computes the same bits as the
+// C++ twin. A degenerate triangle gives some offset, or zero; any direction will do.
+vec3 glcCcdTriangleOffset(vec3 p, vec3 a, vec3 b, vec3 c) {
+    vec3 ab = b - a, ac = c - a, ap = p - a;
+    float d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if (d1 <= 0.0f && d2 <= 0.0f) return ap;
+    vec3 bp = p - b;
+    float d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if (d3 >= 0.0f && d4 <= d3) return bp;
+    float vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) return (d1 - d3) * ap - d1 * ab; // edge ab
+    vec3 cp = p - c;
+    float d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if (d6 >= 0.0f && d5 <= d6) return cp;
+    float vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) return (d2 - d6) * ap - d2 * ac; // edge ac
+    float va = d3 * d6 - d5 * d4;
+    float e4 = d4 - d3, e5 = d5 - d6;
+    if (va <= 0.0f && e4 >= 0.0f && e5 >= 0.0f) return (e4 + e5) * bp - e4 * (c - b); // edge bc
+    return (va + vb + vc) * ap - vb * ab - vc * ac; // the interior
+}
+
+// The offset from the closest point of segment bc to the closest point of segment pa (Sunday's
+// clamped form of Ericson 5.1.9: s = sN / sD, t = tN / tD), times sD tD > 0, without a division.
+vec3 glcCcdSegmentOffset(vec3 p, vec3 a, vec3 b, vec3 c) {
+    vec3 u = a - p, v = c - b, w = p - b;
+    float A = dot(u, u), B = dot(u, v), C = dot(v, v), D = dot(u, w), E = dot(v, w);
+    float det = A * C - B * B;
+    float sN = 0.0f, sD = 1.0f, tN = E, tD = C;
+    if (det > 0.0f) {
+        sN = B * E - C * D; sD = det; tN = A * E - B * D; tD = det;
+        if (sN < 0.0f) { sN = 0.0f; tN = E; tD = C; }
+        else if (sN > sD) { sN = sD; tN = E + B; tD = C; }
+    }
+    if (!(tD > 0.0f)) { tN = 0.0f; tD = 1.0f; } // a point for an edge
+    if (tN < 0.0f) {
+        tN = 0.0f;
+        if (-D < 0.0f) sN = 0.0f;
+        else if (-D > A) sN = sD;
+        else { sN = -D; sD = A; }
+    } else if (tN > tD) {
+        tN = tD;
+        if (B - D < 0.0f) sN = 0.0f;
+        else if (B - D > A) sN = sD;
+        else { sN = B - D; sD = A; }
+    }
+    return (sD * tD) * w + (sN * tD) * u - (tN * sD) * v;
+}
+
+// The offset from the second primitive's closest point to the first's, in glcCcdF's order, times a
+// positive factor.
+vec3 glcCcdClosestOffset(bool edgeEdge, vec3 p, vec3 a, vec3 b, vec3 c) {
+    if (edgeEdge) return glcCcdSegmentOffset(p, a, b, c);
+    return glcCcdTriangleOffset(p, a, b, c);
+}
+
+// n . (X - Y) - threshold as a 96-bit integer (X, Y quantized points, n an integer direction;
+// |n_i (X_i - Y_i)| < 2^50).
+uvec3 glcCcdPlaneExcess(ivec3 n, ivec3 x, ivec3 y, uvec3 threshold) {
+    ivec3 d = x - y; // |d| < 2^30
+    uvec3 sum = glcCcdAdd(~threshold, uvec3(1u, 0u, 0u)); // -threshold
+    for (int i = 0; i < 3; ++i) {
+        int signedD = n[i] < 0 ? -d[i] : d[i];
+        sum = glcCcdAdd(sum, glcCcdTimes(glcCcdWide(signedD), uint(abs(n[i]))));
+    }
+    return sum;
+}
+
+// Whether a 96-bit two's complement integer is > 0.
+bool glcCcdPositive(uvec3 a) {
+    return (a.z >> 31) == 0u && (a.x | a.y | a.z) != 0u;
+}
+
+// Whether n separates the first primitive (vertex p, or edge pa) from the second (face abc, or
+// edge bc) by more than the threshold at one time (quantized points).
+bool glcCcdPlaneSeparates(bool edgeEdge, ivec3 n, ivec3 p, ivec3 a, ivec3 b, ivec3 c, uvec3 threshold) {
+    if (edgeEdge)
+        return glcCcdPositive(glcCcdPlaneExcess(n, p, b, threshold)) &&
+               glcCcdPositive(glcCcdPlaneExcess(n, p, c, threshold)) &&
+               glcCcdPositive(glcCcdPlaneExcess(n, a, b, threshold)) &&
+               glcCcdPositive(glcCcdPlaneExcess(n, a, c, threshold));
+    return glcCcdPositive(glcCcdPlaneExcess(n, p, a, threshold)) &&
+           glcCcdPositive(glcCcdPlaneExcess(n, p, b, threshold)) &&
+           glcCcdPositive(glcCcdPlaneExcess(n, p, c, threshold));
+}
+
+// Whether the integer direction of `offset` separates the primitives by more than delta at t = 0
+// and at t = 1 (S: the quantized points at t = 0, E: at t = 1; D >= delta 2^29).
+bool glcCcdPlaneSeparatesBoth(bool edgeEdge, vec3 offset, ivec3 S0, ivec3 S1, ivec3 S2, ivec3 S3, ivec3 E0,
+                              ivec3 E1, ivec3 E2, ivec3 E3, uint D) {
+    // 20 bits: the direction of a close pair's offset, kept to 2^-20, must not tilt the plane into
+    // the nodes of a pair that slides far compared with its gap.
+    vec3 direction = glcCcdIntegerDirectionBits(offset, 20);
+    if (direction == vec3(0.0f)) return false;
+    ivec3 n = ivec3(direction); // exact: integers below 2^20
+    uint norm = uint(abs(n.x) + abs(n.y) + abs(n.z));
+    uvec3 threshold = glcCcdTimes(uvec3(D + 2u, 0u, 0u), norm); // (D + 2) |n|_1 < 2^29 2^22
+    return glcCcdPlaneSeparates(edgeEdge, n, S0, S1, S2, S3, threshold) &&
+           glcCcdPlaneSeparates(edgeEdge, n, E0, E1, E2, E3, threshold);
+}
+
+// True when a plane keeps the primitives more than delta apart over the whole substep (exact).
+bool glcCcdPlaneSeparated(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e0, vec3 e1, vec3 e2, vec3 e3,
+                          float delta) {
+    if (!(delta < 0.5f)) return false; // D + 2 must fit 32 bits (and NaN)
+    uint D = uint(ceil(delta * 536870912.0f)); // times 2^29 (exact), rounded up: D >= delta 2^29
+    ivec3 S0 = glcCcdQuantize(s0), S1 = glcCcdQuantize(s1), S2 = glcCcdQuantize(s2), S3 = glcCcdQuantize(s3);
+    ivec3 E0 = glcCcdQuantize(e0), E1 = glcCcdQuantize(e1), E2 = glcCcdQuantize(e2), E3 = glcCcdQuantize(e3);
+    if (glcCcdPlaneSeparatesBoth(edgeEdge, glcCcdClosestOffset(edgeEdge, s0, s1, s2, s3), S0, S1, S2, S3, E0, E1,
+                                 E2, E3, D))
+        return true;
+    if (glcCcdPlaneSeparatesBoth(edgeEdge, glcCcdClosestOffset(edgeEdge, e0, e1, e2, e3), S0, S1, S2, S3, E0, E1,
+                                 E2, E3, D))
+        return true;
+    vec3 middle = glcCcdClosestOffset(edgeEdge, glcCcdAt(s0, e0, 0.5f), glcCcdAt(s1, e1, 0.5f),
+                                      glcCcdAt(s2, e2, 0.5f), glcCcdAt(s3, e3, 0.5f));
+    return glcCcdPlaneSeparatesBoth(edgeEdge, middle, S0, S1, S2, S3, E0, E1, E2, E3, D);
+}
+
 // The float search (normalized inputs): true when some box may hold a contact; sets glcCcdToi,
 // glcCcdCapped and counts glcCcdBoxes.
 bool glcCcdFloatSearch(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e0, vec3 e1, vec3 e2, vec3 e3,
@@ -375,7 +532,7 @@ bool glcCcdFloatSearch(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e
         vec3 errorBound = gamma * monomials + vec3(GLC_CCD_FLUSH_BOUND);
         vec3 threshold = vec3(delta) + errorBound;
         threshold = threshold + threshold * 9.5367431640625e-7f; // its own two roundings: 2^-20 of it
-        vec3 acceptWidth = GLC_CCD_ACCEPT_WIDTH * errorBound;
+        vec3 acceptWidth = max(GLC_CCD_ACCEPT_WIDTH * errorBound, vec3(GLC_CCD_SEPARATION_ACCEPT * delta));
         // Drop the box when one coordinate is beyond the threshold at every corner.
         if (lo.x > threshold.x || lo.y > threshold.y || lo.z > threshold.z) continue;
         if (hi.x < -threshold.x || hi.y < -threshold.y || hi.z < -threshold.z) continue;
@@ -450,6 +607,11 @@ bool glcCcdRefute(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e0, ve
         vec3 hi = max(max(max(f0, f1), max(f2, f3)), max(max(f4, f5), max(f6, f7)));
         if (lo.x > reachAxis || lo.y > reachAxis || lo.z > reachAxis) continue;
         if (hi.x < -reachAxis || hi.y < -reachAxis || hi.z < -reachAxis) continue;
+        // A box whose every value is within delta in every coordinate holds a contact (within
+        // delta): nothing here can be refuted, so stop at once instead of at the refutation width.
+        float inner = delta - (reachAxis - delta);
+        if (hi.x < inner && hi.y < inner && hi.z < inner && lo.x > -inner && lo.y > -inner && lo.z > -inner)
+            return false;
         // The projection on the normal at the box's middle time: exact n . (quantized F) is within
         // sum_i |n_i| 2^-27 of n . F; computed from the converted values it is within 2^-18 of
         // |n| . |f| (any order, even distributed over the six pieces: 19 roundings).
@@ -483,6 +645,10 @@ bool glcCcdInclusion(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e0,
     e0 = e0 * scale; e1 = e1 * scale; e2 = e2 * scale; e3 = e3 * scale;
     float delta = max(minSeparation, 0.0f) * scale;
 
+    if (glcCcdPlaneSeparated(edgeEdge, s0, s1, s2, s3, e0, e1, e2, e3, delta)) {
+        glcCcdToi = 1.0f;
+        return false;
+    }
     bool mayCollide = glcCcdFloatSearch(edgeEdge, s0, s1, s2, s3, e0, e1, e2, e3, delta,
                                         budget - budget / GLC_CCD_REFUTE_SHARE);
     if (mayCollide && glcCcdRefute(edgeEdge, s0, s1, s2, s3, e0, e1, e2, e3, delta, budget - glcCcdBoxes)) {
