@@ -71,9 +71,6 @@ const float GLC_CCD_FLUSH_BOUND = 7.8886090522101181e-31f; // 2^-100
 // separate it from the error). Range > 0; smaller gives fewer false positives and more boxes.
 // Suggested 1.
 const float GLC_CCD_ACCEPT_WIDTH = 1.0f;
-// GLC_CCD_SEPARATION_ACCEPT: with a minimum separation delta > 0, a box that cannot be dropped is
-// also accepted once the image of every coordinate is no wider than this fraction of delta.
-const float GLC_CCD_SEPARATION_ACCEPT = 0.25f;
 
 // GLC_CCD_DIRECTION_ROUNDINGS (N_D): as N, for the projection n . F of the corner values on a
 // direction n: fully expanded, 54 monomials of at most four factors, 56 roundings in the worst
@@ -532,7 +529,7 @@ bool glcCcdFloatSearch(bool edgeEdge, vec3 s0, vec3 s1, vec3 s2, vec3 s3, vec3 e
         vec3 errorBound = gamma * monomials + vec3(GLC_CCD_FLUSH_BOUND);
         vec3 threshold = vec3(delta) + errorBound;
         threshold = threshold + threshold * 9.5367431640625e-7f; // its own two roundings: 2^-20 of it
-        vec3 acceptWidth = max(GLC_CCD_ACCEPT_WIDTH * errorBound, vec3(GLC_CCD_SEPARATION_ACCEPT * delta));
+        vec3 acceptWidth = GLC_CCD_ACCEPT_WIDTH * errorBound;
         // Drop the box when one coordinate is beyond the threshold at every corner.
         if (lo.x > threshold.x || lo.y > threshold.y || lo.z > threshold.z) continue;
         if (hi.x < -threshold.x || hi.y < -threshold.y || hi.z < -threshold.z) continue;

@@ -393,29 +393,6 @@ CCD_TEST(MinimumSeparationCountsEuclideanDistance) {
     EXPECT_TRUE(floatCcd(over, d).mayCollide); // exactly d: touching the separation counts
 }
 
-// A pair entering its separation band while it slides (GLC_CCD_SEPARATION_ACCEPT): a vertex 4.7
-// units above a face of edge 100 sinks to 1.4 units while sliding 20 units, separation 2.35 (the
-// safe step's half gap; the proportions of a resting tet box in decision 0024's tet pile, where
-// such pairs used up the engine's 4,096 boxes and answered at their lower bound). The band is
-// entered at t* = (4.7 - 2.35) / (4.7 - 1.4); with a face normal along z the inf-norm gap is the
-// height, so the time of impact must be at most t*, and not earlier than the time the height is
-// within a quarter of the separation more (the widest box the rule accepts), minus the search's
-// tolerance 2^-12. Decided in 1,208 boxes (without the rule: capped at 3,859, time of impact 0.5).
-CCD_TEST(APairEnteringItsSeparationWhileSlidingIsDecidedWithinTheBudget) {
-    const vec3 a(0, 0, 0), b(100, 0, 0), c(0, 100, 0);
-    const float h0 = 4.7f, h1 = 1.4f, separation = 2.35f;
-    for (int e = -20; e <= 20; e += 5) {
-        const FloatQuery sinking = scaled(vf({30, 40, h0}, a, b, c, {45, 53, h1}, a, b, c), e);
-        const FloatAnswer answer = floatCcd(sinking, std::ldexp(separation, e), 4096);
-        EXPECT_TRUE(answer.mayCollide) << e;
-        EXPECT_FALSE(answer.capped) << e;
-        EXPECT_LT(shader::glcCcdBoxes, 2048) << e;
-        const float entry = (h0 - separation) / (h0 - h1), widest = (h0 - 1.25f * separation) / (h0 - h1);
-        EXPECT_LE(answer.toi, entry) << e;
-        EXPECT_GE(answer.toi, widest - 0x1p-12f) << e;
-    }
-}
-
 CCD_TEST(OutOfBudgetAnswersMayCollideWithALowerBound) {
     // A crossing at 3/7 with one box allowed: capped, "may collide", time of impact 0 (nothing
     // was excluded). With a few boxes: still never later than 3/7.
