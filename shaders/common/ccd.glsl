@@ -352,13 +352,14 @@ bool glcCcdProjectionClear(vec3 n, vec3 f0, vec3 f1, vec3 f2, vec3 f3, vec3 f4, 
 // exactly on the refutation's grid: X = int(x 2^29) is within one unit of x 2^29, so
 // n . (x_a - x_b) 2^29 > N - 2 |n|_1 with N = n . (X_a - X_b), an integer below 2^52 (96-bit
 // limbs, glcCcdTimes); with D >= delta 2^29 an integer, N > (D + 2) |n|_1 proves the inequality.
-// n is an integer direction below 2^20 (exact |n|_1); which one does not matter for soundness: the offset
-// between the primitives' closest points at t = 0, then at t = 1, then at t = 1/2, computed in
-// float without a division. It separates pairs that stay apart while they move — resting contacts sliding, bodies
-// falling together — at gaps down to a few units of 2^-29 of the coordinates, where the float
-// search is below its error bound (about 2^-15) and the refutation gives up at GLC_CCD_REFUTE_WIDTH
-// (2^-12) in the configurations its projection on the normal cannot decide (a vertex beside a
-// face's edge or corner, edges meeting near their ends). No floating-point operation decides.
+// n is an integer direction below 2^20 (exact |n|_1); which one does not matter for soundness:
+// the offset between the primitives' closest points at t = 0, then at t = 1, then at t = 1/2,
+// computed in float without a division. It separates pairs that stay apart while they move —
+// resting contacts sliding, bodies falling together — at gaps down to a few units of 2^-29 of the
+// coordinates, where the float search is below its error bound (about 2^-15) and the refutation
+// gives up at GLC_CCD_REFUTE_WIDTH (2^-12) in the configurations its projection on the normal
+// cannot decide (a vertex beside a face's edge or corner, edges meeting near their ends). No
+// floating-point operation decides.
 
 // The offset from the closest point of triangle abc to p (Ericson, Real-Time Collision Detection,
 // 5.1.5), times a positive factor: written without a division, so that every device that
