@@ -244,6 +244,11 @@ struct EnergyReport {
     /// GPU, each off by at most this (EnergyGuardPass::resolutionFactor × the terms' magnitude
     /// scale); it lets the total rise by the start's plus the end's. 0 for the other responses.
     double resolution = 0.0;
+    /// J: the part of `contact` a float evaluation of the same state may count differently — the
+    /// contacts of feature pairs at the boundary of their closest-feature regions (an edge's end, a
+    /// face's edge), where which pair counts a vertex near an edge jumps (decision 0024, "Known
+    /// failures"): the GPU's sum may differ from `contact` by up to this. Usually 0.
+    double contactAmbiguity = 0.0;
     [[nodiscard]] double total() const { return kinetic + potential + contact; }
 };
 

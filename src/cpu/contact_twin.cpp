@@ -417,6 +417,87 @@ std::vector<ContactGeometry> contactGeometries(const ContactParams& params, cons
     return contacts;
 }
 
+namespace {
+
+struct Interval {
+    double lo, hi;
+};
+
+// [n.lo, n.hi] / [d.lo, d.hi] for d.lo > 0.
+Interval quotient(Interval n, Interval d) {
+    const double q[4] = {n.lo / d.lo, n.lo / d.hi, n.hi / d.lo, n.hi / d.hi};
+    return {*std::min_element(q, q + 4), *std::max_element(q, q + 4)};
+}
+
+// Edge-edge: contact_pair.glsl counts the pair exactly when the closest points of the two lines,
+// s0 = (b·f − c·e)/D and t0 = (a·f − b·c)/D with D = a·e − b² (closestSegmentParams' dot products),
+// both lie strictly inside (0, 1) and the pair is closer than the thickness. With every dot product
+// off by up to `slack` of itself, s0 and t0 lie in intervals; when those straddle the square's
+// border, or D may be ≤ 0 (nearly parallel edges: the float s0 is then any number), a float
+// evaluation may decide either way. Such a pair's contact, counted at any pair of points, is at
+// most as deep as the segments' distance allows: ½·k·(h − distance)².
+double edgeEdgeAmbiguity(const ContactParams& params, const glm::dvec3& p0, const glm::dvec3& p1,
+                         const glm::dvec3& q0, const glm::dvec3& q1, double slack, bool counted) {
+    const glm::dvec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+    const double a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r), c = glm::dot(d1, r),
+                 b = glm::dot(d1, d2);
+    const auto [s, t] = closestSegmentParams(p0, p1, q0, q1);
+    const double distance = glm::length((p0 + s * d1) - (q0 + t * d2));
+    if (!(distance < params.thickness) || !(a > 0.0) || !(e > 0.0)) return 0.0;
+    const double depthEnergy =
+        0.5 * params.stiffness * (params.thickness - distance) * (params.thickness - distance);
+    const double D = a * e - b * b, dD = 2.0 * slack * (a * e + b * b);
+    if (!(D - dD > 0.0)) return depthEnergy; // nearly parallel: either way
+    const double ns = b * f - c * e, dns = 2.0 * slack * (std::abs(b * f) + std::abs(c * e));
+    const double nt = a * f - b * c, dnt = 2.0 * slack * (std::abs(a * f) + std::abs(b * c));
+    const Interval den{D - dD, D + dD};
+    const Interval si = quotient({ns - dns, ns + dns}, den), ti = quotient({nt - dnt, nt + dnt}, den);
+    const bool surelyInside = si.lo > 0.0 && si.hi < 1.0 && ti.lo > 0.0 && ti.hi < 1.0;
+    const bool surelyOutside = si.hi <= 0.0 || si.lo >= 1.0 || ti.hi <= 0.0 || ti.lo >= 1.0;
+    return (counted ? surelyInside : surelyOutside) ? 0.0 : depthEnergy;
+}
+
+} // namespace
+
+double ambiguousContactEnergy(const ContactParams& params, const ContactInput& in,
+                              const FeaturePairList& pairs, double relativeSlack) {
+    const std::vector<glm::dvec3>& x = *in.positions;
+    std::vector<glm::dvec3> moved = x; // a face's nodes move here, then back
+    ContactInput variant = in;
+    variant.positions = &moved;
+    const Geometry geometry{params, variant, Crossings::WithinThickness};
+    const std::vector<std::uint32_t>& idx = *in.faceIndices;
+    double sum = 0.0;
+    // Vertex-face: the face scaled about its centroid by 1 ± slack moves every boundary of its
+    // closest-feature regions (its edges, its corners) by slack of the face's size, either way.
+    for (const IndexPair& vf : pairs.vertexFace) {
+        const auto [node, face] = vf;
+        const std::array<std::uint32_t, 3> f{idx[3 * face], idx[3 * face + 1], idx[3 * face + 2]};
+        const auto contact = [&] {
+            return geometry.vertexFace(node, f, (*in.faceOwned)[face], (*in.faceClosed)[face] != 0);
+        };
+        const std::optional<ContactGeometry> nominal = contact();
+        double largest = nominal ? nominal->depth : 0.0;
+        bool differs = false;
+        const glm::dvec3 centroid = (x[f[0]] + x[f[1]] + x[f[2]]) / 3.0;
+        for (const double scale : {1.0 + relativeSlack, 1.0 - relativeSlack}) {
+            for (const std::uint32_t n : f) moved[n] = centroid + scale * (x[n] - centroid);
+            const std::optional<ContactGeometry> c = contact();
+            for (const std::uint32_t n : f) moved[n] = x[n];
+            differs = differs || c.has_value() != nominal.has_value();
+            largest = std::max(largest, c ? c->depth : 0.0);
+        }
+        if (differs) sum += 0.5 * params.stiffness * largest * largest;
+    }
+    for (const IndexPair& ee : pairs.edgeEdge) {
+        const auto a = model::faceEdge(idx, ee[0] / 3, static_cast<int>(ee[0] % 3));
+        const auto b = model::faceEdge(idx, ee[1] / 3, static_cast<int>(ee[1] % 3));
+        sum += edgeEdgeAmbiguity(params, x[a[0]], x[a[1]], x[b[0]], x[b[1]], relativeSlack,
+                                 geometry.edgeEdge(a[0], a[1], b[0], b[1]).has_value());
+    }
+    return sum;
+}
+
 ContactResult contactForces(const ContactParams& params, const ContactInput& in,
                             const std::vector<IndexPair>& candidates) {
     return contactForces(params, in, featurePairs(*in.faceIndices, *in.faceOwned, candidates));

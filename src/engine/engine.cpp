@@ -126,12 +126,20 @@ struct Engine::Impl {
     [[nodiscard]] passes::ContactInputs contactInputs() const;
     struct ContactEnergy {
         double energy = 0.0, magnitude = 0.0;
+        double ambiguity = 0.0; ///< cpu::ambiguousContactEnergy of the same pairs
     };
     [[nodiscard]] ContactEnergy contactEnergy() const;
     /// The response's contact rules (the CPU twin) on `pairs` at positions x, velocities v, sides from x.
     [[nodiscard]] std::vector<cpu::ContactGeometry> contactsAt(const std::vector<glm::dvec3>& x,
                                                                const std::vector<glm::dvec3>& v,
                                                                const cpu::FeaturePairList& pairs) const;
+    /// cpu::ambiguousContactEnergy of `pairs` under the same rules as contactsAt.
+    [[nodiscard]] double contactAmbiguityAt(const std::vector<glm::dvec3>& x,
+                                            const std::vector<glm::dvec3>& v,
+                                            const cpu::FeaturePairList& pairs) const;
+    /// Calls f(params, input) with contactsAt's rules and input.
+    template <typename F>
+    auto withContactInput(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v, F&& f) const;
     void requireCollisions(const char* call) const;
     struct BoxTree;
     [[nodiscard]] BoxTree readBoxTree(const char* call) const;
@@ -1104,11 +1112,12 @@ EnergyReport Engine::energy() const {
     const cpu::Energy e =
         cpu::energy(readPositions(), readVelocities(), d.model.masses, d.model.inverseMasses,
                     gravity ? &d.scene.gravity : nullptr, d.plan.springs ? &d.model.springs : nullptr);
-    EnergyReport report{e.kinetic, e.gravitational + e.elastic, 0.0, 0.0};
+    EnergyReport report{e.kinetic, e.gravitational + e.elastic, 0.0, 0.0, 0.0};
     if (d.plan.safeStep) {
         const gl::HostStateGuard guard(gl::HostStateGuard::Scope::Transfer, d.glFeatures);
         const Impl::ContactEnergy contact = d.contactEnergy();
         report.contact = contact.energy;
+        report.contactAmbiguity = contact.ambiguity;
         const passes::AppendLists& lists = d.collision->lists();
         const std::uint64_t terms = std::uint64_t{d.buffers.nodeCount} +
                                     (d.plan.springs ? d.buffers.springCount : 0u) +
@@ -1123,9 +1132,9 @@ EnergyReport Engine::energy() const {
 /// response's rules (cpu::contactGeometries) on the last detection's feature pairs, sides from the
 /// positions themselves (decision 0024); and the ground's penalty under implicit Euler. With the
 /// magnitude scale of those terms as energy_guard.comp adds them.
-std::vector<cpu::ContactGeometry> Engine::Impl::contactsAt(const std::vector<glm::dvec3>& x,
-                                                           const std::vector<glm::dvec3>& v,
-                                                           const cpu::FeaturePairList& pairs) const {
+template <typename F>
+auto Engine::Impl::withContactInput(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                                    F&& f) const {
     std::vector<std::uint8_t> faceClosed(model.faceCount());
     const model::OctreeLayout& layout = collision->layout();
     for (std::size_t f = 0; f < faceClosed.size(); ++f) faceClosed[f] = layout.closed[layout.faceObject[f]];
@@ -1138,7 +1147,22 @@ std::vector<cpu::ContactGeometry> Engine::Impl::contactsAt(const std::vector<glm
     in.inverseMasses = &model.inverseMasses;
     ContactParams params = plan.contact;
     params.substep = 0.0; // sides from x
-    return cpu::contactGeometries(params, in, pairs);
+    return f(params, in);
+}
+
+std::vector<cpu::ContactGeometry> Engine::Impl::contactsAt(const std::vector<glm::dvec3>& x,
+                                                           const std::vector<glm::dvec3>& v,
+                                                           const cpu::FeaturePairList& pairs) const {
+    return withContactInput(x, v, [&](const ContactParams& params, const cpu::ContactInput& in) {
+        return cpu::contactGeometries(params, in, pairs);
+    });
+}
+
+double Engine::Impl::contactAmbiguityAt(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
+                                        const cpu::FeaturePairList& pairs) const {
+    return withContactInput(x, v, [&](const ContactParams& params, const cpu::ContactInput& in) {
+        return cpu::ambiguousContactEnergy(params, in, pairs);
+    });
 }
 
 Engine::Impl::ContactEnergy Engine::Impl::contactEnergy() const {
@@ -1154,6 +1178,7 @@ Engine::Impl::ContactEnergy Engine::Impl::contactEnergy() const {
         out.energy += e;
         out.magnitude += e + params.stiffness * c.depth * (glm::length(x[c.nodes[0]]) + params.thickness);
     }
+    out.ambiguity = contactAmbiguityAt(x, v, pairs);
     // The implicit solve's ground penalty below the ground's band (decision 0024).
     const ImplicitParams& ip = plan.implicitParams;
     if (ip.groundStiffness > 0.0)

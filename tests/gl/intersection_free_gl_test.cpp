@@ -50,9 +50,11 @@ std::size_t exactIntersectingPairs(const Engine& engine) {
 /// The most a frame of `substeps` substeps may raise the total energy: the guard compares float
 /// sums off by at most the resolution at each end and lets a substep rise by the sum of both
 /// (energy_guard.comp); the CPU's double sums of the same states differ from the GPU's by at most
-/// the same amount again; and each substep of the frame may keep its allowance.
+/// the same amount again, plus the contacts the float evaluation may count differently at either
+/// end (EnergyReport::contactAmbiguity); and each substep of the frame may keep its allowance.
 double allowedRise(const EnergyReport& start, const EnergyReport& end, int substeps) {
-    return 2.0 * substeps * (start.resolution + end.resolution);
+    return 2.0 * substeps * (start.resolution + end.resolution) + start.contactAmbiguity +
+           end.contactAmbiguity;
 }
 
 /// Checks the frame just stepped: its energy did not rise, and the guard's own GPU sum of the end
@@ -65,12 +67,14 @@ EnergyReport expectNoEnergyGain(const Engine& engine, const EnergyReport& start,
         << "frame " << frame << ": kinetic " << end.kinetic << " potential " << end.potential << " contact "
         << end.contact << " (start " << start.total() << "); guard acted in " << c.energyGuardSubsteps
         << " substeps, pulled back " << c.energyGuardPulledBack << ", unremoved " << c.energyGuardUnremoved;
-    EXPECT_NEAR(c.energyGuardTotal, end.total(), 2.0 * end.resolution)
+    const double contactTolerance = 2.0 * end.resolution + end.contactAmbiguity;
+    EXPECT_NEAR(c.energyGuardTotal, end.total(), contactTolerance)
         << "frame " << frame << ": the guard's kinetic " << c.energyGuardKinetic << " penalty "
-        << c.energyGuardContact << ", the CPU's kinetic " << end.kinetic << " penalty " << end.contact;
+        << c.energyGuardContact << ", the CPU's kinetic " << end.kinetic << " penalty " << end.contact
+        << " (of which ambiguous " << end.contactAmbiguity << ")";
     // Each part's terms are among the total's, so each part is within the same resolution.
     EXPECT_NEAR(c.energyGuardKinetic, end.kinetic, 2.0 * end.resolution) << "frame " << frame;
-    EXPECT_NEAR(c.energyGuardContact, end.contact, 2.0 * end.resolution) << "frame " << frame;
+    EXPECT_NEAR(c.energyGuardContact, end.contact, contactTolerance) << "frame " << frame;
     EXPECT_EQ(c.energyGuardUnremoved, 0.0) << "frame " << frame;
     return end;
 }
@@ -424,8 +428,12 @@ TEST_P(IntersectionFreeDrops, NoFacePairEverIntersectsAndNoEnergyIsGained) {
     expectDropKeepsThePromises(randomDrop(seed, implicit, self));
 }
 
+// Seeds 13 and 17 (found among seeds 1–160) end their first implicit frame with a contact that the
+// float shader and the double twin assign differently at a closest-feature boundary (seed 13: a
+// cloth edge parallel to a box edge within the thickness, counted by the GPU as an edge-edge contact
+// and left by the twin to the vertex-face pair): EnergyReport::contactAmbiguity must cover it.
 INSTANTIATE_TEST_SUITE_P(Seeds, IntersectionFreeDrops,
-                         ::testing::Combine(::testing::Values(1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u),
+                         ::testing::Combine(::testing::Values(1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 13u, 17u),
                                             ::testing::Bool(), ::testing::Bool()));
 
 // The same drops with two Newton steps per substep (time.solver.newton_steps): the promises are the
