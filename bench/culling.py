@@ -14,7 +14,7 @@ RadialCulling + BvhBuild + BvhRefit + BvhTraverse + TriTri + FeaturePairs + Ccd.
 is the slope of log(detection time) against log(faces) between the smallest and largest size.
 
 usage: bench/culling.py [--glcollide build/src/glcollide] [--frames 45] [--scenes ball,sleeve,mask,sheet]
-                        [--observers auto|objects|clusters]
+                        [--observers auto|objects|clusters] [--observer X,Y,Z]
                         [--subdivisions 3,4,5] [--sleeve-resolutions 32x20,64x40] [--sheet-resolutions 32,48,96]
                         [--out bench/results/<device>/culling_<commit>]
        bench/culling.py --write-scenes DIR ...   (only writes the scene variants, for a machine without
@@ -166,11 +166,14 @@ def main():
     ap.add_argument("--sheet-resolutions", default="32,48,96")
     ap.add_argument("--observers", default=None,
                     help="collision.observers of the radial runs (auto, objects, clusters; default: the scene's)")
+    ap.add_argument("--observer", default=None,
+                    help="a user observer X,Y,Z (m, the first object's own coordinates) for the radial runs "
+                         "(docs/culling.md, \"User observers\")")
     ap.add_argument("--out", default=None)
     ap.add_argument("--write-scenes", default=None)
     ap.add_argument("--stats-dir", default=None)
     args = ap.parse_args()
-    results = {"scenes": args.scenes, "frames": args.frames, "sizes": []}
+    results = {"scenes": args.scenes, "frames": args.frames, "observer": args.observer, "sizes": []}
     with tempfile.TemporaryDirectory() as temp:
         work = args.write_scenes or temp
         for scene_name, tag, base in variants(args):
@@ -181,8 +184,11 @@ def main():
                 if culling == "none":  # the observers' settings serve radial culling only
                     for key in ["observers", "cluster_max_angle", "cluster_max_faces"]:
                         scene["collision"].pop(key, None)
-                elif args.observers:
-                    scene["collision"]["observers"] = args.observers
+                else:
+                    if args.observers:
+                        scene["collision"]["observers"] = args.observers
+                    if args.observer:
+                        scene["objects"][0]["observer"] = [float(v) for v in args.observer.split(",")]
                 runs[culling] = run(args.glcollide, scene, args.frames, work, f"{tag}_{culling}", args.stats_dir,
                                     args.write_scenes is not None)
             if args.write_scenes:

@@ -42,6 +42,10 @@ struct Body {
         faces; ///< surface triangles, counter-clockwise seen from outside
     std::vector<std::array<std::uint32_t, 4>> tets; ///< empty for surface bodies
     std::vector<Spring> springs;
+    /// m, world space: radial culling's observer of this object, given by the scene (the object's
+    /// "observer", transformed with it) instead of its nodes' centroid; it moves with four of the
+    /// object's nodes (docs/culling.md, "User observers"). Only with "culling": "radial".
+    std::optional<glm::dvec3> observer;
 };
 
 /// A horizontal plane y = height that nodes cannot go below.

@@ -92,10 +92,12 @@
 #define GLC_BIND_RADIAL_FACE_OBSERVER 57  // uint[faces]: the face's observer, or GLC_RADIAL_NO_OBSERVER
 #define GLC_BIND_RADIAL_POSITIVE 58       // uint[(faces + 31) / 32]: bit f % 32 of word f / 32 set when face f
                                           // is proven positive for its observer over the substep
-#define GLC_BIND_RADIAL_OBSERVER_NODES 59 // uvec4[observers]: the first node and node count whose centroid is the
+#define GLC_BIND_RADIAL_OBSERVER_NODES 59 // uvec4[3 · observers]: the first node and node count whose centroid is the
                                           // observer (RadialObservers; 0 nodes: a cluster's, which
                                           // RadialGhostNodes sets back behind its outer loop), 1 when the
-                                          // surface's faces wind inward (classified the other way round), unused
+                                          // surface's faces wind inward (classified the other way round), 1
+                                          // for a user observer: then the next uvec4 holds its four frame
+                                          // nodes and the one after the bits of their weights
 #define GLC_BIND_RADIAL_CONES 60          // vec4[faces]: each observed face's footprint cone (unit axis, cosine)
 #define GLC_BIND_RADIAL_NONPOSITIVE 61    // uint[1 + 2 * observers + faces]: the observed faces not proven positive:
                                           // their count, then per observer its count and where its bucket

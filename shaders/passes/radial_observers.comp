@@ -1,8 +1,9 @@
 #version 430 core
-// RadialObservers — the automatic observer of radial view-based culling (decision 0025,
-// docs/culling.md "Observers"): the centroid of its surface's nodes, at the start of the substep
-// (the positions x0) and at its end (the predicted positions x1); it moves linearly between them,
-// as the classification assumes (a cluster's observer, with no nodes here, is RadialGhostNodes').
+// RadialObservers — the observer of radial view-based culling (decision 0025, docs/culling.md
+// "Observers"): the centroid of its surface's nodes, or for a user observer ("User observers") the
+// affine combination of its four frame nodes, at the start of the substep (the positions x0) and
+// at its end (the predicted positions x1); it moves linearly between them, as the classification
+// assumes (a cluster's observer, with no nodes here, is RadialGhostNodes').
 // One work group per observer; a fixed-order tree sum, so the
 // point does not depend on scheduling. The start's w carries the surface's orientation (decision
 // 0025, "Orientation"). Nothing here needs to be exact: an observer in a poor place
@@ -21,8 +22,21 @@ shared vec3 s_end[GLC_WORKGROUP_SIZE];
 
 void main() {
     uint observer = gl_WorkGroupID.x, i = gl_LocalInvocationID.x;
-    uvec4 range = g_observerNodes[observer];
+    uvec4 range = g_observerNodes[3u * observer];
     if (range.y == 0u) return; // a cluster's observer: RadialGhostNodes sets it back behind its loop
+    if (range.w != 0u) {       // a user observer: Σ w_k·x[n_k] over its frame
+        if (i != 0u) return;
+        uvec4 nodes = g_observerNodes[3u * observer + 1u];
+        vec4 weights = uintBitsToFloat(g_observerNodes[3u * observer + 2u]);
+        vec3 start = vec3(0.0), end = vec3(0.0);
+        for (uint k = 0u; k < 4u; ++k) {
+            start += weights[k] * g_start[nodes[k]].xyz;
+            end += weights[k] * g_end[nodes[k]].xyz;
+        }
+        g_observers[2u * observer] = vec4(start, range.z != 0u ? -1.0 : 1.0);
+        g_observers[2u * observer + 1u] = vec4(end, 1.0);
+        return;
+    }
     vec3 start = vec3(0.0), end = vec3(0.0);
     for (uint k = i; k < range.y; k += GLC_WORKGROUP_SIZE) {
         start += g_start[range.x + k].xyz;

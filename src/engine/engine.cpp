@@ -137,9 +137,9 @@ struct Engine::Impl {
     [[nodiscard]] double contactAmbiguityAt(const std::vector<glm::dvec3>& x,
                                             const std::vector<glm::dvec3>& v,
                                             const cpu::FeaturePairList& pairs) const;
-    /// Calls f(params, input) with contactsAt's rules and input.
+    /// Calls use(params, input) with contactsAt's rules and input.
     template <typename F>
-    auto withContactInput(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v, F&& f) const;
+    auto withContactInput(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v, F&& use) const;
     void requireCollisions(const char* call) const;
     struct BoxTree;
     [[nodiscard]] BoxTree readBoxTree(const char* call) const;
@@ -385,10 +385,15 @@ void Engine::Impl::makePass(engine::Stage stage) {
         config.selfCollisions = plan.selfCollisions;
         config.settings = plan.collision;
         config.substepsPerFrame = static_cast<std::uint32_t>(substeps.substeps);
-        if (plan.collision.culling == Culling::Radial)
-            config.radial = passes::radialCullingConfig(
-                model, {plan.collision.ghostMaxPerimeter, plan.collision.observers,
-                        plan.collision.clusterMaxAngle, plan.collision.clusterMaxFaces});
+        if (plan.collision.culling == Culling::Radial) {
+            passes::RadialObserverSettings observers{plan.collision.ghostMaxPerimeter,
+                                                     plan.collision.observers,
+                                                     plan.collision.clusterMaxAngle,
+                                                     plan.collision.clusterMaxFaces,
+                                                     {}};
+            for (const Body& body : scene.bodies) observers.objectObservers.push_back(body.observer);
+            config.radial = passes::radialCullingConfig(model, observers);
+        }
         collision.emplace(config, model);
         // Robust precision promises the oracle's answers; check that this device delivers them
         // before relying on it (once per device, driver and shader; docs/narrow-phase.md).
@@ -1134,7 +1139,7 @@ EnergyReport Engine::energy() const {
 /// magnitude scale of those terms as energy_guard.comp adds them.
 template <typename F>
 auto Engine::Impl::withContactInput(const std::vector<glm::dvec3>& x, const std::vector<glm::dvec3>& v,
-                                    F&& f) const {
+                                    F&& use) const {
     std::vector<std::uint8_t> faceClosed(model.faceCount());
     const model::OctreeLayout& layout = collision->layout();
     for (std::size_t f = 0; f < faceClosed.size(); ++f) faceClosed[f] = layout.closed[layout.faceObject[f]];
@@ -1147,7 +1152,7 @@ auto Engine::Impl::withContactInput(const std::vector<glm::dvec3>& x, const std:
     in.inverseMasses = &model.inverseMasses;
     ContactParams params = plan.contact;
     params.substep = 0.0; // sides from x
-    return f(params, in);
+    return use(params, in);
 }
 
 std::vector<cpu::ContactGeometry> Engine::Impl::contactsAt(const std::vector<glm::dvec3>& x,

@@ -2,6 +2,7 @@
 
 #include "core/gpu_layout.hpp"
 #include "model/ghost_triangles.hpp"
+#include "model/observer_frame.hpp"
 #include "model/radial_surfaces.hpp"
 #include "model/surface_clusters.hpp"
 
@@ -14,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 namespace glcollide::passes {
@@ -23,11 +25,20 @@ static_assert(GLC_GHOST_APEX == static_cast<std::uint32_t>(model::GhostKind::Ape
 static_assert(GLC_GHOST_SKIRT == static_cast<std::uint32_t>(model::GhostKind::Skirt));
 
 namespace {
+/// GLC_BIND_RADIAL_OBSERVER_NODES: per observer three uvec4 — (first node, node count, inward,
+/// framed), the frame's four nodes, the bits of its four weights (RadialSurface).
 std::vector<std::uint32_t> surfaceRanges(const std::vector<RadialSurface>& surfaces) {
     std::vector<std::uint32_t> ranges;
-    for (const RadialSurface& s : surfaces)
-        ranges.insert(ranges.end(), {s.firstNode, s.nodeCount, s.inward ? 1u : 0u, 0u});
-    if (ranges.empty()) ranges = {0u, 0u, 0u, 0u}; // a buffer the consumers can bind
+    for (const RadialSurface& s : surfaces) {
+        ranges.insert(ranges.end(), {s.firstNode, s.nodeCount, s.inward ? 1u : 0u, s.framed ? 1u : 0u});
+        ranges.insert(ranges.end(), s.frameNodes.begin(), s.frameNodes.end());
+        for (const float w : s.frameWeights) {
+            std::uint32_t bits = 0;
+            std::memcpy(&bits, &w, sizeof bits);
+            ranges.push_back(bits);
+        }
+    }
+    if (ranges.empty()) ranges.assign(12, 0u); // a buffer the consumers can bind
     return ranges;
 }
 
@@ -186,12 +197,32 @@ std::uint32_t appendLoop(RadialGhosts& g, const model::ObjectRange& r,
     return first;
 }
 
-/// Object `r` as one observed surface, closed by itself or by ghosts; false when it cannot be.
+/// Ties a user observer at `point` to four of object `r`'s nodes (model::observerFrame).
+void frameObserver(RadialSurface& surface, const model::FlatModel& model, const model::ObjectRange& r,
+                   std::size_t object, const glm::dvec3& point) {
+    model::ObserverFrame frame;
+    try {
+        frame = model::observerFrame(objectPositions(model, r), point);
+    } catch (const std::invalid_argument& e) {
+        throw Error(std::string(RadialCullingPass::kName) + ": object " + std::to_string(object) +
+                    "'s observer: " + e.what());
+    }
+    surface.framed = true;
+    for (std::size_t k = 0; k < 4; ++k) {
+        surface.frameNodes[k] = r.firstNode + frame.nodes[k];
+        surface.frameWeights[k] = static_cast<float>(frame.weights[k]);
+    }
+}
+
+/// Object `r` (the model's object `object`) as one observed surface, closed by itself or by ghosts;
+/// false when it cannot be.
 bool observeObject(RadialCullingConfig& config, const model::FlatModel& model, const model::ObjectRange& r,
-                   const RadialObserverSettings& settings) {
+                   std::size_t object, const RadialObserverSettings& settings) {
     const auto observer = static_cast<std::uint32_t>(config.surfaces.size());
     RadialSurface surface{r.firstNode, r.nodeCount,
                           static_cast<std::uint32_t>(config.ghosts.faceObserver.size()), 0};
+    if (object < settings.objectObservers.size() && settings.objectObservers[object])
+        frameObserver(surface, model, r, object, *settings.objectObservers[object]);
     if (model::isClosedOrientedConnected(model.faceIndices, r.firstFace, r.faceCount)) {
         surface.inward = signedVolume6(model.faceIndices, r.firstFace, r.faceCount, model.positions) < 0.0;
     } else {
@@ -288,16 +319,26 @@ RadialCullingConfig radialCullingConfig(const model::FlatModel& model,
     RadialCullingConfig config;
     config.faceObserver.assign(model.faceCount(), kNoRadialObserver);
     config.ghosts.nodeCount = static_cast<std::uint32_t>(model.nodeCount());
-    for (const model::ObjectRange& r : model.objects)
-        if (!observeObject(config, model, r, settings) && settings.observers != RadialObservers::Objects &&
-            r.faceCount > 0)
+    for (std::size_t object = 0; object < model.objects.size(); ++object) {
+        const model::ObjectRange& r = model.objects[object];
+        if (observeObject(config, model, r, object, settings)) continue;
+        if (object < settings.objectObservers.size() && settings.objectObservers[object])
+            throw Error(std::string(RadialCullingPass::kName) + ": object " + std::to_string(object) +
+                        " has an observer, but its surface is not closed by itself or by ghost fans (holes "
+                        "up to ghost_max_perimeter; \"observers\": \"auto\" leaves flat closures to "
+                        "clusters): only a closed surface can wind around it");
+        if (settings.observers != RadialObservers::Objects && r.faceCount > 0)
             observeClusters(config, model, r, settings);
+    }
     config.nodeObserver = nodeObservers(config, model);
     return config;
 }
 
 RadialCullingConfig radialCullingConfig(const model::FlatModel& model, double ghostMaxPerimeter) {
-    return radialCullingConfig(model, {ghostMaxPerimeter, RadialObservers::Objects});
+    RadialObserverSettings settings;
+    settings.ghostMaxPerimeter = ghostMaxPerimeter;
+    settings.observers = RadialObservers::Objects;
+    return radialCullingConfig(model, settings);
 }
 
 RadialCullingPass::RadialCullingPass(const RadialCullingConfig& config)

@@ -22,6 +22,7 @@
 
 #include <glcollide/scene.hpp>
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <numbers>
@@ -42,6 +43,11 @@ struct RadialSurface {
     /// classification then turns every face round (decision 0025, "Orientation"); a wrong value
     /// frees nothing, never a face that may collide.
     bool inward = false;
+    /// A user observer (Body::observer): Σ frameWeights[k]·x[frameNodes[k]] (model nodes) instead
+    /// of the centroid of the surface's nodes.
+    bool framed = false;
+    std::array<std::uint32_t, 4> frameNodes{};
+    std::array<float, 4> frameWeights{};
 };
 
 /// One ghost node (docs/culling.md, "Ghost triangles" and "Clusters"; model::ClusterGhostNode):
@@ -97,6 +103,10 @@ struct RadialObserverSettings {
     RadialObservers observers = RadialObservers::Auto;
     double clusterMaxAngle = std::numbers::pi / 4.0;
     std::uint32_t clusterMaxFaces = 64;
+    /// Per object of the model (or empty: none): a user observer (Body::observer, m), which
+    /// replaces that object's centroid. Its object must get an observer of its own (closed by
+    /// itself or by ghost fans, not clustered) and span a volume (model::observerFrame).
+    std::vector<std::optional<glm::dvec3>> objectObservers;
 };
 
 /// The engine's observers (decision 0025): one per object of `model` whose surface is closed,

@@ -344,11 +344,13 @@ void applyTransform(const Ctx& c, const json& j, const Ptr& p, Body& body) {
         }
     }
     const double toRad = std::numbers::pi / 180.0;
-    for (glm::dvec3& x : body.positions) {
+    const auto transform = [&](glm::dvec3& x) {
         glm::dvec3 y = x * scale;
         for (int axis = 0; axis < 3; ++axis) y = rotateAxis(y, axis, rotate[axis] * toRad);
         x = y + translate;
-    }
+    };
+    for (glm::dvec3& x : body.positions) transform(x);
+    if (body.observer) transform(*body.observer);
 }
 
 void applyPinned(const Ctx& c, const json& j, const Ptr& p, Body& body) {
@@ -383,7 +385,7 @@ void applyPinned(const Ctx& c, const json& j, const Ptr& p, Body& body) {
 Body parseObject(const Ctx& c, const json& j, const Ptr& p, const EffectSet& effects, std::size_t index) {
     checkObject(c, j, p,
                 {"name", "mesh", "generator", "transform", "velocity", "angular_velocity", "mass", "density",
-                 "springs", "pinned"});
+                 "springs", "pinned", "observer"});
     const json* mesh = find(j, "mesh");
     const json* gen = find(j, "generator");
     if ((mesh == nullptr) == (gen == nullptr)) c.fail(p, "give exactly one of 'mesh' and 'generator'");
@@ -403,6 +405,7 @@ Body parseObject(const Ctx& c, const json& j, const Ptr& p, const EffectSet& eff
                                 : generate(c, *gen, p / "generator", sp);
     body.name = "object " + std::to_string(index);
     if (const json* v = find(j, "name")) body.name = string(c, *v, p / "name");
+    if (const json* v = find(j, "observer")) body.observer = vec3(c, *v, p / "observer");
     if (const json* v = find(j, "transform")) applyTransform(c, *v, p / "transform", body);
 
     if (!effects.has(Effect::Springs)) {
@@ -752,8 +755,12 @@ Scene parseRoot(const Ctx& c, const json& root) {
     const json& objects = require(c, root, p, "objects");
     if (!objects.is_array() || objects.empty())
         c.fail(p / "objects", "expected a non-empty array of objects");
-    for (std::size_t i = 0; i < objects.size(); ++i)
+    for (std::size_t i = 0; i < objects.size(); ++i) {
         scene.bodies.push_back(parseObject(c, objects[i], p / "objects" / i, scene.effects, i));
+        if (scene.bodies.back().observer && !(collides && scene.collision.culling == Culling::Radial))
+            c.fail(p / "objects" / i / "observer",
+                   "an observer serves radial culling only: add \"collision\": {\"culling\": \"radial\"}");
+    }
     return scene;
 }
 

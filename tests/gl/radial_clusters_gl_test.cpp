@@ -43,8 +43,9 @@ model::FlatModel sheetModel() {
 }
 
 passes::RadialCullingConfig sheetClusters(const model::FlatModel& model) {
-    return passes::radialCullingConfig(model, {std::numeric_limits<double>::infinity(),
-                                               RadialObservers::Clusters, std::numbers::pi / 4.0, 64});
+    return passes::radialCullingConfig(
+        model,
+        {std::numeric_limits<double>::infinity(), RadialObservers::Clusters, std::numbers::pi / 4.0, 64, {}});
 }
 
 std::vector<glm::vec3> floats(const std::vector<glm::dvec3>& xs) {
@@ -98,7 +99,10 @@ TEST(RadialClustersGl, AFlatSheetIsCutIntoClustersWatchedFromBehind) {
     const passes::RadialCullingConfig config = sheetClusters(model);
     // Flat: one cluster without a size limit; 64-face clusters here, every one closed.
     EXPECT_EQ(passes::radialCullingConfig(model, {std::numeric_limits<double>::infinity(),
-                                                  RadialObservers::Clusters, std::numbers::pi / 4.0, 0})
+                                                  RadialObservers::Clusters,
+                                                  std::numbers::pi / 4.0,
+                                                  0,
+                                                  {}})
                   .clusters,
               1u);
     // "auto" cuts the flat sheet into clusters too (its border's fan closes it with no inside; a

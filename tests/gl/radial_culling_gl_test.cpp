@@ -144,6 +144,19 @@ TEST(RadialCullingGl, ACrumplingBallIsBitIdenticalWithAndWithoutCulling) {
     EXPECT_GT(t.substepsWithNonPositive, 0u) << "the ball must fold: some faces not positive";
 }
 
+// The same ball with a user observer (docs/culling.md, "User observers"): 4 cm off the centre, tied
+// to four of the ball's nodes, so it moves with the ball as it squashes — the frames stay
+// bit-identical and culling acts.
+TEST(RadialCullingGl, ACrumplingBallWithAUserObserverIsBitIdenticalWithAndWithoutCulling) {
+    std::string radial = ballScene("radial", 6.0, 1.0, 1);
+    const std::string name = R"("name": "ball", )";
+    radial.replace(radial.find(name), name.size(), name + R"("observer": [0.03, -0.02, 0.02], )");
+    const Totals t = expectIdentical(ballScene("none", 6.0, 1.0, 1), radial, 30);
+    EXPECT_GT(t.culledSubsteps, 20u);
+    EXPECT_GT(t.culledCcd, 0u);
+    EXPECT_GT(t.culledTriTri, 0u);
+}
+
 // Fast: 12 m/s into the ground, two substeps per frame.
 TEST(RadialCullingGl, AFastBallIsBitIdenticalWithAndWithoutCulling) {
     const Totals t =

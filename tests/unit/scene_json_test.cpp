@@ -503,6 +503,22 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
         EXPECT_NEAR(ok.collision.clusterMaxAngle, std::numbers::pi / 6.0, 1e-15);
         EXPECT_EQ(ok.collision.clusterMaxFaces, 64u);
     }
+    {
+        // A user observer: given in the object's coordinates, moved with its transform.
+        const std::string ball = R"({"generator": {"type": "sphere", "radius": 0.1, "subdivisions": 1},
+            "mass": 1, "springs": {"stiffness": 1}, "observer": [0.01, 0, 0],
+            "transform": {"translate": [0, 1, 0], "scale": 2}})";
+        const Scene ok = parseScene(
+            scene(ball, R"("collision": {)" + radial + R"("observers": "auto"})", self), ".", "ok");
+        ASSERT_TRUE(ok.bodies[0].observer.has_value());
+        EXPECT_EQ(*ok.bodies[0].observer, glm::dvec3(0.02, 1.0, 0.0));
+        EXPECT_THAT(errorOf(scene(ball, "", self)),
+                    HasSubstr("/objects/0/observer: an observer serves radial culling only"));
+        std::string bad = ball;
+        bad.replace(bad.find("[0.01, 0, 0]"), 12, "[0.01, 0]");
+        EXPECT_THAT(errorOf(scene(bad, R"("collision": {)" + radial + R"("observers": "auto"})", self)),
+                    HasSubstr("/objects/0/observer"));
+    }
     EXPECT_THAT(
         errorOf(scene(R"({"generator": {"type": "tube", "radius": 0.1, "length": 1, "resolution": [2, 4]},
         "mass": 1, "springs": {"stiffness": 1}})")),
