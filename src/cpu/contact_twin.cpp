@@ -471,7 +471,7 @@ double ambiguousContactEnergy(const ContactParams& params, const ContactInput& i
     // Vertex-face: the face scaled about its centroid by 1 ± slack moves every boundary of its
     // closest-feature regions (its edges, its corners) by slack of the face's size, either way.
     for (const IndexPair& vf : pairs.vertexFace) {
-        const auto [node, face] = vf;
+        const std::uint32_t node = vf[0], face = vf[1]; // not a structured binding: the lambda captures them
         const std::array<std::uint32_t, 3> f{idx[3 * face], idx[3 * face + 1], idx[3 * face + 2]};
         const auto contact = [&] {
             return geometry.vertexFace(node, f, (*in.faceOwned)[face], (*in.faceClosed)[face] != 0);
