@@ -92,15 +92,16 @@ std::vector<ContactGeometry> contactGeometries(const ContactParams& params, cons
 /// which feature pair counts a contact: 2⁻¹⁴. Where it comes from: the region tests compare dot
 /// products of coordinate differences, each rounded by a few units of u = 2⁻²⁴ of the coordinates'
 /// size |x|, so a boundary moves by about 4u·|x| — 2⁻¹⁴ of a feature up to 2⁸ times smaller than
-/// its distance from the origin (a 1 cm face 2.5 m away). Edge pairs that are nearly parallel get
-/// more (ambiguousContactEnergy): their closest points move by that over sin²θ.
+/// its distance from the origin (a 1 cm face 2.5 m away). For edge pairs it is the relative error of
+/// each dot product of closestSegmentParams (ambiguousContactEnergy).
 inline constexpr double kFloatRegionSlack = 1.0 / 16384.0;
 
 /// The energy ½·k·depth² of the feature pairs whose contact a float evaluation may count where this
-/// double one does not, or not count where it does: the pairs whose status changes when every
-/// region boundary moves by `relativeSlack` of the feature's size, either way (the face scaled about
-/// its centroid by 1 ± slack; both edges lengthened or shortened by slack at each end). Each such
-/// pair adds the largest energy any of the three evaluations gives it. The contact energy is not
+/// double one does not, or not count where it does: a vertex-face pair whose status changes with
+/// the face scaled about its centroid by 1 ± `relativeSlack` (each adds the largest energy of the
+/// three evaluations); an edge pair whose closest-point parameters, with every dot product off by
+/// `relativeSlack` of itself, may fall on either side of its edges' ends, or whose edges may be
+/// parallel in float (each adds ½·k·(h − the segments' distance)²). The contact energy is not
 /// continuous across those boundaries (a vertex near an edge can be counted by a vertex-face and an
 /// edge-edge pair on one side and by one of them on the other: decision 0024, "Known failures"), so
 /// a GPU sum of the same state may differ from the CPU's by up to this (Engine::energy).
