@@ -67,4 +67,125 @@ bool glcRadialFootprintsMeet(vec4 a, vec4 b) {
     return axes >= ca * cb - sa * sb - GLC_FOOTPRINT_SLACK;
 }
 
+
+// Segment observers (decision 0025, "Segment observers"; the observer is the segment from a to b,
+// each end moving linearly). A point x is seen along its *fiber*: the ray from its foot s(u(x)) —
+// the segment's nearest point, u(x) = clamp((x - a) . (b - a) / |b - a|^2, 0, 1) — through x. The
+// fibers of all points off the segment never cross, so two triangles can meet only where they
+// share a fiber, and a fiber is named by its foot's u and its direction. A triangle's footprint is
+// then bounded by an interval of u (its *feet*) and a cone of directions.
+//
+//   vec2 glcRadialFeet(p0, p1, p2, a, b, p0End, p1End, p2End, aEnd, bEnd)
+//        [uLo, uHi] within [0, 1], holding u(x) of every point x of the triangle at every t. Why:
+//        with d(t) = x(t) - a(t) and s(t) = b(t) - a(t), both linear in t, N(t) = d . s and
+//        D(t) = s . s are quadratics whose values lie between their Bernstein coefficients (d0.s0,
+//        (d0.s1 + d1.s0) / 2, d1.s1 and s0.s0, s0.s1, s1.s1), and N is affine in x, so over the
+//        triangle between those of its corners; u = N / D then lies between the quotients of
+//        those bounds. Rounding (a few roundings per dot product of differences of coordinates,
+//        each within 2^-21 of |d|_1 |s|_1 or |s|_1^2): D's bounds are used only when the smallest
+//        exceeds 2^-4 (|s0|_1 + |s1|_1)^2 (else the whole segment, [0, 1]: the segment shrank or
+//        turned by more than about 40 degrees), which keeps D's relative error below 2^-17, so u is
+//        off by at most 2^-21 max |d|_1 |s|_1 / D + 2^-16 |u|; GLC_FEET_SLACK (1 + |u| +
+//        max |d|_1 |s|_1 / D) widens the interval beyond that.
+//   vec4 glcRadialSegmentFootprint(p0, p1, p2, a, b, p0End, p1End, p2End, aEnd, bEnd, feet)
+//        The cone (as glcRadialFootprint's) of every fiber direction x - s(u) of the triangle's
+//        points with u in `feet`: the hull of the 12 differences p_i - s(u) at the two ends of
+//        `feet` and of the substep holds every x(t) - s(u)(t) (a convex combination of them with
+//        the same t), so the 6-point argument of glcRadialFootprint carries over. The 4 points
+//        s(u) are computed in float, off the segment by at most E = 2^-20 max|coordinate of a, b|
+//        (+ 2^-120 for flushing), which turns a difference of length >= rho by at most E / rho rad
+//        (< 0.53 x for x = E / rho <= 1/4): the cone's cosine is lowered by 2 E / rho, and a
+//        triangle within 4 E of those points gets every direction.
+//   bool glcRadialFeetMeet(vec2 a, vec2 b)
+//        The two intervals overlap (closed): two triangles whose feet do not overlap share no fiber.
+// With a segment observer a triangle whose cone is "every direction" must also have every foot
+// ([0, 1]): such a triangle may touch the segment, and the theorem then frees nothing.
+
+// Range > 2^-18 (the rounding above, relative to 1 + |u| + |d||s| / D); suggested 2^-14 (a foot
+// interval widens by about 10^-4 of the segment's length).
+const float GLC_FEET_SLACK = 6.103515625e-5f; // 2^-14
+// 2^-20: what computing s(u) = a + u (b - a) in float may move it, relative to its coordinates.
+const float GLC_SEGMENT_POINT_ROUNDOFF = 9.5367431640625e-7f;
+const float GLC_SEGMENT_POINT_FLUSH = 7.5231638452626401e-37f; // 2^-120
+
+vec2 glcRadialWholeSegment() {
+    return vec2(0.0f, 1.0f);
+}
+
+// One corner's N(t) = (p(t) - a(t)) . s(t): (smallest, largest Bernstein coefficient, |d|_1 |s|_1).
+vec3 glcRadialFootNumerator(vec3 p, vec3 a, vec3 s0, vec3 pEnd, vec3 aEnd, vec3 s1) {
+    vec3 d0 = p - a, d1 = pEnd - aEnd;
+    float c0 = dot(d0, s0), c1 = 0.5f * (dot(d0, s1) + dot(d1, s0)), c2 = dot(d1, s1);
+    vec3 ad0 = abs(d0), ad1 = abs(d1), as0 = abs(s0), as1 = abs(s1);
+    float size = (ad0.x + ad0.y + ad0.z + ad1.x + ad1.y + ad1.z) * (as0.x + as0.y + as0.z + as1.x + as1.y + as1.z);
+    return vec3(min(min(c0, c1), c2), max(max(c0, c1), c2), size);
+}
+
+vec2 glcRadialFeet(vec3 p0, vec3 p1, vec3 p2, vec3 a, vec3 b, vec3 p0End, vec3 p1End, vec3 p2End, vec3 aEnd,
+                   vec3 bEnd) {
+    vec3 s0 = b - a, s1 = bEnd - aEnd;
+    vec3 as0 = abs(s0), as1 = abs(s1);
+    float sizeS = as0.x + as0.y + as0.z + as1.x + as1.y + as1.z;
+    float dMin = min(min(dot(s0, s0), dot(s0, s1)), dot(s1, s1));
+    float dMax = max(max(dot(s0, s0), dot(s0, s1)), dot(s1, s1));
+    if (!(dMin > 0.0625f * sizeS * sizeS)) return glcRadialWholeSegment(); // 2^-4; also NaN
+    vec3 n0 = glcRadialFootNumerator(p0, a, s0, p0End, aEnd, s1);
+    vec3 n1 = glcRadialFootNumerator(p1, a, s0, p1End, aEnd, s1);
+    vec3 n2 = glcRadialFootNumerator(p2, a, s0, p2End, aEnd, s1);
+    float nLo = min(min(n0.x, n1.x), n2.x), nHi = max(max(n0.y, n1.y), n2.y);
+    float size = max(max(n0.z, n1.z), n2.z);
+    float lo = nLo >= 0.0f ? nLo / dMax : nLo / dMin;
+    float hi = nHi >= 0.0f ? nHi / dMin : nHi / dMax;
+    float slackLo = GLC_FEET_SLACK * (1.0f + abs(lo) + size / dMin);
+    float slackHi = GLC_FEET_SLACK * (1.0f + abs(hi) + size / dMin);
+    lo = lo - slackLo;
+    hi = hi + slackHi;
+    if (!(lo <= hi)) return glcRadialWholeSegment(); // NaN or infinity
+    return vec2(min(max(lo, 0.0f), 1.0f), min(max(hi, 0.0f), 1.0f));
+}
+
+bool glcRadialFeetMeet(vec2 a, vec2 b) {
+    return a.x <= b.y && b.x <= a.y;
+}
+
+// min(v . axis / |v|) over the 6 differences p_i - q, p_iEnd - qEnd (0 when one has no length).
+float glcRadialLeastCosine(vec3 axis, vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, vec3 p1End, vec3 p2End,
+                           vec3 qEnd) {
+    vec3 d0 = p0 - q, d1 = p1 - q, d2 = p2 - q, e0 = p0End - qEnd, e1 = p1End - qEnd, e2 = p2End - qEnd;
+    return min(min(min(dot(axis, d0) / length(d0), dot(axis, d1) / length(d1)), dot(axis, d2) / length(d2)),
+               min(min(dot(axis, e0) / length(e0), dot(axis, e1) / length(e1)), dot(axis, e2) / length(e2)));
+}
+
+// Sum of the 6 unit differences (x: the sum, w: the shortest difference's length).
+vec4 glcRadialUnitSum(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, vec3 p1End, vec3 p2End, vec3 qEnd) {
+    vec3 d0 = p0 - q, d1 = p1 - q, d2 = p2 - q, e0 = p0End - qEnd, e1 = p1End - qEnd, e2 = p2End - qEnd;
+    float l0 = length(d0), l1 = length(d1), l2 = length(d2), m0 = length(e0), m1 = length(e1), m2 = length(e2);
+    float shortest = min(min(min(l0, l1), l2), min(min(m0, m1), m2));
+    if (!(shortest > 0.0f)) return vec4(0.0f, 0.0f, 0.0f, 0.0f);
+    vec3 sum = d0 / l0 + d1 / l1 + d2 / l2 + e0 / m0 + e1 / m1 + e2 / m2;
+    return vec4(sum, shortest);
+}
+
+vec4 glcRadialSegmentFootprint(vec3 p0, vec3 p1, vec3 p2, vec3 a, vec3 b, vec3 p0End, vec3 p1End, vec3 p2End,
+                               vec3 aEnd, vec3 bEnd, vec2 feet) {
+    vec3 s0 = b - a, s1 = bEnd - aEnd;
+    vec3 lo = a + feet.x * s0, hi = a + feet.y * s0, loEnd = aEnd + feet.x * s1, hiEnd = aEnd + feet.y * s1;
+    vec4 fromLo = glcRadialUnitSum(p0, p1, p2, lo, p0End, p1End, p2End, loEnd);
+    vec4 fromHi = glcRadialUnitSum(p0, p1, p2, hi, p0End, p1End, p2End, hiEnd);
+    float shortest = min(fromLo.w, fromHi.w);
+    vec3 ma = max(abs(a), abs(b)), me = max(abs(aEnd), abs(bEnd));
+    float moved = GLC_SEGMENT_POINT_ROUNDOFF * max(max(max(ma.x, ma.y), ma.z), max(max(me.x, me.y), me.z)) +
+                  GLC_SEGMENT_POINT_FLUSH;
+    if (!(shortest > 4.0f * moved)) return glcRadialEverywhere(); // also NaN
+    vec3 sum = vec3(fromLo.x, fromLo.y, fromLo.z) + vec3(fromHi.x, fromHi.y, fromHi.z);
+    float size = length(sum);
+    if (!(size > 1.0e-3f)) return glcRadialEverywhere();
+    vec3 axis = sum / size;
+    float c = min(glcRadialLeastCosine(axis, p0, p1, p2, lo, p0End, p1End, p2End, loEnd),
+                  glcRadialLeastCosine(axis, p0, p1, p2, hi, p0End, p1End, p2End, hiEnd));
+    c -= GLC_FOOTPRINT_SLACK + 2.0f * moved / shortest;
+    if (!(c > GLC_FOOTPRINT_SLACK)) return glcRadialEverywhere();
+    return vec4(axis, c);
+}
+
 #endif

@@ -96,6 +96,67 @@ bool glcRadialPositive(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, vec3 p1End
            coefficient2 > error2 + GLC_RADIAL_FLUSH_BOUND && coefficient3 > error3 + GLC_RADIAL_FLUSH_BOUND;
 }
 
+// Segment observers (decision 0025, "Segment observers"): the observer is a segment
+// s(u) = (1 - u) A + u B, u in [0, 1], A and B moving linearly, and a point x of the triangle is
+// judged from its foot s(u(x)), the segment's point nearest to it. The triangle is positive when
+// n(t) . (x - foot(x)) > 0 for every x in it and every t; with the feet of all its points within
+// s([uLo, uHi]) (glcRadialFeet, common/radial_footprint.glsl) it suffices that
+// phi_u(t) = n(t) . (p0(t) - s(u)(t)) > 0 for every u in [uLo, uHi] (n . (x - s(u)) is the same for
+// every x of the triangle's plane). phi is affine in the observer, so phi_u = (1 - u) phi_A + u phi_B
+// and so are its Bernstein coefficients: their lower bounds (1 - u) L_A + u L_B are linear in u,
+// positive on [uLo, uHi] when positive at both ends. No point inside the segment is ever computed.
+//
+//   vec4 glcRadialCoefficientBounds(p0, p1, p2, q, p0End, p1End, p2End, qEnd)
+//        Lower bounds of phi's four Bernstein coefficients (B0, 3 B1, 3 B2, B3) for observer q:
+//        each coefficient's float value minus twice its error bound and the flush allowance. Why
+//        the float subtraction cannot lift it above the exact coefficient: the bound was computed
+//        with N = GLC_RADIAL_ROUNDINGS >= 32 roundings where 22 suffice, and the margin of one
+//        error bound (>= 32 * 2^-24 M) dwarfs the subtraction's own two roundings (<= 3 * 2^-24 M).
+//   bool glcRadialSegmentPositive(p0, p1, p2, a, b, p0End, p1End, p2End, aEnd, bEnd, uLo, uHi)
+//        True only when phi_u > 0 over the substep for every u in [uLo, uHi].
+vec4 glcRadialCoefficientBounds(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, vec3 p1End, vec3 p2End,
+                                vec3 qEnd) {
+    GLC_PRECISE vec3 a0 = p1 - p0;
+    GLC_PRECISE vec3 b0 = p2 - p0;
+    GLC_PRECISE vec3 c0 = p0 - q;
+    GLC_PRECISE vec3 a1 = p1End - p0End;
+    GLC_PRECISE vec3 b1 = p2End - p0End;
+    GLC_PRECISE vec3 c1 = p0End - qEnd;
+    float coefficient0 = glcRadialTriple(a0, b0, c0);
+    float error0 = glcRadialTripleError(a0, b0, c0);
+    float coefficient3 = glcRadialTriple(a1, b1, c1);
+    float error3 = glcRadialTripleError(a1, b1, c1);
+    float coefficient1 = glcRadialTriple(a1, b0, c0) + glcRadialTriple(a0, b1, c0) + glcRadialTriple(a0, b0, c1);
+    float error1 =
+        glcRadialTripleError(a1, b0, c0) + glcRadialTripleError(a0, b1, c0) + glcRadialTripleError(a0, b0, c1);
+    float coefficient2 = glcRadialTriple(a1, b1, c0) + glcRadialTriple(a1, b0, c1) + glcRadialTriple(a0, b1, c1);
+    float error2 =
+        glcRadialTripleError(a1, b1, c0) + glcRadialTripleError(a1, b0, c1) + glcRadialTripleError(a0, b1, c1);
+    return vec4(coefficient0 - 2.0f * error0 - GLC_RADIAL_FLUSH_BOUND,
+                coefficient1 - 2.0f * error1 - GLC_RADIAL_FLUSH_BOUND,
+                coefficient2 - 2.0f * error2 - GLC_RADIAL_FLUSH_BOUND,
+                coefficient3 - 2.0f * error3 - GLC_RADIAL_FLUSH_BOUND);
+}
+
+// Rounding of la + u (lb - la) for u in [0, 1]: at most 3 roundings (the difference, the product,
+// the sum; fewer fused), each within 2^-24 (|la| + |lb|) of it; 2^-20 covers them with margin.
+const float GLC_RADIAL_MIX_ROUNDOFF = 9.5367431640625e-7f; // 2^-20
+
+// (1 - u) la + u lb > 0 for every u in [uLo, uHi] (a line: its ends decide), certified.
+bool glcRadialAboveOn(float la, float lb, float uLo, float uHi) {
+    if (la > 0.0f && lb > 0.0f) return true;
+    float margin = GLC_RADIAL_MIX_ROUNDOFF * (abs(la) + abs(lb)) + GLC_RADIAL_FLUSH_BOUND;
+    return la + uLo * (lb - la) > margin && la + uHi * (lb - la) > margin;
+}
+
+bool glcRadialSegmentPositive(vec3 p0, vec3 p1, vec3 p2, vec3 a, vec3 b, vec3 p0End, vec3 p1End, vec3 p2End,
+                              vec3 aEnd, vec3 bEnd, float uLo, float uHi) {
+    vec4 la = glcRadialCoefficientBounds(p0, p1, p2, a, p0End, p1End, p2End, aEnd);
+    vec4 lb = glcRadialCoefficientBounds(p0, p1, p2, b, p0End, p1End, p2End, bEnd);
+    return glcRadialAboveOn(la.x, lb.x, uLo, uHi) && glcRadialAboveOn(la.y, lb.y, uLo, uHi) &&
+           glcRadialAboveOn(la.z, lb.z, uLo, uHi) && glcRadialAboveOn(la.w, lb.w, uLo, uHi);
+}
+
 // The observer check (decision 0025, "The winding number"): how a ray from q along d crosses
 // the triangle (p0, p1, p2), all at one instant, decided by certified signs of triple products of
 // the `precise` differences e_i = p_i - q (and the exact direction d), each with the bound of

@@ -9,6 +9,7 @@
 
 #include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 namespace glcollide::shader {
@@ -17,6 +18,7 @@ namespace {
 using glm::dot;
 using glm::length;
 using glm::sqrt;
+using vec2 = glm::vec2;
 using vec4 = glm::vec4;
 
 #pragma GCC diagnostic push

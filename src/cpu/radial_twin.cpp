@@ -12,19 +12,44 @@
 
 namespace glcollide::cpu {
 
+RadialFaceView radialFaceView(const std::vector<std::uint32_t>& faceIndices, const std::vector<glm::vec3>& x0,
+                              const std::vector<glm::vec3>& x1, std::size_t f, std::uint32_t observer,
+                              const std::vector<glm::vec3>& observers, const RadialSegmentEnds& segmentEnds,
+                              bool inward) {
+    const std::uint32_t a = faceIndices[3 * f];
+    std::uint32_t b = faceIndices[3 * f + 1], c = faceIndices[3 * f + 2];
+    if (inward) std::swap(b, c);
+    const glm::vec3 q = observers[2 * std::size_t{observer}], qEnd = observers[2 * std::size_t{observer} + 1];
+    RadialFaceView view;
+    const bool segment = 2 * std::size_t{observer} + 1 < segmentEnds.size() &&
+                         segmentEnds[2 * std::size_t{observer}].w != 0.0f;
+    if (!segment) {
+        view.cone = shader::glcRadialFootprint(x0[a], x0[b], x0[c], q, x1[a], x1[b], x1[c], qEnd);
+        view.positive = shader::glcRadialPositive(x0[a], x0[b], x0[c], q, x1[a], x1[b], x1[c], qEnd);
+        return view;
+    }
+    const glm::vec3 r = segmentEnds[2 * std::size_t{observer}], rEnd = segmentEnds[2 * std::size_t{observer} + 1];
+    view.feet = shader::glcRadialFeet(x0[a], x0[b], x0[c], q, r, x1[a], x1[b], x1[c], qEnd, rEnd);
+    view.cone = shader::glcRadialSegmentFootprint(x0[a], x0[b], x0[c], q, r, x1[a], x1[b], x1[c], qEnd, rEnd,
+                                                  view.feet);
+    view.positive = shader::glcRadialSegmentPositive(x0[a], x0[b], x0[c], q, r, x1[a], x1[b], x1[c], qEnd, rEnd,
+                                                     view.feet.x, view.feet.y);
+    if (view.cone.w <= -1.0f) view.feet = shader::glcRadialWholeSegment(); // it may touch the segment
+    return view;
+}
+
 std::vector<std::uint32_t> radialPositiveMask(const std::vector<std::uint32_t>& faceIndices,
                                               const std::vector<glm::vec3>& x0,
                                               const std::vector<glm::vec3>& x1,
                                               const std::vector<std::uint32_t>& faceObserver,
-                                              const std::vector<glm::vec3>& observers) {
+                                              const std::vector<glm::vec3>& observers,
+                                              const RadialSegmentEnds& segmentEnds) {
     const std::size_t faces = faceObserver.size();
     std::vector<std::uint32_t> mask((faces + 31) / 32, 0u);
     for (std::size_t f = 0; f < faces; ++f) {
         const std::uint32_t o = faceObserver[f];
         if (o == 0xffffffffu) continue;
-        const std::uint32_t a = faceIndices[3 * f], b = faceIndices[3 * f + 1], c = faceIndices[3 * f + 2];
-        if (shader::glcRadialPositive(x0[a], x0[b], x0[c], observers[2 * std::size_t{o}], x1[a], x1[b], x1[c],
-                                      observers[2 * std::size_t{o} + 1]))
+        if (radialFaceView(faceIndices, x0, x1, f, o, observers, segmentEnds).positive)
             mask[f / 32] |= 1u << (f % 32);
     }
     return mask;
@@ -33,26 +58,21 @@ std::vector<std::uint32_t> radialPositiveMask(const std::vector<std::uint32_t>& 
 std::vector<std::uint8_t> radialFreeFaces(const std::vector<std::uint32_t>& faceIndices,
                                           const std::vector<glm::vec3>& x0, const std::vector<glm::vec3>& x1,
                                           const std::vector<std::uint32_t>& faceObserver,
-                                          const std::vector<glm::vec3>& observers) {
+                                          const std::vector<glm::vec3>& observers,
+                                          const RadialSegmentEnds& segmentEnds) {
     const std::size_t faces = faceObserver.size();
-    const std::vector<std::uint32_t> positive =
-        radialPositiveMask(faceIndices, x0, x1, faceObserver, observers);
-    const auto isPositive = [&](std::size_t f) { return (positive[f / 32] >> (f % 32) & 1u) != 0u; };
-    std::vector<glm::vec4> cones(faces, shader::glcRadialEverywhere());
-    for (std::size_t f = 0; f < faces; ++f) {
-        const std::uint32_t o = faceObserver[f];
-        if (o == 0xffffffffu) continue;
-        const std::uint32_t a = faceIndices[3 * f], b = faceIndices[3 * f + 1], c = faceIndices[3 * f + 2];
-        cones[f] = shader::glcRadialFootprint(x0[a], x0[b], x0[c], observers[2 * std::size_t{o}], x1[a],
-                                              x1[b], x1[c], observers[2 * std::size_t{o} + 1]);
-    }
+    std::vector<RadialFaceView> views(faces);
+    for (std::size_t f = 0; f < faces; ++f)
+        if (faceObserver[f] != 0xffffffffu)
+            views[f] = radialFaceView(faceIndices, x0, x1, f, faceObserver[f], observers, segmentEnds);
     std::vector<std::uint8_t> free(faces, 0);
     for (std::size_t f = 0; f < faces; ++f) {
-        if (!isPositive(f)) continue;
+        if (!views[f].positive) continue;
         bool meets = false;
         for (std::size_t g = 0; g < faces && !meets; ++g)
-            meets = faceObserver[g] == faceObserver[f] && !isPositive(g) &&
-                    shader::glcRadialFootprintsMeet(cones[f], cones[g]);
+            meets = faceObserver[g] == faceObserver[f] && !views[g].positive &&
+                    shader::glcRadialFeetMeet(views[f].feet, views[g].feet) &&
+                    shader::glcRadialFootprintsMeet(views[f].cone, views[g].cone);
         free[f] = meets ? 0 : 1;
     }
     return free;
