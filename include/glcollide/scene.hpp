@@ -46,6 +46,9 @@ struct Body {
     /// "observer", transformed with it) instead of its nodes' centroid; it moves with four of the
     /// object's nodes (docs/culling.md, "User observers"). Only with "culling": "radial".
     std::optional<glm::dvec3> observer;
+    /// m, world space: with `observer`, the other end of a segment observer (the object's
+    /// "observer": [[x, y, z], [x, y, z]]; docs/culling.md, "Segment observers"), e.g. a limb's bone.
+    std::optional<glm::dvec3> observerEnd;
 };
 
 /// A horizontal plane y = height that nodes cannot go below.

@@ -92,12 +92,14 @@
 #define GLC_BIND_RADIAL_FACE_OBSERVER 57  // uint[faces]: the face's observer, or GLC_RADIAL_NO_OBSERVER
 #define GLC_BIND_RADIAL_POSITIVE 58       // uint[(faces + 31) / 32]: bit f % 32 of word f / 32 set when face f
                                           // is proven positive for its observer over the substep
-#define GLC_BIND_RADIAL_OBSERVER_NODES 59 // uvec4[3 · observers]: the first node and node count whose centroid is the
+#define GLC_BIND_RADIAL_OBSERVER_NODES 59 // uvec4[5 · observers]: the first node and node count whose centroid is the
                                           // observer (RadialObservers; 0 nodes: a cluster's, which
                                           // RadialGhostNodes sets back behind its outer loop), 1 when the
                                           // surface's faces wind inward (classified the other way round), 1
-                                          // for a user observer: then the next uvec4 holds its four frame
-                                          // nodes and the one after the bits of their weights
+                                          // for a user observer point, 2 for a user segment: then the next
+                                          // uvec4 holds the four frame nodes of the point (the segment's
+                                          // first end) and the one after the bits of their weights, and
+                                          // for a segment the next two its second end's
 #define GLC_BIND_RADIAL_CONES 60          // vec4[faces]: each observed face's footprint cone (unit axis, cosine)
 #define GLC_BIND_RADIAL_NONPOSITIVE 61    // uint[1 + 2 * observers + faces]: the observed faces not proven positive:
                                           // their count, then per observer its count and where its bucket
@@ -138,12 +140,19 @@
 #define GLC_BIND_UNTANGLE_PUSH 69          // ivec4[nodes]: the sum of a node's pushes in fixed point
                                            // (u_pushScale units per unit push) in xyz; w unused (alignment)
 #define GLC_BIND_UNTANGLE_COUNTS 72        // uint[2]: nodes moved, intersecting pairs without two piercings
+// Segment observers of radial culling (decision 0025, "Segment observers").
+#define GLC_BIND_RADIAL_SEGMENTS 75        // vec4[2 * observers]: a segment observer's second end at t = 0, then
+                                           // at t = 1 (its first end: GLC_BIND_RADIAL_OBSERVERS), w = 1;
+                                           // w = 0 for a point observer
+#define GLC_BIND_RADIAL_FEET 76            // vec2[classified faces]: the interval of u in [0, 1] that the feet of
+                                           // a face's points on its segment observer lie in ([0, 1] for a point
+                                           // observer, or a cone of every direction)
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 75
+#define GLC_BINDING_COUNT 77
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a

@@ -12,6 +12,11 @@
 // Also, for RadialFree, every observed face's footprint cone (common/radial_footprint.glsl) and
 // the lists of observed faces not proven positive, one per observer (appended in any order:
 // RadialFree only asks whether some listed cone meets a face's, which does not depend on the order).
+// A segment observer (GLC_BIND_RADIAL_SEGMENTS, w = 1; decision 0025 "Segment observers") judges each
+// point from its foot on the segment: the face's feet interval (GLC_BIND_RADIAL_FEET), positivity for
+// every foot in it, and the cone of its fibers' directions; a face whose cone is every direction may
+// touch the segment, and gets every foot, so that it meets every face's footprint. A point
+// observer's faces get every foot too (their footprints are their cones).
 #include "common/layout.glsl"
 #include "common/face_nodes.glsl"
 
@@ -27,6 +32,8 @@ layout(std430, binding = GLC_BIND_RADIAL_FACE_OBSERVER) readonly buffer RadialFa
 layout(std430, binding = GLC_BIND_RADIAL_POSITIVE) buffer RadialPositiveBuf { uint g_positive[]; };
 layout(std430, binding = GLC_BIND_RADIAL_CONES) writeonly buffer RadialConesBuf { vec4 g_cones[]; };
 layout(std430, binding = GLC_BIND_RADIAL_NONPOSITIVE) buffer RadialNonPositiveBuf { uint g_nonPositive[]; };
+layout(std430, binding = GLC_BIND_RADIAL_SEGMENTS) readonly buffer RadialSegmentsBuf { vec4 g_segments[]; };
+layout(std430, binding = GLC_BIND_RADIAL_FEET) writeonly buffer RadialFeetBuf { vec2 g_feet[]; };
 
 #include "common/radial_ghost.glsl"
 
@@ -51,8 +58,21 @@ void main() {
         p1End = p2End;
         p2End = t;
     }
-    g_cones[face] = glcRadialFootprint(p0, p1, p2, q, p0End, p1End, p2End, qEnd);
-    if (glcRadialPositive(p0, p1, p2, q, p0End, p1End, p2End, qEnd)) {
+    bool positive;
+    vec4 segmentStart = g_segments[2u * observer];
+    if (segmentStart.w != 0.0) {
+        vec3 r = segmentStart.xyz, rEnd = g_segments[2u * observer + 1u].xyz;
+        vec2 feet = glcRadialFeet(p0, p1, p2, q, r, p0End, p1End, p2End, qEnd, rEnd);
+        vec4 cone = glcRadialSegmentFootprint(p0, p1, p2, q, r, p0End, p1End, p2End, qEnd, rEnd, feet);
+        positive = glcRadialSegmentPositive(p0, p1, p2, q, r, p0End, p1End, p2End, qEnd, rEnd, feet.x, feet.y);
+        g_cones[face] = cone;
+        g_feet[face] = cone.w <= -1.0 ? glcRadialWholeSegment() : feet;
+    } else {
+        g_cones[face] = glcRadialFootprint(p0, p1, p2, q, p0End, p1End, p2End, qEnd);
+        positive = glcRadialPositive(p0, p1, p2, q, p0End, p1End, p2End, qEnd);
+        g_feet[face] = glcRadialWholeSegment();
+    }
+    if (positive) {
         atomicOr(g_positive[face / 32u], 1u << (face % 32u));
     } else { // into its observer's bucket (RadialFree scans only that one), and counted in all
         uint slot = atomicAdd(g_nonPositive[1u + 2u * observer], 1u);

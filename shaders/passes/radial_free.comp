@@ -1,7 +1,8 @@
 #version 430 core
 // RadialFree — radial view-based culling's free faces (decision 0025): one invocation per face. A
 // face is *free* when it is proven positive for its observer (RadialClassify) and its footprint
-// cone meets the cone of no face of the same observer that is not proven positive (the list
+// (its cone, and for a segment observer its feet) meets that of no face of the same observer that is
+// not proven positive (the list
 // RadialClassify appended). By the decision's theorem a free face intersects nothing of its
 // observer's surface during the substep; common/radial_cull.glsl leaves its pairs out of the exact
 // tests. Brute force over its observer's non-positive list (RadialClassify's bucket of that
@@ -19,6 +20,7 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 layout(std430, binding = GLC_BIND_RADIAL_FACE_OBSERVER) readonly buffer RadialFaceObserverBuf { uint g_faceObserver[]; };
 layout(std430, binding = GLC_BIND_RADIAL_POSITIVE) readonly buffer RadialPositiveBuf { uint g_positive[]; };
 layout(std430, binding = GLC_BIND_RADIAL_CONES) readonly buffer RadialConesBuf { vec4 g_cones[]; };
+layout(std430, binding = GLC_BIND_RADIAL_FEET) readonly buffer RadialFeetBuf { vec2 g_feet[]; };
 layout(std430, binding = GLC_BIND_RADIAL_NONPOSITIVE) readonly buffer RadialNonPositiveBuf { uint g_nonPositive[]; };
 layout(std430, binding = GLC_BIND_RADIAL_FREE) buffer RadialFreeBuf { uint g_free[]; };
 layout(std430, binding = GLC_BIND_RADIAL_WINDING) readonly buffer RadialWindingBuf { uint g_winding[]; };
@@ -44,9 +46,12 @@ void main() {
     uint observer = g_faceObserver[face];
     if (!windsOnce(observer)) return; // no premise: nothing of this surface is free
     vec4 cone = g_cones[face];
+    vec2 feet = g_feet[face];
     uint first = g_nonPositive[2u + 2u * observer], count = g_nonPositive[1u + 2u * observer];
-    for (uint k = 0u; k < count; ++k)
-        if (glcRadialFootprintsMeet(cone, g_cones[g_nonPositive[first + k]])) return;
+    for (uint k = 0u; k < count; ++k) {
+        uint other = g_nonPositive[first + k];
+        if (glcRadialFeetMeet(feet, g_feet[other]) && glcRadialFootprintsMeet(cone, g_cones[other])) return;
+    }
     atomicOr(g_free[1u + face / 32u], 1u << (face % 32u));
     atomicAdd(g_counters.stats[GLC_STAT_RADIAL_FREE], 1u);
 }

@@ -68,7 +68,7 @@ void main() {
         g_ghostPositions[2u * ghost + end] = vec4(position, 1.0);
         if (observer != GLC_RADIAL_NO_OBSERVER) {
             // w of the start: the surface's orientation for RadialClassify (-1: its faces wind inward).
-            float w = atEnd || g_observerNodes[3u * observer].z == 0u ? 1.0 : -1.0;
+            float w = atEnd || g_observerNodes[5u * observer].z == 0u ? 1.0 : -1.0;
             g_observers[2u * observer + end] = vec4(mean - (observerDepth * radius) * axis, w);
         }
     }

@@ -1,7 +1,9 @@
 #version 430 core
 // RadialWinding — radial view-based culling's observer check (decision 0025, "The winding
 // number"; docs/culling.md, "Observer check"): the theorem needs each observed closed surface (real
-// and ghost faces) to wind exactly once around its observer at the start of the substep. One
+// and ghost faces) to wind exactly once around its observer at the start of the substep (a segment
+// observer: around its first end; no face touches the segment in a substep that frees a face, so
+// every point of it is wound around as often, decision 0025 "Segment observers"). One
 // invocation per classified face: the ray from the observer at x0 along GLC_RADIAL_RAY crosses the
 // face (as the classification orients it) leaving through its front (+1), its back (-1) or not at
 // all, by certified signs (glcRadialRayCrossing, common/radial_sign.glsl); the crossings of a

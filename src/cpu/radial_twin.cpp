@@ -28,22 +28,21 @@ RadialFaceView radialFaceView(const std::vector<std::uint32_t>& faceIndices, con
         view.positive = shader::glcRadialPositive(x0[a], x0[b], x0[c], q, x1[a], x1[b], x1[c], qEnd);
         return view;
     }
-    const glm::vec3 r = segmentEnds[2 * std::size_t{observer}], rEnd = segmentEnds[2 * std::size_t{observer} + 1];
+    const glm::vec3 r = segmentEnds[2 * std::size_t{observer}],
+                    rEnd = segmentEnds[2 * std::size_t{observer} + 1];
     view.feet = shader::glcRadialFeet(x0[a], x0[b], x0[c], q, r, x1[a], x1[b], x1[c], qEnd, rEnd);
     view.cone = shader::glcRadialSegmentFootprint(x0[a], x0[b], x0[c], q, r, x1[a], x1[b], x1[c], qEnd, rEnd,
                                                   view.feet);
-    view.positive = shader::glcRadialSegmentPositive(x0[a], x0[b], x0[c], q, r, x1[a], x1[b], x1[c], qEnd, rEnd,
-                                                     view.feet.x, view.feet.y);
+    view.positive = shader::glcRadialSegmentPositive(x0[a], x0[b], x0[c], q, r, x1[a], x1[b], x1[c], qEnd,
+                                                     rEnd, view.feet.x, view.feet.y);
     if (view.cone.w <= -1.0f) view.feet = shader::glcRadialWholeSegment(); // it may touch the segment
     return view;
 }
 
-std::vector<std::uint32_t> radialPositiveMask(const std::vector<std::uint32_t>& faceIndices,
-                                              const std::vector<glm::vec3>& x0,
-                                              const std::vector<glm::vec3>& x1,
-                                              const std::vector<std::uint32_t>& faceObserver,
-                                              const std::vector<glm::vec3>& observers,
-                                              const RadialSegmentEnds& segmentEnds) {
+std::vector<std::uint32_t>
+radialPositiveMask(const std::vector<std::uint32_t>& faceIndices, const std::vector<glm::vec3>& x0,
+                   const std::vector<glm::vec3>& x1, const std::vector<std::uint32_t>& faceObserver,
+                   const std::vector<glm::vec3>& observers, const RadialSegmentEnds& segmentEnds) {
     const std::size_t faces = faceObserver.size();
     std::vector<std::uint32_t> mask((faces + 31) / 32, 0u);
     for (std::size_t f = 0; f < faces; ++f) {

@@ -36,12 +36,10 @@ RadialFaceView radialFaceView(const std::vector<std::uint32_t>& faceIndices, con
 /// Bit f % 32 of word f / 32 set when face f (node indices faceIndices[3f .. 3f+2]) is proven
 /// positive for its observer over x0 → x1; observers[2k], observers[2k + 1]: observer k at t = 0
 /// and t = 1; faceObserver[f] = 0xffffffff: no observer, never positive.
-std::vector<std::uint32_t> radialPositiveMask(const std::vector<std::uint32_t>& faceIndices,
-                                              const std::vector<glm::vec3>& x0,
-                                              const std::vector<glm::vec3>& x1,
-                                              const std::vector<std::uint32_t>& faceObserver,
-                                              const std::vector<glm::vec3>& observers,
-                                              const RadialSegmentEnds& segmentEnds = {});
+std::vector<std::uint32_t>
+radialPositiveMask(const std::vector<std::uint32_t>& faceIndices, const std::vector<glm::vec3>& x0,
+                   const std::vector<glm::vec3>& x1, const std::vector<std::uint32_t>& faceObserver,
+                   const std::vector<glm::vec3>& observers, const RadialSegmentEnds& segmentEnds = {});
 
 /// Decision 0025's free faces, by brute force: face f is free when it is proven positive for its
 /// observer and its footprint (cone, and feet for a segment observer) meets that of no face of the

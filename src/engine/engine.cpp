@@ -391,7 +391,10 @@ void Engine::Impl::makePass(engine::Stage stage) {
                                                      plan.collision.clusterMaxAngle,
                                                      plan.collision.clusterMaxFaces,
                                                      {}};
-            for (const Body& body : scene.bodies) observers.objectObservers.push_back(body.observer);
+            for (const Body& body : scene.bodies) {
+                observers.objectObservers.push_back(body.observer);
+                observers.objectObserverEnds.push_back(body.observerEnd);
+            }
             config.radial = passes::radialCullingConfig(model, observers);
         }
         collision.emplace(config, model);

@@ -5,7 +5,10 @@
 #include <glcollide/error.hpp>
 
 #include <epoxy/gl.h>
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
+
+#include <algorithm>
 
 #include <string>
 
@@ -56,8 +59,10 @@ RadialClassifyPass::RadialClassifyPass(const std::vector<std::uint32_t>& faceObs
       m_nonPositiveHeader(nonPositiveHeader(faceObserver, observerCount)),
       m_faceObserver(gl::makeBuffer("radialFaceObserver", faceObserver)),
       m_observers("radialObservers", std::size_t{2} * observerCount * sizeof(glm::vec4)),
+      m_segments("radialSegments", std::size_t{2} * std::max(observerCount, 1u) * sizeof(glm::vec4)),
       m_mask("radialPositive", ((m_faceCount + 31u) / 32u) * sizeof(std::uint32_t)),
       m_cones("radialCones", std::size_t{m_faceCount} * sizeof(glm::vec4)),
+      m_feet("radialFeet", std::size_t{std::max(m_faceCount, 1u)} * sizeof(glm::vec2)),
       m_nonPositive("radialNonPositive",
                     (m_nonPositiveHeader.size() + std::size_t{m_faceCount}) * sizeof(std::uint32_t)),
       m_ghostFaces(gl::makeBuffer("radialGhostFaces", ghosts.faces)),
@@ -69,6 +74,7 @@ RadialClassifyPass::RadialClassifyPass(const std::vector<std::uint32_t>& faceObs
                         std::to_string(faceObserver[f]) + " of " + std::to_string(observerCount));
     m_program.set("u_faceCount", m_faceCount);
     setGhostUniforms(m_program);
+    m_segments.fill32(0u); // point observers until a pass or setObservers says otherwise
 }
 
 void RadialClassifyPass::setGhostUniforms(const gl::ComputeProgram& program) const {
@@ -80,12 +86,16 @@ void RadialClassifyPass::setObservers(const std::vector<RadialObserver>& observe
     if (observers.size() != m_observerCount)
         throw Error(std::string(kName) + ": " + std::to_string(observers.size()) + " observers given, " +
                     std::to_string(m_observerCount) + " expected");
-    std::vector<glm::vec4> packed;
+    std::vector<glm::vec4> packed, segments;
     for (const RadialObserver& o : observers) {
         packed.emplace_back(o.start, 1.0f);
         packed.emplace_back(o.end, 1.0f);
+        const float segment = o.segment ? 1.0f : 0.0f;
+        segments.emplace_back(o.segment ? (*o.segment)[0] : glm::vec3(0.0f), segment);
+        segments.emplace_back(o.segment ? (*o.segment)[1] : glm::vec3(0.0f), segment);
     }
     m_observers.upload(0, packed.size() * sizeof(glm::vec4), packed.data());
+    m_segments.upload(0, segments.size() * sizeof(glm::vec4), segments.data());
 }
 
 void RadialClassifyPass::dispatch(const DeviceBuffers& b) {
@@ -101,6 +111,7 @@ void RadialClassifyPass::dispatch(const DeviceBuffers& b) {
 void RadialClassifyPass::dispatchOnBoundPositions() {
     m_faceObserver.bindStorage(GLC_BIND_RADIAL_FACE_OBSERVER);
     m_observers.bindStorage(GLC_BIND_RADIAL_OBSERVERS);
+    m_segments.bindStorage(GLC_BIND_RADIAL_SEGMENTS);
     m_ghostFaces.bindStorage(GLC_BIND_RADIAL_GHOST_FACES);
     m_ghostPositions.bindStorage(GLC_BIND_RADIAL_GHOST_POSITIONS);
     m_mask.fill32(0u);
@@ -108,6 +119,7 @@ void RadialClassifyPass::dispatchOnBoundPositions() {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     m_mask.bindStorage(GLC_BIND_RADIAL_POSITIVE);
     m_cones.bindStorage(GLC_BIND_RADIAL_CONES);
+    m_feet.bindStorage(GLC_BIND_RADIAL_FEET);
     m_nonPositive.bindStorage(GLC_BIND_RADIAL_NONPOSITIVE);
     m_program.use();
     m_program.dispatch1D(m_faceCount, GLC_WORKGROUP_SIZE);

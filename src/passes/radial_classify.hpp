@@ -12,14 +12,19 @@
 
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace glcollide::passes {
 
-/// An observer point at both ends of the substep (it moves linearly between them).
+/// An observer point at both ends of the substep (it moves linearly between them); for a segment
+/// observer (decision 0025, "Segment observers") that is its first end, and `segment` holds its
+/// second end at both ends of the substep.
 struct RadialObserver {
     glm::vec3 start{0.0f}, end{0.0f};
+    std::optional<std::array<glm::vec3, 2>> segment = std::nullopt;
 };
 
 /// A face that no observer classifies (never positive): GLC_RADIAL_NO_OBSERVER.
@@ -59,6 +64,10 @@ class RadialClassifyPass {
     [[nodiscard]] const gl::Buffer& nonPositive() const { return m_nonPositive; }
     /// vec4[2 * observers]: start and end of each observer (setObservers or a GPU pass writes it).
     [[nodiscard]] const gl::Buffer& observers() const { return m_observers; }
+    /// vec4[2 * observers]: a segment observer's second end at start and end, w = 1 (0: a point).
+    [[nodiscard]] const gl::Buffer& segments() const { return m_segments; }
+    /// vec2 per face: the feet interval (valid for observed faces; [0, 1] for point observers).
+    [[nodiscard]] const gl::Buffer& feet() const { return m_feet; }
     [[nodiscard]] const gl::Buffer& faceObserver() const { return m_faceObserver; }
     /// uint[3 * ghost faces] (GLC_BIND_RADIAL_GHOST_FACES).
     [[nodiscard]] const gl::Buffer& ghostFaces() const { return m_ghostFaces; }
@@ -73,7 +82,8 @@ class RadialClassifyPass {
   private:
     std::uint32_t m_faceCount = 0, m_realFaceCount = 0, m_observerCount = 0, m_nodeLimit = 0;
     std::vector<std::uint32_t> m_nonPositiveHeader; ///< uploaded before each classification: counts 0
-    gl::Buffer m_faceObserver, m_observers, m_mask, m_cones, m_nonPositive, m_ghostFaces, m_ghostPositions;
+    gl::Buffer m_faceObserver, m_observers, m_segments, m_mask, m_cones, m_feet, m_nonPositive, m_ghostFaces,
+        m_ghostPositions;
     gl::ComputeProgram m_program;
 };
 

@@ -25,20 +25,29 @@ static_assert(GLC_GHOST_APEX == static_cast<std::uint32_t>(model::GhostKind::Ape
 static_assert(GLC_GHOST_SKIRT == static_cast<std::uint32_t>(model::GhostKind::Skirt));
 
 namespace {
-/// GLC_BIND_RADIAL_OBSERVER_NODES: per observer three uvec4 — (first node, node count, inward,
-/// framed), the frame's four nodes, the bits of its four weights (RadialSurface).
+/// A frame's four nodes, then the bits of its four weights: two uvec4.
+void appendFrame(std::vector<std::uint32_t>& ranges, const std::array<std::uint32_t, 4>& nodes,
+                 const std::array<float, 4>& weights) {
+    ranges.insert(ranges.end(), nodes.begin(), nodes.end());
+    for (const float w : weights) {
+        std::uint32_t bits = 0;
+        std::memcpy(&bits, &w, sizeof bits);
+        ranges.push_back(bits);
+    }
+}
+
+/// GLC_BIND_RADIAL_OBSERVER_NODES: per observer five uvec4 — (first node, node count, inward,
+/// 0 centroid / 1 user point / 2 user segment), the frame of the point (or the segment's first
+/// end), the frame of the segment's second end (RadialSurface).
 std::vector<std::uint32_t> surfaceRanges(const std::vector<RadialSurface>& surfaces) {
     std::vector<std::uint32_t> ranges;
     for (const RadialSurface& s : surfaces) {
-        ranges.insert(ranges.end(), {s.firstNode, s.nodeCount, s.inward ? 1u : 0u, s.framed ? 1u : 0u});
-        ranges.insert(ranges.end(), s.frameNodes.begin(), s.frameNodes.end());
-        for (const float w : s.frameWeights) {
-            std::uint32_t bits = 0;
-            std::memcpy(&bits, &w, sizeof bits);
-            ranges.push_back(bits);
-        }
+        const std::uint32_t user = s.segment ? 2u : s.framed ? 1u : 0u;
+        ranges.insert(ranges.end(), {s.firstNode, s.nodeCount, s.inward ? 1u : 0u, user});
+        appendFrame(ranges, s.frameNodes, s.frameWeights);
+        appendFrame(ranges, s.segmentFrameNodes, s.segmentFrameWeights);
     }
-    if (ranges.empty()) ranges.assign(12, 0u); // a buffer the consumers can bind
+    if (ranges.empty()) ranges.assign(20, 0u); // a buffer the consumers can bind
     return ranges;
 }
 
@@ -198,8 +207,9 @@ std::uint32_t appendLoop(RadialGhosts& g, const model::ObjectRange& r,
 }
 
 /// Ties a user observer at `point` to four of object `r`'s nodes (model::observerFrame).
-void frameObserver(RadialSurface& surface, const model::FlatModel& model, const model::ObjectRange& r,
-                   std::size_t object, const glm::dvec3& point) {
+void frameObserver(std::array<std::uint32_t, 4>& nodes, std::array<float, 4>& weights,
+                   const model::FlatModel& model, const model::ObjectRange& r, std::size_t object,
+                   const glm::dvec3& point) {
     model::ObserverFrame frame;
     try {
         frame = model::observerFrame(objectPositions(model, r), point);
@@ -207,11 +217,23 @@ void frameObserver(RadialSurface& surface, const model::FlatModel& model, const 
         throw Error(std::string(RadialCullingPass::kName) + ": object " + std::to_string(object) +
                     "'s observer: " + e.what());
     }
-    surface.framed = true;
     for (std::size_t k = 0; k < 4; ++k) {
-        surface.frameNodes[k] = r.firstNode + frame.nodes[k];
-        surface.frameWeights[k] = static_cast<float>(frame.weights[k]);
+        nodes[k] = r.firstNode + frame.nodes[k];
+        weights[k] = static_cast<float>(frame.weights[k]);
     }
+}
+
+/// The object's user observer, a point or a segment (settings.objectObservers, objectObserverEnds).
+void userObserver(RadialSurface& surface, const model::FlatModel& model, const model::ObjectRange& r,
+                  std::size_t object, const RadialObserverSettings& settings) {
+    if (object >= settings.objectObservers.size() || !settings.objectObservers[object]) return;
+    frameObserver(surface.frameNodes, surface.frameWeights, model, r, object,
+                  *settings.objectObservers[object]);
+    surface.framed = true;
+    if (object >= settings.objectObserverEnds.size() || !settings.objectObserverEnds[object]) return;
+    frameObserver(surface.segmentFrameNodes, surface.segmentFrameWeights, model, r, object,
+                  *settings.objectObserverEnds[object]);
+    surface.segment = true;
 }
 
 /// Object `r` (the model's object `object`) as one observed surface, closed by itself or by ghosts;
@@ -221,8 +243,7 @@ bool observeObject(RadialCullingConfig& config, const model::FlatModel& model, c
     const auto observer = static_cast<std::uint32_t>(config.surfaces.size());
     RadialSurface surface{r.firstNode, r.nodeCount,
                           static_cast<std::uint32_t>(config.ghosts.faceObserver.size()), 0};
-    if (object < settings.objectObservers.size() && settings.objectObservers[object])
-        frameObserver(surface, model, r, object, *settings.objectObservers[object]);
+    userObserver(surface, model, r, object, settings);
     if (model::isClosedOrientedConnected(model.faceIndices, r.firstFace, r.faceCount)) {
         surface.inward = signedVolume6(model.faceIndices, r.firstFace, r.faceCount, model.positions) < 0.0;
     } else {
@@ -381,6 +402,7 @@ void RadialCullingPass::run(AppendLists& lists) const {
     lists.resetStats({GLC_STAT_RADIAL_NON_POSITIVE, GLC_STAT_RADIAL_FREE, GLC_STAT_RADIAL_VIOLATED});
     bindForConsumers();
     m_classify.observers().bindStorage(GLC_BIND_RADIAL_OBSERVERS);
+    m_classify.segments().bindStorage(GLC_BIND_RADIAL_SEGMENTS);
     m_observers.use();
     gl::ComputeProgram::dispatch(m_observerCount, 1, 1); // one work group per observer; counted
     if (m_ghostNodes) {
@@ -457,11 +479,19 @@ std::vector<RadialWinding> RadialCullingPass::readWinding() const {
 
 std::vector<RadialObserver> RadialCullingPass::readObservers() const {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<glm::vec4> packed(2 * std::size_t{m_observerCount});
-    if (!packed.empty()) m_classify.observers().download(0, packed.size() * sizeof(glm::vec4), packed.data());
+    std::vector<glm::vec4> packed(2 * std::size_t{m_observerCount}), segments(packed.size());
+    if (!packed.empty()) {
+        m_classify.observers().download(0, packed.size() * sizeof(glm::vec4), packed.data());
+        m_classify.segments().download(0, segments.size() * sizeof(glm::vec4), segments.data());
+    }
     std::vector<RadialObserver> out;
-    for (std::size_t o = 0; o < m_observerCount; ++o)
-        out.push_back({glm::vec3(packed[2 * o]), glm::vec3(packed[2 * o + 1])});
+    for (std::size_t o = 0; o < m_observerCount; ++o) {
+        RadialObserver observer{glm::vec3(packed[2 * o]), glm::vec3(packed[2 * o + 1]), std::nullopt};
+        if (segments[2 * o].w != 0.0f)
+            observer.segment =
+                std::array<glm::vec3, 2>{glm::vec3(segments[2 * o]), glm::vec3(segments[2 * o + 1])};
+        out.push_back(observer);
+    }
     return out;
 }
 

@@ -48,6 +48,11 @@ struct RadialSurface {
     bool framed = false;
     std::array<std::uint32_t, 4> frameNodes{};
     std::array<float, 4> frameWeights{};
+    /// A user segment observer (Body::observerEnd; decision 0025, "Segment observers"): the frame
+    /// above is its first end, this one its second.
+    bool segment = false;
+    std::array<std::uint32_t, 4> segmentFrameNodes{};
+    std::array<float, 4> segmentFrameWeights{};
 };
 
 /// One ghost node (docs/culling.md, "Ghost triangles" and "Clusters"; model::ClusterGhostNode):
@@ -107,6 +112,9 @@ struct RadialObserverSettings {
     /// replaces that object's centroid. Its object must get an observer of its own (closed by
     /// itself or by ghost fans, not clustered) and span a volume (model::observerFrame).
     std::vector<std::optional<glm::dvec3>> objectObservers;
+    /// Per object (or empty): the second end of a user segment observer (Body::observerEnd, m),
+    /// whose first end is objectObservers' point.
+    std::vector<std::optional<glm::dvec3>> objectObserverEnds = {};
 };
 
 /// The engine's observers (decision 0025): one per object of `model` whose surface is closed,

@@ -351,6 +351,19 @@ void applyTransform(const Ctx& c, const json& j, const Ptr& p, Body& body) {
     };
     for (glm::dvec3& x : body.positions) transform(x);
     if (body.observer) transform(*body.observer);
+    if (body.observerEnd) transform(*body.observerEnd);
+}
+
+/// "observer": a point [x, y, z], or a segment [[x, y, z], [x, y, z]] with two different ends.
+void parseObserver(const Ctx& c, const json& j, const Ptr& p, Body& body) {
+    if (!(j.is_array() && j.size() == 2 && j[0].is_array())) {
+        body.observer = vec3(c, j, p);
+        return;
+    }
+    body.observer = vec3(c, j[0], p / 0);
+    body.observerEnd = vec3(c, j[1], p / 1);
+    if (*body.observer == *body.observerEnd)
+        c.fail(p, "a segment observer's two ends must differ (a point observer is [x, y, z])");
 }
 
 void applyPinned(const Ctx& c, const json& j, const Ptr& p, Body& body) {
@@ -405,7 +418,7 @@ Body parseObject(const Ctx& c, const json& j, const Ptr& p, const EffectSet& eff
                                 : generate(c, *gen, p / "generator", sp);
     body.name = "object " + std::to_string(index);
     if (const json* v = find(j, "name")) body.name = string(c, *v, p / "name");
-    if (const json* v = find(j, "observer")) body.observer = vec3(c, *v, p / "observer");
+    if (const json* v = find(j, "observer")) parseObserver(c, *v, p / "observer", body);
     if (const json* v = find(j, "transform")) applyTransform(c, *v, p / "transform", body);
 
     if (!effects.has(Effect::Springs)) {

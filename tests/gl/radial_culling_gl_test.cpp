@@ -173,6 +173,22 @@ TEST(RadialCullingGl, ATwistingSleeveIsBitIdenticalWithAndWithoutCulling) {
     EXPECT_GT(t.culledSubsteps, 60u);
     EXPECT_GT(t.culledCcd, 0u);
     EXPECT_GT(t.substepsWithNonPositive, 0u) << "the sleeve must twist: some faces not positive";
+    RecordProperty("culled_ccd", static_cast<int>(t.culledCcd));
+    RecordProperty("substeps_violated", static_cast<int>(t.substepsViolated));
+}
+
+// The same sleeve watched from a segment along its axis (decision 0025, "Segment observers"): its
+// faces are judged from their feet on the segment, so faces that lean along the axis as it twists
+// stay positive where the centroid saw their backs.
+TEST(RadialCullingGl, ATwistingSleeveWithASegmentObserverIsBitIdenticalWithAndWithoutCulling) {
+    std::string radial = sleeveScene("radial", 40.0);
+    const std::string name = R"("name": "sleeve", )";
+    radial.replace(radial.find(name), name.size(), name + R"("observer": [[0, -0.17, 0], [0, 0.17, 0]], )");
+    const Totals t = expectIdentical(sleeveScene("none", 40.0), radial, 40);
+    EXPECT_EQ(t.ghostFaces, 32u);
+    EXPECT_GT(t.culledSubsteps, 60u);
+    EXPECT_GT(t.culledCcd, 0u);
+    RecordProperty("culled_ccd", static_cast<int>(t.culledCcd));
     RecordProperty("substeps_violated", static_cast<int>(t.substepsViolated));
 }
 

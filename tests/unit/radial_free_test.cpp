@@ -32,7 +32,8 @@ Surface sphereSurface(const std::string& scale = "1") {
     const Scene scene =
         parseScene(R"({"format_version": 1, "effects": ["gravity"], "time": {"dt": 0.01, "frames": 1},
       "objects": [{"name": "ball", "generator": {"type": "sphere", "radius": 0.5, "subdivisions": 3}, "mass": 1,
-                   "transform": {"scale": )" + scale + "}}]}",
+                   "transform": {"scale": )" +
+                       scale + "}}]}",
                    ".", "sphere");
     Surface s;
     // Surface nodes come first (docs/scene-format.md): the faces use only those.
@@ -54,7 +55,8 @@ Tally expectFreeFacesIntersectNothing(const Surface& s, const std::vector<glm::v
     const std::vector<glm::vec3> observer = {q, q};
     cpu::RadialSegmentEnds ends;
     if (segmentEnd) ends = {glm::vec4(*segmentEnd, 1.0f), glm::vec4(*segmentEnd, 1.0f)};
-    const std::vector<std::uint8_t> free = cpu::radialFreeFaces(s.faces, s.x0, x1, faceObserver, observer, ends);
+    const std::vector<std::uint8_t> free =
+        cpu::radialFreeFaces(s.faces, s.x0, x1, faceObserver, observer, ends);
     Tally tally;
     for (std::uint8_t f : free) tally.free += f;
     const std::vector<std::uint32_t> faceObject(faces, 0u);

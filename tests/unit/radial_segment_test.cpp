@@ -27,13 +27,13 @@ struct SegmentMotion {
 };
 
 glm::vec2 feet(const SegmentMotion& m) {
-    return shader::glcRadialFeet(m.start[0], m.start[1], m.start[2], m.start[3], m.start[4], m.end[0], m.end[1],
-                                 m.end[2], m.end[3], m.end[4]);
+    return shader::glcRadialFeet(m.start[0], m.start[1], m.start[2], m.start[3], m.start[4], m.end[0],
+                                 m.end[1], m.end[2], m.end[3], m.end[4]);
 }
 
 bool positive(const SegmentMotion& m, glm::vec2 f) {
-    return shader::glcRadialSegmentPositive(m.start[0], m.start[1], m.start[2], m.start[3], m.start[4], m.end[0],
-                                            m.end[1], m.end[2], m.end[3], m.end[4], f.x, f.y);
+    return shader::glcRadialSegmentPositive(m.start[0], m.start[1], m.start[2], m.start[3], m.start[4],
+                                            m.end[0], m.end[1], m.end[2], m.end[3], m.end[4], f.x, f.y);
 }
 
 glm::vec4 cone(const SegmentMotion& m, glm::vec2 f) {
@@ -63,7 +63,8 @@ SegmentMotion randomSegmentMotion(std::mt19937& rng, float length, float distanc
     // Two directions in the plane facing `out` (tilted a little), corners around the centre wound
     // so that (p1 - p0) x (p2 - p0) points along `out`.
     const glm::vec3 normal = glm::normalize(out + v(0.3f));
-    const glm::vec3 e1 = glm::normalize(glm::cross(normal, glm::abs(normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
+    const glm::vec3 e1 = glm::normalize(
+        glm::cross(normal, glm::abs(normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
     const glm::vec3 e2 = glm::cross(normal, e1);
     SegmentMotion m;
     m.start = {centre + size * e1, centre + size * (-0.5f * e1 + 0.866f * e2),
@@ -120,7 +121,8 @@ TEST(RadialSegment, EveryPointsFootLiesWithinTheTrianglesFeet) {
     int checked = 0, narrow = 0;
     for (const Scale& sc : kScales)
         for (int n = 0; n < 300; ++n) {
-            const SegmentMotion m = randomSegmentMotion(rng, sc.length, sc.distance, sc.size, sc.motion, sc.offset);
+            const SegmentMotion m =
+                randomSegmentMotion(rng, sc.length, sc.distance, sc.size, sc.motion, sc.offset);
             const glm::vec2 f = feet(m);
             ASSERT_LE(0.0f, f.x);
             ASSERT_LE(f.x, f.y);
@@ -128,8 +130,10 @@ TEST(RadialSegment, EveryPointsFootLiesWithinTheTrianglesFeet) {
             narrow += f.y - f.x < 0.5f ? 1 : 0;
             for (int k = 0; k < 200; ++k) {
                 const double footU = footParameter(sampleAt(m, k, rng));
-                ASSERT_LE(double{f.x}, footU) << "scale " << sc.length << ", motion " << n << ", sample " << k;
-                ASSERT_GE(double{f.y}, footU) << "scale " << sc.length << ", motion " << n << ", sample " << k;
+                ASSERT_LE(double{f.x}, footU)
+                    << "scale " << sc.length << ", motion " << n << ", sample " << k;
+                ASSERT_GE(double{f.y}, footU)
+                    << "scale " << sc.length << ", motion " << n << ", sample " << k;
                 ++checked;
             }
         }
@@ -158,7 +162,8 @@ TEST(RadialSegment, APositiveTriangleFacesAwayFromEveryFootAtEverySampledTime) {
     int proven = 0, motions = 0;
     for (const Scale& sc : kScales)
         for (int n = 0; n < 300; ++n, ++motions) {
-            const SegmentMotion m = randomSegmentMotion(rng, sc.length, sc.distance, sc.size, sc.motion, sc.offset);
+            const SegmentMotion m =
+                randomSegmentMotion(rng, sc.length, sc.distance, sc.size, sc.motion, sc.offset);
             if (!positive(m, feet(m))) continue;
             ++proven;
             for (int k = 0; k < 200; ++k) {
@@ -178,7 +183,8 @@ TEST(RadialSegment, TheConeHoldsEveryFiberDirection) {
     int bounded = 0, motions = 0;
     for (const Scale& sc : kScales)
         for (int n = 0; n < 300; ++n, ++motions) {
-            const SegmentMotion m = randomSegmentMotion(rng, sc.length, sc.distance, sc.size, sc.motion, sc.offset);
+            const SegmentMotion m =
+                randomSegmentMotion(rng, sc.length, sc.distance, sc.size, sc.motion, sc.offset);
             const glm::vec2 f = feet(m);
             const glm::vec4 c = cone(m, f);
             if (c.w <= -1.0f) continue; // every direction
@@ -211,8 +217,8 @@ TEST(RadialSegment, APointLikeSegmentProvesNoMoreThanItsPoint) {
             EXPECT_EQ(f.x, 0.0f);
             EXPECT_EQ(f.y, 1.0f);
             const bool segment = positive(m, f);
-            const bool point = shader::glcRadialPositive(m.start[0], m.start[1], m.start[2], m.start[3], m.end[0],
-                                                         m.end[1], m.end[2], m.end[3]);
+            const bool point = shader::glcRadialPositive(m.start[0], m.start[1], m.start[2], m.start[3],
+                                                         m.end[0], m.end[1], m.end[2], m.end[3]);
             if (segment) {
                 EXPECT_TRUE(point) << "scale " << sc.length << ", motion " << n;
             }

@@ -518,6 +518,24 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
         bad.replace(bad.find("[0.01, 0, 0]"), 12, "[0.01, 0]");
         EXPECT_THAT(errorOf(scene(bad, R"("collision": {)" + radial + R"("observers": "auto"})", self)),
                     HasSubstr("/objects/0/observer"));
+        // A segment observer: two points, both moved with the transform; its ends must differ.
+        std::string segment = ball;
+        segment.replace(segment.find("[0.01, 0, 0]"), 12, "[[0.01, 0, 0], [0, 0.02, 0]]");
+        const Scene seg = parseScene(
+            scene(segment, R"("collision": {)" + radial + R"("observers": "auto"})", self), ".", "segment");
+        ASSERT_TRUE(seg.bodies[0].observer.has_value());
+        ASSERT_TRUE(seg.bodies[0].observerEnd.has_value());
+        EXPECT_EQ(*seg.bodies[0].observer, glm::dvec3(0.02, 1.0, 0.0));
+        EXPECT_EQ(*seg.bodies[0].observerEnd, glm::dvec3(0.0, 0.02 * 2.0 + 1.0, 0.0));
+        EXPECT_FALSE(ok.bodies[0].observerEnd.has_value());
+        std::string same = ball;
+        same.replace(same.find("[0.01, 0, 0]"), 12, "[[0.01, 0, 0], [0.01, 0, 0]]");
+        EXPECT_THAT(errorOf(scene(same, R"("collision": {)" + radial + R"("observers": "auto"})", self)),
+                    HasSubstr("/objects/0/observer: a segment observer's two ends must differ"));
+        std::string short_ = ball;
+        short_.replace(short_.find("[0.01, 0, 0]"), 12, "[[0.01, 0, 0], [0, 1]]");
+        EXPECT_THAT(errorOf(scene(short_, R"("collision": {)" + radial + R"("observers": "auto"})", self)),
+                    HasSubstr("/objects/0/observer/1: expected an array of 3 numbers"));
     }
     EXPECT_THAT(
         errorOf(scene(R"({"generator": {"type": "tube", "radius": 0.1, "length": 1, "resolution": [2, 4]},
