@@ -14,7 +14,7 @@ RadialCulling + BvhBuild + BvhRefit + BvhTraverse + TriTri + FeaturePairs + Ccd.
 is the slope of log(detection time) against log(faces) between the smallest and largest size.
 
 usage: bench/culling.py [--glcollide build/src/glcollide] [--frames 45] [--scenes ball,sleeve,mask,sheet]
-                        [--observers auto|objects|clusters] [--observer X,Y,Z]
+                        [--observers auto|objects|clusters] [--observer X,Y,Z[;X,Y,Z]]
                         [--subdivisions 3,4,5] [--sleeve-resolutions 32x20,64x40] [--sheet-resolutions 32,48,96]
                         [--out bench/results/<device>/culling_<commit>]
        bench/culling.py --write-scenes DIR ...   (only writes the scene variants, for a machine without
@@ -167,8 +167,8 @@ def main():
     ap.add_argument("--observers", default=None,
                     help="collision.observers of the radial runs (auto, objects, clusters; default: the scene's)")
     ap.add_argument("--observer", default=None,
-                    help="a user observer X,Y,Z (m, the first object's own coordinates) for the radial runs "
-                         "(docs/culling.md, \"User observers\")")
+                    help="a user observer X,Y,Z, or a segment X,Y,Z;X,Y,Z (m, the first object's own "
+                         "coordinates) for the radial runs (docs/culling.md, \"User observers\", \"Segment observers\")")
     ap.add_argument("--out", default=None)
     ap.add_argument("--write-scenes", default=None)
     ap.add_argument("--stats-dir", default=None)
@@ -187,8 +187,9 @@ def main():
                 else:
                     if args.observers:
                         scene["collision"]["observers"] = args.observers
-                    if args.observer:
-                        scene["objects"][0]["observer"] = [float(v) for v in args.observer.split(",")]
+                    if args.observer:  # a point X,Y,Z or a segment X,Y,Z;X,Y,Z
+                        points = [[float(v) for v in p.split(",")] for p in args.observer.split(";")]
+                        scene["objects"][0]["observer"] = points[0] if len(points) == 1 else points
                 runs[culling] = run(args.glcollide, scene, args.frames, work, f"{tag}_{culling}", args.stats_dir,
                                     args.write_scenes is not None)
             if args.write_scenes:

@@ -95,6 +95,8 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"RadialPositiveBuf", GLC_BIND_RADIAL_POSITIVE},
     {"RadialObserverNodesBuf", GLC_BIND_RADIAL_OBSERVER_NODES},
     {"RadialConesBuf", GLC_BIND_RADIAL_CONES},
+    {"RadialSegmentsBuf", GLC_BIND_RADIAL_SEGMENTS},
+    {"RadialFeetBuf", GLC_BIND_RADIAL_FEET},
     {"RadialNonPositiveBuf", GLC_BIND_RADIAL_NONPOSITIVE},
     {"RadialFreeBuf", GLC_BIND_RADIAL_FREE},
     {"RadialMovedBuf", GLC_BIND_RADIAL_MOVED},

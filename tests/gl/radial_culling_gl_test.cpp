@@ -183,7 +183,7 @@ TEST(RadialCullingGl, ATwistingSleeveIsBitIdenticalWithAndWithoutCulling) {
 TEST(RadialCullingGl, ATwistingSleeveWithASegmentObserverIsBitIdenticalWithAndWithoutCulling) {
     std::string radial = sleeveScene("radial", 40.0);
     const std::string name = R"("name": "sleeve", )";
-    radial.replace(radial.find(name), name.size(), name + R"("observer": [[0, -0.17, 0], [0, 0.17, 0]], )");
+    radial.replace(radial.rfind(name), name.size(), name + R"("observer": [[0, -0.17, 0], [0, 0.17, 0]], )");
     const Totals t = expectIdentical(sleeveScene("none", 40.0), radial, 40);
     EXPECT_EQ(t.ghostFaces, 32u);
     EXPECT_GT(t.culledSubsteps, 60u);
