@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Radial view-based culling's benchmark (issue 24, item 6; docs/culling.md, "Measured").
 
-Runs scenes/cloth_ball.json (a soft ball of cloth crumpling on the ground) at several sizes, and
+Runs scenes/cloth_ball.json (a soft ball of cloth crumpling on the ground) at several sizes, the
+same ball stretched 3x along x (a cigar: a long closed surface, for segment observers), and
 the open surfaces that ghost triangles close — scenes/sleeve.json (a twisting tube) at several
 resolutions and scenes/mask_fold.json (DEDO's mask folding over a ball) — and the flat sheet that
 clusters serve (scenes/sheet_fold.json, at several resolutions) with "culling": "none"
@@ -13,7 +14,7 @@ candidate pairs tested with and without culling, and the GPU time of each detect
 RadialCulling + BvhBuild + BvhRefit + BvhTraverse + TriTri + FeaturePairs + Ccd. The cost exponent
 is the slope of log(detection time) against log(faces) between the smallest and largest size.
 
-usage: bench/culling.py [--glcollide build/src/glcollide] [--frames 45] [--scenes ball,sleeve,mask,sheet]
+usage: bench/culling.py [--glcollide build/src/glcollide] [--frames 45] [--scenes ball,cigar,sleeve,mask,sheet]
                         [--observers auto|objects|clusters] [--observer X,Y,Z[;X,Y,Z]]
                         [--subdivisions 3,4,5] [--sleeve-resolutions 32x20,64x40] [--sheet-resolutions 32,48,96]
                         [--out bench/results/<device>/culling_<commit>]
@@ -53,6 +54,13 @@ def variants(args):
                 scene = json.loads(json.dumps(base))
                 scene["objects"][0]["generator"]["subdivisions"] = sub
                 out.append(("cloth_ball", f"ball{sub}", scene))
+        elif name == "cigar":  # the cloth ball stretched 3x along x: a long closed surface
+            base = load_scene(os.path.join(ROOT, "scenes", "cloth_ball.json"))
+            for sub in [int(s) for s in args.subdivisions.split(",")]:
+                scene = json.loads(json.dumps(base))
+                scene["objects"][0]["generator"]["subdivisions"] = sub
+                scene["objects"][0]["transform"]["scale"] = [3, 1, 1]
+                out.append(("cloth_cigar", f"cigar{sub}", scene))
         elif name == "sleeve":
             base = load_scene(os.path.join(ROOT, "scenes", "sleeve.json"))
             for res in args.sleeve_resolutions.split(","):
@@ -73,7 +81,7 @@ def variants(args):
                 scene["objects"][0]["generator"]["resolution"] = [res, res]
                 out.append(("sheet_fold", f"sheet{res}", scene))
         else:
-            sys.exit(f"culling.py: unknown scene {name!r}; expected ball, sleeve, mask or sheet")
+            sys.exit(f"culling.py: unknown scene {name!r}; expected ball, cigar, sleeve, mask or sheet")
     return out
 
 

@@ -88,14 +88,19 @@ bool glcRadialFootprintsMeet(vec4 a, vec4 b) {
 //        off by at most 2^-21 max |d|_1 |s|_1 / D + 2^-16 |u|; GLC_FEET_SLACK (1 + |u| +
 //        max |d|_1 |s|_1 / D) widens the interval beyond that.
 //   vec4 glcRadialSegmentFootprint(p0, p1, p2, a, b, p0End, p1End, p2End, aEnd, bEnd, feet)
-//        The cone (as glcRadialFootprint's) of every fiber direction x - s(u) of the triangle's
-//        points with u in `feet`: the hull of the 12 differences p_i - s(u) at the two ends of
-//        `feet` and of the substep holds every x(t) - s(u)(t) (a convex combination of them with
-//        the same t), so the 6-point argument of glcRadialFootprint carries over. The 4 points
-//        s(u) are computed in float, off the segment by at most E = 2^-20 max|coordinate of a, b|
-//        (+ 2^-120 for flushing), which turns a difference of length >= rho by at most E / rho rad
-//        (< 0.53 x for x = E / rho <= 1/4): the cone's cosine is lowered by 2 E / rho, and a
-//        triangle within 4 E of those points gets every direction.
+//        The cone (as glcRadialFootprint's) of every fiber direction x - foot(x) of the
+//        triangle's points, from 12 differences p_i - s(u) at both ends of the substep, with u at
+//        the two ends of an interval per corner. When every corner's own (unclamped) feet lie in
+//        [0, 1], u is affine in x at each t (no clamping), so x - foot(x) = sum b_i (p_i - s(u_i))
+//        with u_i corner i's foot, and the intervals are the corners' own: narrow, so the cone is
+//        as tight as a point observer's beside the segment. Otherwise each corner takes the face's
+//        `feet`, which hold every foot: x(t) - s(u)(t) for u in `feet` is a convex combination of
+//        the 12 differences with the same t. Either way the 6-point argument of
+//        glcRadialFootprint carries over. The points s(u) are computed in float, off the segment
+//        by at most E = 2^-20 max|coordinate of a, b| (+ 2^-120 for flushing), which turns a
+//        difference of length >= rho by at most E / rho rad (< 0.53 x for x = E / rho <= 1/4):
+//        the cone's cosine is lowered by 2 E / rho, and a triangle within 4 E of those points
+//        gets every direction.
 //   bool glcRadialFeetMeet(vec2 a, vec2 b)
 //        The two intervals overlap (closed): two triangles whose feet do not overlap share no fiber.
 // With a segment observer a triangle whose cone is "every direction" must also have every foot
@@ -121,26 +126,37 @@ vec3 glcRadialFootNumerator(vec3 p, vec3 a, vec3 s0, vec3 pEnd, vec3 aEnd, vec3 
     return vec3(min(min(c0, c1), c2), max(max(c0, c1), c2), size);
 }
 
-vec2 glcRadialFeet(vec3 p0, vec3 p1, vec3 p2, vec3 a, vec3 b, vec3 p0End, vec3 p1End, vec3 p2End, vec3 aEnd,
-                   vec3 bEnd) {
-    vec3 s0 = b - a, s1 = bEnd - aEnd;
+// One corner's u(p(t), t) over the substep, not clamped to [0, 1] and widened beyond its rounding;
+// (1, 0), an empty interval, when D's bounds are not used (the segment turned or shrank).
+vec2 glcRadialCornerFeet(vec3 p, vec3 a, vec3 s0, vec3 pEnd, vec3 aEnd, vec3 s1) {
     vec3 as0 = abs(s0), as1 = abs(s1);
     float sizeS = as0.x + as0.y + as0.z + as1.x + as1.y + as1.z;
     float dMin = min(min(dot(s0, s0), dot(s0, s1)), dot(s1, s1));
     float dMax = max(max(dot(s0, s0), dot(s0, s1)), dot(s1, s1));
-    if (!(dMin > 0.0625f * sizeS * sizeS)) return glcRadialWholeSegment(); // 2^-4; also NaN
-    vec3 n0 = glcRadialFootNumerator(p0, a, s0, p0End, aEnd, s1);
-    vec3 n1 = glcRadialFootNumerator(p1, a, s0, p1End, aEnd, s1);
-    vec3 n2 = glcRadialFootNumerator(p2, a, s0, p2End, aEnd, s1);
-    float nLo = min(min(n0.x, n1.x), n2.x), nHi = max(max(n0.y, n1.y), n2.y);
-    float size = max(max(n0.z, n1.z), n2.z);
-    float lo = nLo >= 0.0f ? nLo / dMax : nLo / dMin;
-    float hi = nHi >= 0.0f ? nHi / dMin : nHi / dMax;
-    float slackLo = GLC_FEET_SLACK * (1.0f + abs(lo) + size / dMin);
-    float slackHi = GLC_FEET_SLACK * (1.0f + abs(hi) + size / dMin);
+    if (!(dMin > 0.0625f * sizeS * sizeS)) return vec2(1.0f, 0.0f); // 2^-4; also NaN
+    vec3 n = glcRadialFootNumerator(p, a, s0, pEnd, aEnd, s1);
+    float lo = n.x >= 0.0f ? n.x / dMax : n.x / dMin;
+    float hi = n.y >= 0.0f ? n.y / dMin : n.y / dMax;
+    float slackLo = GLC_FEET_SLACK * (1.0f + abs(lo) + n.z / dMin);
+    float slackHi = GLC_FEET_SLACK * (1.0f + abs(hi) + n.z / dMin);
     lo = lo - slackLo;
     hi = hi + slackHi;
-    if (!(lo <= hi)) return glcRadialWholeSegment(); // NaN or infinity
+    if (!(lo <= hi)) return vec2(1.0f, 0.0f); // NaN or infinity
+    return vec2(lo, hi);
+}
+
+bool glcRadialFeetEmpty(vec2 f) {
+    return !(f.x <= f.y);
+}
+
+vec2 glcRadialFeet(vec3 p0, vec3 p1, vec3 p2, vec3 a, vec3 b, vec3 p0End, vec3 p1End, vec3 p2End, vec3 aEnd,
+                   vec3 bEnd) {
+    vec3 s0 = b - a, s1 = bEnd - aEnd;
+    vec2 f0 = glcRadialCornerFeet(p0, a, s0, p0End, aEnd, s1);
+    vec2 f1 = glcRadialCornerFeet(p1, a, s0, p1End, aEnd, s1);
+    vec2 f2 = glcRadialCornerFeet(p2, a, s0, p2End, aEnd, s1);
+    if (glcRadialFeetEmpty(f0) || glcRadialFeetEmpty(f1) || glcRadialFeetEmpty(f2)) return glcRadialWholeSegment();
+    float lo = min(min(f0.x, f1.x), f2.x), hi = max(max(f0.y, f1.y), f2.y);
     return vec2(min(max(lo, 0.0f), 1.0f), min(max(hi, 0.0f), 1.0f));
 }
 
@@ -148,17 +164,19 @@ bool glcRadialFeetMeet(vec2 a, vec2 b) {
     return a.x <= b.y && b.x <= a.y;
 }
 
-// min(v . axis / |v|) over the 6 differences p_i - q, p_iEnd - qEnd (0 when one has no length).
-float glcRadialLeastCosine(vec3 axis, vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, vec3 p1End, vec3 p2End,
-                           vec3 qEnd) {
-    vec3 d0 = p0 - q, d1 = p1 - q, d2 = p2 - q, e0 = p0End - qEnd, e1 = p1End - qEnd, e2 = p2End - qEnd;
+// min(v . axis / |v|) over the 6 differences p_i - q_i, p_iEnd - q_iEnd.
+float glcRadialLeastCosine(vec3 axis, vec3 p0, vec3 p1, vec3 p2, vec3 q0, vec3 q1, vec3 q2, vec3 p0End, vec3 p1End,
+                           vec3 p2End, vec3 q0End, vec3 q1End, vec3 q2End) {
+    vec3 d0 = p0 - q0, d1 = p1 - q1, d2 = p2 - q2, e0 = p0End - q0End, e1 = p1End - q1End, e2 = p2End - q2End;
     return min(min(min(dot(axis, d0) / length(d0), dot(axis, d1) / length(d1)), dot(axis, d2) / length(d2)),
                min(min(dot(axis, e0) / length(e0), dot(axis, e1) / length(e1)), dot(axis, e2) / length(e2)));
 }
 
-// Sum of the 6 unit differences (x: the sum, w: the shortest difference's length).
-vec4 glcRadialUnitSum(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, vec3 p1End, vec3 p2End, vec3 qEnd) {
-    vec3 d0 = p0 - q, d1 = p1 - q, d2 = p2 - q, e0 = p0End - qEnd, e1 = p1End - qEnd, e2 = p2End - qEnd;
+// Sum of the 6 unit differences p_i - q_i, p_iEnd - q_iEnd (x: the sum, w: the shortest one's length;
+// all 0 when one has no length).
+vec4 glcRadialUnitSum(vec3 p0, vec3 p1, vec3 p2, vec3 q0, vec3 q1, vec3 q2, vec3 p0End, vec3 p1End, vec3 p2End,
+                      vec3 q0End, vec3 q1End, vec3 q2End) {
+    vec3 d0 = p0 - q0, d1 = p1 - q1, d2 = p2 - q2, e0 = p0End - q0End, e1 = p1End - q1End, e2 = p2End - q2End;
     float l0 = length(d0), l1 = length(d1), l2 = length(d2), m0 = length(e0), m1 = length(e1), m2 = length(e2);
     float shortest = min(min(min(l0, l1), l2), min(min(m0, m1), m2));
     if (!(shortest > 0.0f)) return vec4(0.0f, 0.0f, 0.0f, 0.0f);
@@ -166,12 +184,28 @@ vec4 glcRadialUnitSum(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, vec3 p1End,
     return vec4(sum, shortest);
 }
 
+bool glcRadialFeetWithin(vec2 f) {
+    return f.x >= 0.0f && f.y <= 1.0f && f.x <= f.y;
+}
+
 vec4 glcRadialSegmentFootprint(vec3 p0, vec3 p1, vec3 p2, vec3 a, vec3 b, vec3 p0End, vec3 p1End, vec3 p2End,
                                vec3 aEnd, vec3 bEnd, vec2 feet) {
     vec3 s0 = b - a, s1 = bEnd - aEnd;
-    vec3 lo = a + feet.x * s0, hi = a + feet.y * s0, loEnd = aEnd + feet.x * s1, hiEnd = aEnd + feet.y * s1;
-    vec4 fromLo = glcRadialUnitSum(p0, p1, p2, lo, p0End, p1End, p2End, loEnd);
-    vec4 fromHi = glcRadialUnitSum(p0, p1, p2, hi, p0End, p1End, p2End, hiEnd);
+    // Each corner's own feet when all three lie within [0, 1] (then u is affine over the triangle,
+    // unclamped, and x - foot(x) is the same convex combination of the corners' fiber vectors);
+    // otherwise the face's feet for every corner.
+    vec2 f0 = glcRadialCornerFeet(p0, a, s0, p0End, aEnd, s1);
+    vec2 f1 = glcRadialCornerFeet(p1, a, s0, p1End, aEnd, s1);
+    vec2 f2 = glcRadialCornerFeet(p2, a, s0, p2End, aEnd, s1);
+    if (!(glcRadialFeetWithin(f0) && glcRadialFeetWithin(f1) && glcRadialFeetWithin(f2))) {
+        f0 = feet;
+        f1 = feet;
+        f2 = feet;
+    }
+    vec4 fromLo = glcRadialUnitSum(p0, p1, p2, a + f0.x * s0, a + f1.x * s0, a + f2.x * s0, p0End, p1End, p2End,
+                                   aEnd + f0.x * s1, aEnd + f1.x * s1, aEnd + f2.x * s1);
+    vec4 fromHi = glcRadialUnitSum(p0, p1, p2, a + f0.y * s0, a + f1.y * s0, a + f2.y * s0, p0End, p1End, p2End,
+                                   aEnd + f0.y * s1, aEnd + f1.y * s1, aEnd + f2.y * s1);
     float shortest = min(fromLo.w, fromHi.w);
     vec3 ma = max(abs(a), abs(b)), me = max(abs(aEnd), abs(bEnd));
     float moved = GLC_SEGMENT_POINT_ROUNDOFF * max(max(max(ma.x, ma.y), ma.z), max(max(me.x, me.y), me.z)) +
@@ -181,8 +215,10 @@ vec4 glcRadialSegmentFootprint(vec3 p0, vec3 p1, vec3 p2, vec3 a, vec3 b, vec3 p
     float size = length(sum);
     if (!(size > 1.0e-3f)) return glcRadialEverywhere();
     vec3 axis = sum / size;
-    float c = min(glcRadialLeastCosine(axis, p0, p1, p2, lo, p0End, p1End, p2End, loEnd),
-                  glcRadialLeastCosine(axis, p0, p1, p2, hi, p0End, p1End, p2End, hiEnd));
+    float c = min(glcRadialLeastCosine(axis, p0, p1, p2, a + f0.x * s0, a + f1.x * s0, a + f2.x * s0, p0End, p1End,
+                                       p2End, aEnd + f0.x * s1, aEnd + f1.x * s1, aEnd + f2.x * s1),
+                  glcRadialLeastCosine(axis, p0, p1, p2, a + f0.y * s0, a + f1.y * s0, a + f2.y * s0, p0End, p1End,
+                                       p2End, aEnd + f0.y * s1, aEnd + f1.y * s1, aEnd + f2.y * s1));
     c -= GLC_FOOTPRINT_SLACK + 2.0f * moved / shortest;
     if (!(c > GLC_FOOTPRINT_SLACK)) return glcRadialEverywhere();
     return vec4(axis, c);
