@@ -1,6 +1,7 @@
 // model::observerFrame (decision 0025, "User observers") against what an affine frame must do: give
 // back the point at the initial positions, follow any affine map of the object exactly, use four
-// distinct nodes, and refuse an object that spans no volume.
+// distinct nodes, and refuse an object that spans no volume; and follow a twist where it is tied to
+// the point's nearest nodes.
 
 #include "model/observer_frame.hpp"
 
@@ -9,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
+#include <cmath>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -60,6 +62,44 @@ TEST(ObserverFrame, RefusesAnObjectThatSpansNoVolume) {
         std::invalid_argument);
     sheet[7].y = 0.05; // one node lifted by half a spacing: a volume
     EXPECT_NO_THROW((void)model::observerFrame(sheet, glm::dvec3(0.2, 0.1, 0.2)));
+}
+
+/// A tube of `around` x `along` nodes, radius 0.08 m, from y = -0.25 to 0.25, each ring turned by
+/// `twist` radians times its height / 0.5 m (a sleeve twisted about its axis).
+std::vector<glm::dvec3> tube(int around, int along, double twist) {
+    std::vector<glm::dvec3> x;
+    for (int j = 0; j < along; ++j) {
+        const double y = 0.25 - 0.5 * j / (along - 1);
+        for (int i = 0; i < around; ++i) {
+            const double angle = 2.0 * 3.141592653589793 * i / around + twist * y / 0.5;
+            x.emplace_back(0.08 * std::cos(angle), y, 0.08 * std::sin(angle));
+        }
+    }
+    return x;
+}
+
+// Local frames: a point on a sleeve's axis is tied to nodes around it, so a twist about the axis
+// (far from affine over the whole sleeve) carries it along the axis. The frame spread over the whole
+// sleeve would mix rings turned against each other.
+TEST(ObserverFrame, APointOnATwistedSleevesAxisStaysOnTheAxis) {
+    const std::vector<glm::dvec3> rest = tube(32, 20, 0.0);
+    for (const double y : {-0.2, -0.1, 0.0, 0.13, 0.22}) {
+        const glm::dvec3 point(0.0, y, 0.0);
+        const model::ObserverFrame f = model::observerFrame(rest, point);
+        EXPECT_LT(glm::length(at(f, rest) - point), 1e-12) << y;
+        for (std::size_t k = 0; k < 4; ++k) {
+            EXPECT_LE(std::abs(f.weights[k]), model::kLocalFrameWeight) << y;
+            // Local: every frame node within three ring spacings (3 x 2.6 cm) of the point's height.
+            EXPECT_LT(std::abs(rest[f.nodes[k]].y - y), 0.08) << y;
+        }
+        for (const double twist : {1.0, 3.0, 6.0}) { // up to about a full turn end to end
+            const glm::dvec3 moved = at(f, tube(32, 20, twist));
+            // The rings near the point turn by at most twist x (3 spacings / 0.5 m) against each
+            // other: the point leaves the axis by a small fraction of the radius (8 cm).
+            EXPECT_LT(std::hypot(moved.x, moved.z), 0.02) << "y " << y << ", twist " << twist;
+            EXPECT_NEAR(moved.y, y, 0.01) << "y " << y << ", twist " << twist;
+        }
+    }
 }
 
 } // namespace
