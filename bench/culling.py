@@ -15,7 +15,7 @@ RadialCulling + BvhBuild + BvhRefit + BvhTraverse + TriTri + FeaturePairs + Ccd.
 is the slope of log(detection time) against log(faces) between the smallest and largest size.
 
 usage: bench/culling.py [--glcollide build/src/glcollide] [--frames 45] [--scenes ball,cigar,sleeve,mask,sheet]
-                        [--observers auto|objects|clusters] [--observer X,Y,Z[;X,Y,Z]]
+                        [--observers auto|objects|clusters] [--observer X,Y,Z[;X,Y,Z]|none]
                         [--subdivisions 3,4,5] [--sleeve-resolutions 32x20,64x40] [--sheet-resolutions 32,48,96]
                         [--out bench/results/<device>/culling_<commit>]
        bench/culling.py --write-scenes DIR ...   (only writes the scene variants, for a machine without
@@ -175,8 +175,8 @@ def main():
     ap.add_argument("--observers", default=None,
                     help="collision.observers of the radial runs (auto, objects, clusters; default: the scene's)")
     ap.add_argument("--observer", default=None,
-                    help="a user observer X,Y,Z, or a segment X,Y,Z;X,Y,Z (m, the first object's own "
-                         "coordinates) for the radial runs (docs/culling.md, \"User observers\", \"Segment observers\")")
+                    help="a user observer X,Y,Z, a segment X,Y,Z;X,Y,Z (m, the first object's own "
+                         "coordinates) or none (the scene's observer removed: the centroid) for the radial runs (docs/culling.md, \"User observers\", \"Segment observers\")")
     ap.add_argument("--out", default=None)
     ap.add_argument("--write-scenes", default=None)
     ap.add_argument("--stats-dir", default=None)
@@ -192,10 +192,14 @@ def main():
                 if culling == "none":  # the observers' settings serve radial culling only
                     for key in ["observers", "cluster_max_angle", "cluster_max_faces"]:
                         scene["collision"].pop(key, None)
+                    for obj in scene["objects"]:
+                        obj.pop("observer", None)
                 else:
                     if args.observers:
                         scene["collision"]["observers"] = args.observers
-                    if args.observer:  # a point X,Y,Z or a segment X,Y,Z;X,Y,Z
+                    if args.observer == "none":  # the automatic observer (the centroid)
+                        scene["objects"][0].pop("observer", None)
+                    elif args.observer:  # a point X,Y,Z or a segment X,Y,Z;X,Y,Z
                         points = [[float(v) for v in p.split(",")] for p in args.observer.split(";")]
                         scene["objects"][0]["observer"] = points[0] if len(points) == 1 else points
                 runs[culling] = run(args.glcollide, scene, args.frames, work, f"{tag}_{culling}", args.stats_dir,
