@@ -6,7 +6,7 @@
 // positive faces away from every sampled foot (double precision, no shared code); the whole culling
 // pass on a corrugated cigar folded through itself frees faces that the exact oracle finds
 // intersecting nothing along the motion, and frees more of the still cigar than its centroid does;
-// the segment's ends follow their frames.
+// the segment's ends follow their frames; a segment that leaves its surface frees nothing.
 
 #include "cpu/collision_twin.hpp"
 #include "cpu/radial_twin.hpp"
@@ -239,6 +239,24 @@ TEST(RadialSegmentObserverGl, TheCullingPassFreesWhatTheOracleFindsIntersectingN
     EXPECT_GT(intersecting, 0u) << "the fold must intersect, or the test shows nothing";
     EXPECT_GT(run.freeCount, faces / 3);
     RecordProperty("folded_free", static_cast<int>(run.freeCount));
+}
+
+// Cases built to defeat the observer: a segment that pokes out of its surface (the theorem's (b')
+// fails: the faces it pierces meet every footprint) and one whose first end lies outside (the
+// winding number around it is 0: the premise (a') fails, and the failure is counted). Neither may
+// free a face, whatever the other faces' signs.
+TEST(RadialSegmentObserverGl, ASegmentThatLeavesItsSurfaceFreesNothing) {
+    const model::FlatModel model = cigarModel(); // the cigar's tips are at x = -3 and 3
+    const std::vector<glm::vec3> x0 = floats(model.positions);
+    const test::CullingRun out =
+        test::runCulling(model, withSegment(model, {-2.7, 0, 0}, {3.5, 0, 0}), x0, x0);
+    EXPECT_EQ(out.winding[0], (passes::RadialWinding{1, false})) << "its first end is inside";
+    EXPECT_EQ(out.freeCount, 0u);
+    const test::CullingRun outside =
+        test::runCulling(model, withSegment(model, {-3.5, 0, 0}, {2.7, 0, 0}), x0, x0);
+    EXPECT_EQ(outside.winding[0], (passes::RadialWinding{0, false}));
+    EXPECT_EQ(outside.freeCount, 0u);
+    EXPECT_EQ(outside.violatedStat, 1u) << "the failed premise is counted";
 }
 
 } // namespace
