@@ -34,8 +34,10 @@
 //   at most 2^-126 (|b|_1 |c|_1 + |a|_1 |c|_1 + |a|_1 |b|_1) per triple product, with |.|_1 the
 //   coordinates' magnitude sums (2^-123 covers that with rounding to spare).
 // So value > gamma_N (1 + gamma_N) M + 2^-123 F + 2^-100, F the sum of those |.|_1 products and
-// N = GLC_RADIAL_ROUNDINGS >= 22, proves the exact coefficient positive. NaN and infinity fail
-// every comparison: never positive.
+// N = GLC_RADIAL_ROUNDINGS >= 22, proves the exact coefficient positive. The test computes it as
+// value - 2 (that bound) > 0 (glcRadialCoefficientBounds below, shared with segment observers):
+// the second bound covers the subtraction's own rounding. NaN and infinity fail every comparison:
+// never positive.
 //
 // GLSL subset shared with C++: no swizzles, no out/inout parameters, float literals with `f`.
 
@@ -74,28 +76,6 @@ float glcRadialTripleError(vec3 a, vec3 b, vec3 c) {
     return gamma * (1.0f + gamma) * magnitude + GLC_RADIAL_FLUSHED_INPUT * (sb * sc + sa * sc + sa * sb);
 }
 
-bool glcRadialPositive(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, vec3 p1End, vec3 p2End, vec3 qEnd) {
-    GLC_PRECISE vec3 a0 = p1 - p0;
-    GLC_PRECISE vec3 b0 = p2 - p0;
-    GLC_PRECISE vec3 c0 = p0 - q;
-    GLC_PRECISE vec3 a1 = p1End - p0End;
-    GLC_PRECISE vec3 b1 = p2End - p0End;
-    GLC_PRECISE vec3 c1 = p0End - qEnd;
-    float coefficient0 = glcRadialTriple(a0, b0, c0);
-    float error0 = glcRadialTripleError(a0, b0, c0);
-    float coefficient3 = glcRadialTriple(a1, b1, c1);
-    float error3 = glcRadialTripleError(a1, b1, c1);
-    // 3 B1 and 3 B2 (the factor does not change the sign).
-    float coefficient1 = glcRadialTriple(a1, b0, c0) + glcRadialTriple(a0, b1, c0) + glcRadialTriple(a0, b0, c1);
-    float error1 =
-        glcRadialTripleError(a1, b0, c0) + glcRadialTripleError(a0, b1, c0) + glcRadialTripleError(a0, b0, c1);
-    float coefficient2 = glcRadialTriple(a1, b1, c0) + glcRadialTriple(a1, b0, c1) + glcRadialTriple(a0, b1, c1);
-    float error2 =
-        glcRadialTripleError(a1, b1, c0) + glcRadialTripleError(a1, b0, c1) + glcRadialTripleError(a0, b1, c1);
-    return coefficient0 > error0 + GLC_RADIAL_FLUSH_BOUND && coefficient1 > error1 + GLC_RADIAL_FLUSH_BOUND &&
-           coefficient2 > error2 + GLC_RADIAL_FLUSH_BOUND && coefficient3 > error3 + GLC_RADIAL_FLUSH_BOUND;
-}
-
 // Segment observers (decision 0025, "Segment observers"): the observer is a segment
 // s(u) = (1 - u) A + u B, u in [0, 1], A and B moving linearly, and a point x of the triangle is
 // judged from its foot s(u(x)), the segment's point nearest to it. The triangle is positive when
@@ -126,6 +106,7 @@ vec4 glcRadialCoefficientBounds(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, v
     float error0 = glcRadialTripleError(a0, b0, c0);
     float coefficient3 = glcRadialTriple(a1, b1, c1);
     float error3 = glcRadialTripleError(a1, b1, c1);
+    // 3 B1 and 3 B2 (the factor does not change the sign).
     float coefficient1 = glcRadialTriple(a1, b0, c0) + glcRadialTriple(a0, b1, c0) + glcRadialTriple(a0, b0, c1);
     float error1 =
         glcRadialTripleError(a1, b0, c0) + glcRadialTripleError(a0, b1, c0) + glcRadialTripleError(a0, b0, c1);
@@ -136,6 +117,12 @@ vec4 glcRadialCoefficientBounds(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, v
                 coefficient1 - 2.0f * error1 - GLC_RADIAL_FLUSH_BOUND,
                 coefficient2 - 2.0f * error2 - GLC_RADIAL_FLUSH_BOUND,
                 coefficient3 - 2.0f * error3 - GLC_RADIAL_FLUSH_BOUND);
+}
+
+// The point observer's test: every coefficient's lower bound positive.
+bool glcRadialPositive(vec3 p0, vec3 p1, vec3 p2, vec3 q, vec3 p0End, vec3 p1End, vec3 p2End, vec3 qEnd) {
+    vec4 bounds = glcRadialCoefficientBounds(p0, p1, p2, q, p0End, p1End, p2End, qEnd);
+    return bounds.x > 0.0f && bounds.y > 0.0f && bounds.z > 0.0f && bounds.w > 0.0f;
 }
 
 // Rounding of la + u (lb - la) for u in [0, 1]: at most 3 roundings (the difference, the product,

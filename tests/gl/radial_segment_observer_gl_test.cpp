@@ -70,11 +70,17 @@ bool nearlyEqual(const glm::vec4& a, const glm::vec4& b) {
     return true;
 }
 
-/// The points of face f (corners, edge midpoints, centroid) at five times: u(x) within `feet`,
-/// and x - foot(x) within `cone` (double; "every direction" holds all).
-bool holdsItsFibers(const std::vector<std::uint32_t>& faces, std::size_t f, const std::vector<glm::vec3>& x0,
-                    const std::vector<glm::vec3>& x1, const passes::RadialObserver& o, glm::vec2 feet,
-                    glm::vec4 cone) {
+/// A point x of a face at one time, its foot's u on the segment, x - foot(x), and the face's normal.
+struct FiberSample {
+    double u = 0.0;
+    glm::dvec3 fiber{0.0}, normal{0.0};
+};
+
+/// Face f's corners, edge midpoints and centroid at five times of the substep (double).
+std::vector<FiberSample> fiberSamples(const std::vector<std::uint32_t>& faces, std::size_t f,
+                                      const std::vector<glm::vec3>& x0, const std::vector<glm::vec3>& x1,
+                                      const passes::RadialObserver& o) {
+    std::vector<FiberSample> out;
     for (int k = 0; k <= 4; ++k) {
         const double t = k / 4.0;
         const auto at = [&](glm::vec3 a, glm::vec3 b) { return glm::mix(glm::dvec3(a), glm::dvec3(b), t); };
@@ -85,36 +91,29 @@ bool holdsItsFibers(const std::vector<std::uint32_t>& faces, std::size_t f, cons
         for (const glm::dvec3& x :
              {p0, p1, p2, (p0 + p1) / 2.0, (p1 + p2) / 2.0, (p2 + p0) / 2.0, (p0 + p1 + p2) / 3.0}) {
             const double u = std::clamp(glm::dot(x - a, b - a) / glm::dot(b - a, b - a), 0.0, 1.0);
-            if (u < feet.x || u > feet.y) return false;
-            if (cone.w <= -1.0f) continue;
-            const glm::dvec3 d = x - (a + u * (b - a));
-            const glm::dvec3 axis(cone.x, cone.y, cone.z);
-            // 1e-12: the double evaluation of this check itself.
-            if (glm::dot(axis, d) / (glm::length(axis) * glm::length(d)) < double{cone.w} - 1e-12)
-                return false;
+            out.push_back({u, x - (a + u * (b - a)), glm::cross(p1 - p0, p2 - p0)});
         }
+    }
+    return out;
+}
+
+/// Every sample's u within `feet` and its fiber within `cone` ("every direction" holds all).
+bool holdsItsFibers(const std::vector<FiberSample>& samples, glm::vec2 feet, glm::vec4 cone) {
+    const glm::dvec3 axis(cone.x, cone.y, cone.z);
+    for (const FiberSample& s : samples) {
+        if (s.u < feet.x || s.u > feet.y) return false;
+        // 1e-12: the double evaluation of this check itself.
+        if (cone.w > -1.0f &&
+            glm::dot(axis, s.fiber) / (glm::length(axis) * glm::length(s.fiber)) < double{cone.w} - 1e-12)
+            return false;
     }
     return true;
 }
 
-/// n(t) . (x - foot(x)) > 0 at the corners and the centroid of face f at five times (double).
-bool facesAwayFromItsFeet(const std::vector<std::uint32_t>& faces, std::size_t f,
-                          const std::vector<glm::vec3>& x0, const std::vector<glm::vec3>& x1,
-                          const passes::RadialObserver& o) {
-    for (int k = 0; k <= 4; ++k) {
-        const double t = k / 4.0;
-        const auto at = [&](glm::vec3 a, glm::vec3 b) { return glm::mix(glm::dvec3(a), glm::dvec3(b), t); };
-        const glm::dvec3 p0 = at(x0[faces[3 * f]], x1[faces[3 * f]]),
-                         p1 = at(x0[faces[3 * f + 1]], x1[faces[3 * f + 1]]),
-                         p2 = at(x0[faces[3 * f + 2]], x1[faces[3 * f + 2]]);
-        const glm::dvec3 a = at(o.start, o.end), b = at((*o.segment)[0], (*o.segment)[1]);
-        const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
-        for (const glm::dvec3& x : {p0, p1, p2, (p0 + p1 + p2) / 3.0}) {
-            const double u = std::clamp(glm::dot(x - a, b - a) / glm::dot(b - a, b - a), 0.0, 1.0);
-            if (!(glm::dot(n, x - (a + u * (b - a))) > 0.0)) return false;
-        }
-    }
-    return true;
+/// n(t) . (x - foot(x)) > 0 at every sample.
+bool facesAwayFromItsFeet(const std::vector<FiberSample>& samples) {
+    return std::all_of(samples.begin(), samples.end(),
+                       [](const FiberSample& s) { return glm::dot(s.normal, s.fiber) > 0.0; });
 }
 
 TEST(RadialSegmentObserverGl, TheClassificationFeetAndConesAreTheTwins) {
@@ -156,9 +155,10 @@ TEST(RadialSegmentObserverGl, TheClassificationFeetAndConesAreTheTwins) {
         }
         // On every device: the GPU's feet and cone hold every sampled point's foot and fiber, and
         // a face it proves positive faces away from its sampled feet.
-        EXPECT_TRUE(holdsItsFibers(model.faceIndices, f, x0, x1, o, feet[f], cones[f])) << "face " << f;
+        const std::vector<FiberSample> samples = fiberSamples(model.faceIndices, f, x0, x1, o);
+        EXPECT_TRUE(holdsItsFibers(samples, feet[f], cones[f])) << "face " << f;
         if (isPositive) {
-            EXPECT_TRUE(facesAwayFromItsFeet(model.faceIndices, f, x0, x1, o)) << "face " << f;
+            EXPECT_TRUE(facesAwayFromItsFeet(samples)) << "face " << f;
         }
     }
     RecordProperty("positive", static_cast<int>(positive));
