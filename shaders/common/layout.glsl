@@ -147,12 +147,17 @@
 #define GLC_BIND_RADIAL_FEET 76            // vec2[classified faces]: the interval of u in [0, 1] that the feet of
                                            // a face's points on its segment observer lie in ([0, 1] for a point
                                            // observer, or a cone of every direction)
+#define GLC_BIND_RADIAL_CELLS 77           // uint[GLC_RADIAL_CELL_WORDS * observers]: the footprint cells marked by
+                                           // faces not proven positive (common/radial_cells.glsl)
+#define GLC_RADIAL_CELL_GRID 16            // cells per axis of direction space [-1, 1]^3 (a multiple of 4)
+#define GLC_RADIAL_FOOT_BINS 8             // bins of a segment's feet [0, 1]: a byte per cell
+#define GLC_RADIAL_CELL_WORDS 1025         // 1 + GLC_RADIAL_CELL_GRID^3 * GLC_RADIAL_FOOT_BINS / 32
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 77
+#define GLC_BINDING_COUNT 78
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a

@@ -11,7 +11,9 @@
 // one invocation each, ghost nodes read from RadialGhostNodes' positions.
 // Also, for RadialFree, every observed face's footprint cone (common/radial_footprint.glsl) and
 // the lists of observed faces not proven positive, one per observer (appended in any order:
-// RadialFree only asks whether some listed cone meets a face's, which does not depend on the order).
+// RadialFree only asks whether some listed cone meets a face's, which does not depend on the order),
+// and the footprint cells those faces cover (common/radial_cells.glsl: set by atomicOr into a mask
+// the host clears, so the order does not matter either).
 // A segment observer (GLC_BIND_RADIAL_SEGMENTS, w = 1; decision 0025 "Segment observers") judges each
 // point from its foot on the segment: the face's feet interval (GLC_BIND_RADIAL_FEET), positivity for
 // every foot in it, and the cone of its fibers' directions; a face whose cone is every direction may
@@ -24,20 +26,36 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
 #include "common/radial_sign.glsl"
 #include "common/radial_footprint.glsl"
+#include "common/radial_cells.glsl"
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_start[]; };
 layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) readonly buffer PredictedPositionsBuf { vec4 g_end[]; };
 layout(std430, binding = GLC_BIND_RADIAL_OBSERVERS) readonly buffer RadialObserversBuf { vec4 g_observers[]; };
 layout(std430, binding = GLC_BIND_RADIAL_FACE_OBSERVER) readonly buffer RadialFaceObserverBuf { uint g_faceObserver[]; };
 layout(std430, binding = GLC_BIND_RADIAL_POSITIVE) buffer RadialPositiveBuf { uint g_positive[]; };
-layout(std430, binding = GLC_BIND_RADIAL_CONES) writeonly buffer RadialConesBuf { vec4 g_cones[]; };
+layout(std430, binding = GLC_BIND_RADIAL_CONES) buffer RadialConesBuf { vec4 g_cones[]; };
 layout(std430, binding = GLC_BIND_RADIAL_NONPOSITIVE) buffer RadialNonPositiveBuf { uint g_nonPositive[]; };
 layout(std430, binding = GLC_BIND_RADIAL_SEGMENTS) readonly buffer RadialSegmentsBuf { vec4 g_segments[]; };
-layout(std430, binding = GLC_BIND_RADIAL_FEET) writeonly buffer RadialFeetBuf { vec2 g_feet[]; };
+layout(std430, binding = GLC_BIND_RADIAL_FEET) buffer RadialFeetBuf { vec2 g_feet[]; };
+layout(std430, binding = GLC_BIND_RADIAL_CELLS) buffer RadialCellsBuf { uint g_cells[]; };
 
 #include "common/radial_ghost.glsl"
 
 uniform uint u_faceCount; // classified faces: real, then ghost
+
+// Marks the footprint's cells for RadialFree; a box too large to mark sets the observer's word 0.
+void markCells(uint observer, vec4 cone, vec2 feet) {
+    ivec3 lo = glcRadialCellsLow(cone), hi = glcRadialCellsHigh(cone);
+    if (glcRadialCellCount(lo, hi) > GLC_RADIAL_MOST_MARKED_CELLS) {
+        atomicOr(g_cells[observer * uint(GLC_RADIAL_CELL_WORDS)], 1u);
+        return;
+    }
+    uint bins = glcRadialFootBins(feet);
+    for (int z = lo.z; z <= hi.z; ++z)
+        for (int y = lo.y; y <= hi.y; ++y)
+            for (int x = lo.x; x <= hi.x; ++x)
+                atomicOr(g_cells[glcRadialCellWord(observer, x, y, z)], bins << glcRadialCellShift(x));
+}
 
 void main() {
     uint face = globalIndex();
@@ -78,5 +96,6 @@ void main() {
         uint slot = atomicAdd(g_nonPositive[1u + 2u * observer], 1u);
         g_nonPositive[g_nonPositive[2u + 2u * observer] + slot] = face;
         atomicAdd(g_nonPositive[0], 1u);
+        markCells(observer, g_cones[face], g_feet[face]); // as written above (this invocation's own writes)
     }
 }

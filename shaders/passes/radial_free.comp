@@ -5,8 +5,10 @@
 // not proven positive (the list
 // RadialClassify appended). By the decision's theorem a free face intersects nothing of its
 // observer's surface during the substep; common/radial_cull.glsl leaves its pairs out of the exact
-// tests. Brute force over its observer's non-positive list (RadialClassify's bucket of that
-// observer: its length is the culling's cost; a bin of cone axes would bound it). Sets bit f of
+// tests. A face none of whose footprint cells a listed face marked (common/radial_cells.glsl) meets
+// none of their footprints and is free at once; any other face is tested against its observer's
+// whole non-positive list (RadialClassify's bucket of that observer). Either way the answer is
+// the brute-force scan's (the cells only skip scans that find nothing). Sets bit f of
 // words 1.. of the free mask (atomicOr into a cleared mask) and word 0 = 1: the mask holds for this substep. Ghost faces are in the list (they bound where the
 // surface may fold) but are never free themselves; a surface that does not wind exactly once
 // around its observer (RadialWinding) frees nothing. CPU twin: cpu::radialFreeFaces.
@@ -16,6 +18,7 @@
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
 #include "common/radial_footprint.glsl"
+#include "common/radial_cells.glsl"
 
 layout(std430, binding = GLC_BIND_RADIAL_FACE_OBSERVER) readonly buffer RadialFaceObserverBuf { uint g_faceObserver[]; };
 layout(std430, binding = GLC_BIND_RADIAL_POSITIVE) readonly buffer RadialPositiveBuf { uint g_positive[]; };
@@ -24,6 +27,7 @@ layout(std430, binding = GLC_BIND_RADIAL_FEET) readonly buffer RadialFeetBuf { v
 layout(std430, binding = GLC_BIND_RADIAL_NONPOSITIVE) readonly buffer RadialNonPositiveBuf { uint g_nonPositive[]; };
 layout(std430, binding = GLC_BIND_RADIAL_FREE) buffer RadialFreeBuf { uint g_free[]; };
 layout(std430, binding = GLC_BIND_RADIAL_WINDING) readonly buffer RadialWindingBuf { uint g_winding[]; };
+layout(std430, binding = GLC_BIND_RADIAL_CELLS) readonly buffer RadialCellsBuf { uint g_cells[]; };
 
 uniform uint u_faceCount;     // real faces (the non-positive list may hold ghost faces past them)
 uniform uint u_observerCount;
@@ -31,6 +35,21 @@ uniform uint u_observerCount;
 // The theorem's premise for `observer` (RadialWinding): its surface winds exactly once around it.
 bool windsOnce(uint observer) {
     return g_winding[2u * observer] == 1u && g_winding[2u * observer + 1u] == 0u;
+}
+
+// Whether a face not proven positive marked one of this footprint's cells (or a box too large to
+// mark): only then can a listed footprint meet it.
+bool cellsMarked(uint observer, vec4 cone, vec2 feet) {
+    if (g_cells[observer * uint(GLC_RADIAL_CELL_WORDS)] != 0u) return true;
+    ivec3 lo = glcRadialCellsLow(cone), hi = glcRadialCellsHigh(cone);
+    if (glcRadialCellCount(lo, hi) > GLC_RADIAL_MOST_MARKED_CELLS) return true;
+    uint bins = glcRadialFootBins(feet);
+    for (int z = lo.z; z <= hi.z; ++z)
+        for (int y = lo.y; y <= hi.y; ++y)
+            for (int x = lo.x; x <= hi.x; ++x)
+                if ((g_cells[glcRadialCellWord(observer, x, y, z)] & (bins << glcRadialCellShift(x))) != 0u)
+                    return true;
+    return false;
 }
 
 void main() {
@@ -48,9 +67,11 @@ void main() {
     vec4 cone = g_cones[face];
     vec2 feet = g_feet[face];
     uint first = g_nonPositive[2u + 2u * observer], count = g_nonPositive[1u + 2u * observer];
-    for (uint k = 0u; k < count; ++k) {
-        uint other = g_nonPositive[first + k];
-        if (glcRadialFeetMeet(feet, g_feet[other]) && glcRadialFootprintsMeet(cone, g_cones[other])) return;
+    if (cellsMarked(observer, cone, feet)) {
+        for (uint k = 0u; k < count; ++k) {
+            uint other = g_nonPositive[first + k];
+            if (glcRadialFeetMeet(feet, g_feet[other]) && glcRadialFootprintsMeet(cone, g_cones[other])) return;
+        }
     }
     atomicOr(g_free[1u + face / 32u], 1u << (face % 32u));
     atomicAdd(g_counters.stats[GLC_STAT_RADIAL_FREE], 1u);

@@ -1,10 +1,10 @@
 #pragma once
 // C++ view of radial view-based culling's classification and footprints
-// (shaders/common/radial_sign.glsl, radial_footprint.glsl), compiled as C++ like the float CCD
-// (cpu/ccd_library.hpp). Header-only on purpose: each
-// translation unit compiles it with its own flags, which is how the relaxed-float test build runs
-// it under fast-math, FMA contraction and FTZ/DAZ.
+// (shaders/common/radial_sign.glsl, radial_footprint.glsl, radial_cells.glsl), compiled as C++ like the float
+// CCD (cpu/ccd_library.hpp). Header-only on purpose: each translation unit compiles it with its own flags,
+// which is how the relaxed-float test build runs it under fast-math, FMA contraction and FTZ/DAZ.
 
+#include "core/gpu_layout.hpp" // GLC_RADIAL_CELL_* of shaders/common/layout.glsl
 #include "cpu/shader_library.hpp"
 
 #include <glm/exponential.hpp>
@@ -27,6 +27,7 @@ using vec4 = glm::vec4;
 #define GLC_PRECISE // C++ compilers evaluate the differences as written (no GLSL `precise` needed)
 #include "common/radial_sign.glsl"
 #include "common/radial_footprint.glsl"
+#include "common/radial_cells.glsl"
 #undef GLC_PRECISE
 #pragma GCC diagnostic pop
 

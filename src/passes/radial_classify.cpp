@@ -65,6 +65,8 @@ RadialClassifyPass::RadialClassifyPass(const std::vector<std::uint32_t>& faceObs
       m_feet("radialFeet", std::size_t{std::max(m_faceCount, 1u)} * sizeof(glm::vec2)),
       m_nonPositive("radialNonPositive",
                     (m_nonPositiveHeader.size() + std::size_t{m_faceCount}) * sizeof(std::uint32_t)),
+      m_cells("radialCells",
+              std::size_t{GLC_RADIAL_CELL_WORDS} * std::max(observerCount, 1u) * sizeof(std::uint32_t)),
       m_ghostFaces(gl::makeBuffer("radialGhostFaces", ghosts.faces)),
       m_ghostPositions("radialGhostPositions", std::size_t{2} * ghosts.ghostNodeCount * sizeof(glm::vec4)),
       m_program("radial_classify") {
@@ -115,12 +117,14 @@ void RadialClassifyPass::dispatchOnBoundPositions() {
     m_ghostFaces.bindStorage(GLC_BIND_RADIAL_GHOST_FACES);
     m_ghostPositions.bindStorage(GLC_BIND_RADIAL_GHOST_POSITIONS);
     m_mask.fill32(0u);
+    m_cells.fill32(0u);
     m_nonPositive.upload(0, m_nonPositiveHeader.size() * sizeof(std::uint32_t), m_nonPositiveHeader.data());
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     m_mask.bindStorage(GLC_BIND_RADIAL_POSITIVE);
     m_cones.bindStorage(GLC_BIND_RADIAL_CONES);
     m_feet.bindStorage(GLC_BIND_RADIAL_FEET);
     m_nonPositive.bindStorage(GLC_BIND_RADIAL_NONPOSITIVE);
+    m_cells.bindStorage(GLC_BIND_RADIAL_CELLS);
     m_program.use();
     m_program.dispatch1D(m_faceCount, GLC_WORKGROUP_SIZE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -62,6 +62,9 @@ class RadialClassifyPass {
     [[nodiscard]] const gl::Buffer& cones() const { return m_cones; }
     /// uint[1 + faces]: the count, then the observed faces not proven positive (any order).
     [[nodiscard]] const gl::Buffer& nonPositive() const { return m_nonPositive; }
+    /// uint[GLC_RADIAL_CELL_WORDS * observers]: the footprint cells the non-positive faces marked
+    /// (common/radial_cells.glsl); RadialFree reads them.
+    [[nodiscard]] const gl::Buffer& cells() const { return m_cells; }
     /// vec4[2 * observers]: start and end of each observer (setObservers or a GPU pass writes it).
     [[nodiscard]] const gl::Buffer& observers() const { return m_observers; }
     /// vec4[2 * observers]: a segment observer's second end at start and end, w = 1 (0: a point).
@@ -82,8 +85,8 @@ class RadialClassifyPass {
   private:
     std::uint32_t m_faceCount = 0, m_realFaceCount = 0, m_observerCount = 0, m_nodeLimit = 0;
     std::vector<std::uint32_t> m_nonPositiveHeader; ///< uploaded before each classification: counts 0
-    gl::Buffer m_faceObserver, m_observers, m_segments, m_mask, m_cones, m_feet, m_nonPositive, m_ghostFaces,
-        m_ghostPositions;
+    gl::Buffer m_faceObserver, m_observers, m_segments, m_mask, m_cones, m_feet, m_nonPositive, m_cells,
+        m_ghostFaces, m_ghostPositions;
     gl::ComputeProgram m_program;
 };
 

@@ -98,6 +98,7 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"RadialSegmentsBuf", GLC_BIND_RADIAL_SEGMENTS},
     {"RadialFeetBuf", GLC_BIND_RADIAL_FEET},
     {"RadialNonPositiveBuf", GLC_BIND_RADIAL_NONPOSITIVE},
+    {"RadialCellsBuf", GLC_BIND_RADIAL_CELLS},
     {"RadialFreeBuf", GLC_BIND_RADIAL_FREE},
     {"RadialMovedBuf", GLC_BIND_RADIAL_MOVED},
     {"CcdVertexFaceTestsBuf", GLC_BIND_CCD_VERTEX_FACE_TESTS},
