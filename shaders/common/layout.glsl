@@ -149,9 +149,11 @@
                                            // observer, or a cone of every direction)
 #define GLC_BIND_RADIAL_CELLS 77           // uint[GLC_RADIAL_CELL_WORDS * observers]: the footprint cells marked by
                                            // faces not proven positive (common/radial_cells.glsl)
-#define GLC_RADIAL_CELL_GRID 16            // cells per axis of direction space [-1, 1]^3 (a multiple of 4)
+#define GLC_RADIAL_CELL_GRID 16            // fine cells per axis of direction space [-1, 1]^3 (a multiple of 4)
+#define GLC_RADIAL_COARSE_GRID 4           // coarse cells per axis (a multiple of 4), for wide footprints
 #define GLC_RADIAL_FOOT_BINS 8             // bins of a segment's feet [0, 1]: a byte per cell
-#define GLC_RADIAL_CELL_WORDS 1025         // 1 + GLC_RADIAL_CELL_GRID^3 * GLC_RADIAL_FOOT_BINS / 32
+#define GLC_RADIAL_COARSE_WORDS 16         // GLC_RADIAL_COARSE_GRID^3 * GLC_RADIAL_FOOT_BINS / 32
+#define GLC_RADIAL_CELL_WORDS 1040         // per observer: the coarse words, then GLC_RADIAL_CELL_GRID^3 / 4
 
 // One more than the highest binding above: the engine uses bindings 0 .. GLC_BINDING_COUNT-1, the
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer

@@ -26,9 +26,11 @@
 //    are floor(u * GLC_RADIAL_FOOT_BINS) (exact: a power of two) clamped, monotone in u, so u's bin
 //    is in both ranges. NaN ends give the whole range.
 //
-// Layout (GLC_BIND_RADIAL_CELLS): per observer GLC_RADIAL_CELL_WORDS words: word 0 is 1 when some
-// non-positive face's box was too large to mark (then every positive face of the observer is
-// scanned); then one byte per cell, bit b set when bin b of that cell is marked.
+// Two grids: a footprint whose box holds more than 64 of the fine grid's cells (a cone wider than
+// about 20 degrees) marks the coarse grid's cells instead, and a positive face looks at both.
+// The proof holds for any grid. Layout (GLC_BIND_RADIAL_CELLS): per observer GLC_RADIAL_CELL_WORDS
+// words, one byte per cell (bit b set when bin b of that cell is marked): the coarse grid's
+// GLC_RADIAL_COARSE_WORDS words, then the fine grid's.
 //
 // GLSL subset shared with C++ (cpu/radial_library.hpp): no swizzles, no out/inout parameters,
 // float literals with `f`. Include after common/layout.glsl.
@@ -39,8 +41,8 @@
 // Added to a cone's chord. Range > 0.0058 (half of sqrt(2 (2^-14 + 2^-19)), the meeting test's
 // slack and rounding, see above); suggested 2^-6 (a box widens by an eighth of a cell).
 const float GLC_CELL_REACH_SLACK = 0.015625f; // 2^-6
-// A footprint whose box holds more cells than this is not marked cell by cell: its observer's word
-// 0 is set instead (as cheap to write, and as correct: every positive face is then scanned).
+// A footprint whose box holds more fine cells than this is marked in the coarse grid instead (at
+// most 4^3 = 64 cells there); a positive face with such a box is scanned without looking at cells.
 const int GLC_RADIAL_MOST_MARKED_CELLS = 64;
 
 // How far (per coordinate) every direction of the cone lies from its axis, with the slack above.
@@ -48,25 +50,27 @@ float glcRadialCellReach(vec4 cone) {
     return sqrt(max(2.0f * (1.0f - cone.w), 0.0f)) + GLC_CELL_REACH_SLACK;
 }
 
-// The lowest cell a coordinate at or above x can lie in, and the highest one at or below x
-// (NaN: the whole range).
-int glcRadialCellLow(float x) {
+// The lowest cell of a grid (cells per axis) that a coordinate at or above x can lie in, and the
+// highest one at or below x (NaN: the whole range).
+int glcRadialCellLow(float x, int grid) {
     if (!(x > -1.0f)) return 0;
-    return min(int((x + 1.0f) * (0.5f * float(GLC_RADIAL_CELL_GRID))), GLC_RADIAL_CELL_GRID - 1);
+    return min(int((x + 1.0f) * (0.5f * float(grid))), grid - 1);
 }
-int glcRadialCellHigh(float x) {
-    if (!(x < 1.0f)) return GLC_RADIAL_CELL_GRID - 1;
-    return max(int((x + 1.0f) * (0.5f * float(GLC_RADIAL_CELL_GRID))), 0);
+int glcRadialCellHigh(float x, int grid) {
+    if (!(x < 1.0f)) return grid - 1;
+    return max(int((x + 1.0f) * (0.5f * float(grid))), 0);
 }
 
-// The corners of the cone's box of cells.
-ivec3 glcRadialCellsLow(vec4 cone) {
+// The corners of the cone's box of cells in a grid.
+ivec3 glcRadialCellsLow(vec4 cone, int grid) {
     float r = glcRadialCellReach(cone);
-    return ivec3(glcRadialCellLow(cone.x - r), glcRadialCellLow(cone.y - r), glcRadialCellLow(cone.z - r));
+    return ivec3(glcRadialCellLow(cone.x - r, grid), glcRadialCellLow(cone.y - r, grid),
+                 glcRadialCellLow(cone.z - r, grid));
 }
-ivec3 glcRadialCellsHigh(vec4 cone) {
+ivec3 glcRadialCellsHigh(vec4 cone, int grid) {
     float r = glcRadialCellReach(cone);
-    return ivec3(glcRadialCellHigh(cone.x + r), glcRadialCellHigh(cone.y + r), glcRadialCellHigh(cone.z + r));
+    return ivec3(glcRadialCellHigh(cone.x + r, grid), glcRadialCellHigh(cone.y + r, grid),
+                 glcRadialCellHigh(cone.z + r, grid));
 }
 
 // Bits lo .. hi of a byte: the bins of the feet interval (an inverted or NaN interval: every bin,
@@ -85,13 +89,15 @@ int glcRadialCellCount(ivec3 lo, ivec3 hi) {
     return max(hi.x - lo.x + 1, 0) * max(hi.y - lo.y + 1, 0) * max(hi.z - lo.z + 1, 0);
 }
 
-// Where cell (x, y, z) of `observer` lies: its word, and the shift of its byte in that word.
-uint glcRadialCellWord(uint observer, int x, int y, int z) {
-    uint cell = uint((z * GLC_RADIAL_CELL_GRID + y) * GLC_RADIAL_CELL_GRID + x);
-    return observer * uint(GLC_RADIAL_CELL_WORDS) + 1u + cell / 4u;
+// Where cell (x, y, z) of a grid (GLC_RADIAL_COARSE_GRID or GLC_RADIAL_CELL_GRID) of `observer`
+// lies: its word, and the shift of its byte in that word.
+uint glcRadialCellWord(uint observer, int grid, int x, int y, int z) {
+    uint cell = uint((z * grid + y) * grid + x);
+    uint level = grid == GLC_RADIAL_CELL_GRID ? uint(GLC_RADIAL_COARSE_WORDS) : 0u;
+    return observer * uint(GLC_RADIAL_CELL_WORDS) + level + cell / 4u;
 }
 uint glcRadialCellShift(int x) {
-    return uint(x % 4) * 8u; // cells in a word are consecutive in x, and GLC_RADIAL_CELL_GRID % 4 == 0
+    return uint(x % 4) * 8u; // cells in a word are consecutive in x; both grids are multiples of 4
 }
 
 #endif

@@ -43,18 +43,21 @@ layout(std430, binding = GLC_BIND_RADIAL_CELLS) buffer RadialCellsBuf { uint g_c
 
 uniform uint u_faceCount; // classified faces: real, then ghost
 
-// Marks the footprint's cells for RadialFree; a box too large to mark sets the observer's word 0.
+// Marks the footprint's cells for RadialFree: in the fine grid, or in the coarse one when its box
+// holds more than GLC_RADIAL_MOST_MARKED_CELLS fine cells (at most 64 coarse ones).
 void markCells(uint observer, vec4 cone, vec2 feet) {
-    ivec3 lo = glcRadialCellsLow(cone), hi = glcRadialCellsHigh(cone);
+    int grid = GLC_RADIAL_CELL_GRID;
+    ivec3 lo = glcRadialCellsLow(cone, grid), hi = glcRadialCellsHigh(cone, grid);
     if (glcRadialCellCount(lo, hi) > GLC_RADIAL_MOST_MARKED_CELLS) {
-        atomicOr(g_cells[observer * uint(GLC_RADIAL_CELL_WORDS)], 1u);
-        return;
+        grid = GLC_RADIAL_COARSE_GRID;
+        lo = glcRadialCellsLow(cone, grid);
+        hi = glcRadialCellsHigh(cone, grid);
     }
     uint bins = glcRadialFootBins(feet);
     for (int z = lo.z; z <= hi.z; ++z)
         for (int y = lo.y; y <= hi.y; ++y)
             for (int x = lo.x; x <= hi.x; ++x)
-                atomicOr(g_cells[glcRadialCellWord(observer, x, y, z)], bins << glcRadialCellShift(x));
+                atomicOr(g_cells[glcRadialCellWord(observer, grid, x, y, z)], bins << glcRadialCellShift(x));
 }
 
 void main() {

@@ -37,19 +37,25 @@ bool windsOnce(uint observer) {
     return g_winding[2u * observer] == 1u && g_winding[2u * observer + 1u] == 0u;
 }
 
-// Whether a face not proven positive marked one of this footprint's cells (or a box too large to
-// mark): only then can a listed footprint meet it.
-bool cellsMarked(uint observer, vec4 cone, vec2 feet) {
-    if (g_cells[observer * uint(GLC_RADIAL_CELL_WORDS)] != 0u) return true;
-    ivec3 lo = glcRadialCellsLow(cone), hi = glcRadialCellsHigh(cone);
-    if (glcRadialCellCount(lo, hi) > GLC_RADIAL_MOST_MARKED_CELLS) return true;
-    uint bins = glcRadialFootBins(feet);
+// Whether some (cell, bin) of the footprint's box is marked in a grid.
+bool boxMarked(uint observer, int grid, ivec3 lo, ivec3 hi, uint bins) {
     for (int z = lo.z; z <= hi.z; ++z)
         for (int y = lo.y; y <= hi.y; ++y)
             for (int x = lo.x; x <= hi.x; ++x)
-                if ((g_cells[glcRadialCellWord(observer, x, y, z)] & (bins << glcRadialCellShift(x))) != 0u)
+                if ((g_cells[glcRadialCellWord(observer, grid, x, y, z)] & (bins << glcRadialCellShift(x))) != 0u)
                     return true;
     return false;
+}
+
+// Whether a face not proven positive marked one of this footprint's cells, in either grid (or the
+// footprint is too wide to look at the fine one): only then can a listed footprint meet it.
+bool cellsMarked(uint observer, vec4 cone, vec2 feet) {
+    uint bins = glcRadialFootBins(feet);
+    int coarse = GLC_RADIAL_COARSE_GRID, fine = GLC_RADIAL_CELL_GRID;
+    if (boxMarked(observer, coarse, glcRadialCellsLow(cone, coarse), glcRadialCellsHigh(cone, coarse), bins))
+        return true;
+    ivec3 lo = glcRadialCellsLow(cone, fine), hi = glcRadialCellsHigh(cone, fine);
+    return glcRadialCellCount(lo, hi) > GLC_RADIAL_MOST_MARKED_CELLS || boxMarked(observer, fine, lo, hi, bins);
 }
 
 void main() {

@@ -61,9 +61,13 @@ static_assert(sizeof(GpuLineSearch) == 16 + 16 * GLC_ENERGY_GROUPS + 32 * GLC_EN
 static_assert(sizeof(GpuHealth) == 16);
 static_assert(offsetof(GpuHealth, firstBadNode) == 0);
 static_assert(offsetof(GpuHealth, badSubstep) == 4);
-static_assert(GLC_RADIAL_CELL_GRID % 4 == 0); // a word holds 4 cells consecutive in x
-static_assert(GLC_RADIAL_FOOT_BINS == 8);     // a byte per cell
-static_assert(GLC_RADIAL_CELL_WORDS == 1 + GLC_RADIAL_CELL_GRID * GLC_RADIAL_CELL_GRID *
-                                               GLC_RADIAL_CELL_GRID * GLC_RADIAL_FOOT_BINS / 32);
+static_assert(GLC_RADIAL_CELL_GRID % 4 == 0 &&
+              GLC_RADIAL_COARSE_GRID % 4 == 0); // 4 cells consecutive in x per word
+static_assert(GLC_RADIAL_FOOT_BINS == 8);       // a byte per cell
+static_assert(GLC_RADIAL_COARSE_WORDS == GLC_RADIAL_COARSE_GRID * GLC_RADIAL_COARSE_GRID *
+                                             GLC_RADIAL_COARSE_GRID * GLC_RADIAL_FOOT_BINS / 32);
+static_assert(GLC_RADIAL_CELL_WORDS == GLC_RADIAL_COARSE_WORDS + GLC_RADIAL_CELL_GRID * GLC_RADIAL_CELL_GRID *
+                                                                     GLC_RADIAL_CELL_GRID *
+                                                                     GLC_RADIAL_FOOT_BINS / 32);
 
 } // namespace glcollide::gpu

@@ -5,8 +5,8 @@
 // (cell, bin). Checked here on random cones whose axes lie near the meeting limit (where the slack
 // decides), on cones of real footprints, and on feet with ends at bin boundaries, NaN and inverted;
 // also that the cells hold every direction of a cone (double precision) and that a small cone covers
-// few cells (else the cells would skip nothing). Also in the relaxed-float build (fast-math, FMA,
-// FTZ/DAZ).
+// few cells (else the cells would skip nothing), and that the two grids' words are disjoint. Also in the
+// relaxed-float build (fast-math, FMA, FTZ/DAZ).
 
 #include "cpu/radial_library.hpp"
 
@@ -15,21 +15,28 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <vector>
 
 namespace glcollide {
 namespace {
 
-constexpr int kGrid = GLC_RADIAL_CELL_GRID;
+constexpr int kGrid = GLC_RADIAL_CELL_GRID, kCoarse = GLC_RADIAL_COARSE_GRID;
 
-bool boxesShareACell(const glm::vec4& a, const glm::vec4& b) {
-    const glm::ivec3 loA = shader::glcRadialCellsLow(a), hiA = shader::glcRadialCellsHigh(a);
-    const glm::ivec3 loB = shader::glcRadialCellsLow(b), hiB = shader::glcRadialCellsHigh(b);
+bool boxesShareACell(const glm::vec4& a, const glm::vec4& b, int grid) {
+    const glm::ivec3 loA = shader::glcRadialCellsLow(a, grid), hiA = shader::glcRadialCellsHigh(a, grid);
+    const glm::ivec3 loB = shader::glcRadialCellsLow(b, grid), hiB = shader::glcRadialCellsHigh(b, grid);
     for (int k = 0; k < 3; ++k)
         if (std::max(loA[k], loB[k]) > std::min(hiA[k], hiB[k])) return false;
     return true;
+}
+
+/// Both grids: RadialClassify marks a listed footprint in one of them, RadialFree looks at both.
+bool boxesShareACell(const glm::vec4& a, const glm::vec4& b) {
+    return boxesShareACell(a, b, kGrid) && boxesShareACell(a, b, kCoarse);
 }
 
 /// The statement the proof makes before cells: each coordinate of the axes is within the two reaches.
@@ -122,15 +129,18 @@ TEST(RadialCells, EveryDirectionOfAConeLiesInItsCells) {
         const double theta = 0.001 * std::pow(1500.0, u(rng));
         const glm::vec3 a = randomAxis(rng);
         const glm::vec4 cone(a, static_cast<float>(std::cos(theta)));
-        const glm::ivec3 lo = shader::glcRadialCellsLow(cone), hi = shader::glcRadialCellsHigh(cone);
-        for (int k = 0; k < 20; ++k) { // directions at the cone's rim and inside it, in double
-            const glm::dvec3 d =
-                glm::normalize(glm::dvec3(turned(a, randomAxis(rng), theta * (k < 10 ? 1.0 : u(rng)))));
-            for (int c = 0; c < 3; ++c) {
-                const int cell =
-                    std::min(static_cast<int>(std::floor((d[c] + 1.0) * 0.5 * kGrid)), kGrid - 1);
-                ASSERT_LE(lo[c], cell) << "cone " << i;
-                ASSERT_GE(hi[c], cell) << "cone " << i;
+        for (const int grid : {kGrid, kCoarse}) {
+            const glm::ivec3 lo = shader::glcRadialCellsLow(cone, grid),
+                             hi = shader::glcRadialCellsHigh(cone, grid);
+            for (int k = 0; k < 20; ++k) { // directions at the cone's rim and inside it, in double
+                const glm::dvec3 d =
+                    glm::normalize(glm::dvec3(turned(a, randomAxis(rng), theta * (k < 10 ? 1.0 : u(rng)))));
+                for (int c = 0; c < 3; ++c) {
+                    const int cell =
+                        std::min(static_cast<int>(std::floor((d[c] + 1.0) * 0.5 * grid)), grid - 1);
+                    ASSERT_LE(lo[c], cell) << "cone " << i;
+                    ASSERT_GE(hi[c], cell) << "cone " << i;
+                }
             }
         }
     }
@@ -176,20 +186,41 @@ TEST(RadialCells, FeetThatTheMeetingTestCallsMeetingShareABin) {
 
 TEST(RadialCells, ASmallConeCoversAFewCellsAndEveryDirectionCoversThemAll) {
     std::mt19937 rng(5);
+    const auto cells = [](const glm::vec4& cone, int grid) {
+        return shader::glcRadialCellCount(shader::glcRadialCellsLow(cone, grid),
+                                          shader::glcRadialCellsHigh(cone, grid));
+    };
     for (int i = 0; i < 10000; ++i) {
         // A face of the 4,992-face sleeve seen from its axis: about 3 degrees.
         const glm::vec4 cone(randomAxis(rng), static_cast<float>(std::cos(3.0 * M_PI / 180.0)));
-        const int cells =
-            shader::glcRadialCellCount(shader::glcRadialCellsLow(cone), shader::glcRadialCellsHigh(cone));
-        ASSERT_GE(cells, 1);
-        ASSERT_LE(cells, 27); // the box is 0.14 wide, a cell 0.125: at most 3 cells per axis
+        ASSERT_GE(cells(cone, kGrid), 1);
+        ASSERT_LE(cells(cone, kGrid), 27); // the box is 0.14 wide, a cell 0.125: at most 3 cells per axis
+        ASSERT_LE(cells(cone, kCoarse), 8);
     }
     const glm::vec4 everywhere = shader::glcRadialEverywhere();
-    EXPECT_EQ(shader::glcRadialCellCount(shader::glcRadialCellsLow(everywhere),
-                                         shader::glcRadialCellsHigh(everywhere)),
-              kGrid * kGrid * kGrid);
-    EXPECT_GT(kGrid * kGrid * kGrid,
-              shader::GLC_RADIAL_MOST_MARKED_CELLS); // so such a face sets word 0 instead
+    EXPECT_EQ(cells(everywhere, kGrid), kGrid * kGrid * kGrid);
+    EXPECT_EQ(cells(everywhere, kCoarse), kCoarse * kCoarse * kCoarse);
+    // A footprint too wide for the fine grid is marked in the coarse one: at most 64 cells there too.
+    EXPECT_GT(cells(everywhere, kGrid), shader::GLC_RADIAL_MOST_MARKED_CELLS);
+    EXPECT_LE(cells(everywhere, kCoarse), shader::GLC_RADIAL_MOST_MARKED_CELLS);
+}
+
+/// The words of the two grids of two observers do not overlap, and fill GLC_RADIAL_CELL_WORDS.
+TEST(RadialCells, TheGridsOfEachObserverHaveWordsOfTheirOwn) {
+    std::vector<int> owner(2 * GLC_RADIAL_CELL_WORDS, 0);
+    for (std::uint32_t observer = 0; observer < 2; ++observer)
+        for (const int grid : {kGrid, kCoarse})
+            for (int z = 0; z < grid; ++z)
+                for (int y = 0; y < grid; ++y)
+                    for (int x = 0; x < grid; ++x) {
+                        const std::uint32_t word = shader::glcRadialCellWord(observer, grid, x, y, z);
+                        ASSERT_LT(word, owner.size());
+                        const int id = static_cast<int>(observer) * 2 + (grid == kGrid ? 1 : 2);
+                        ASSERT_TRUE(owner[word] == 0 || owner[word] == id) << "word " << word;
+                        owner[word] = id;
+                        ASSERT_LT(shader::glcRadialCellShift(x), 32u);
+                    }
+    EXPECT_EQ(std::count(owner.begin(), owner.end(), 0), 0); // every word used
 }
 
 } // namespace
