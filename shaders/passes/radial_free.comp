@@ -73,7 +73,7 @@ void main() {
     vec4 cone = g_cones[face];
     vec2 feet = g_feet[face];
     uint first = g_nonPositive[2u + 2u * observer], count = g_nonPositive[1u + 2u * observer];
-    if (cellsMarked(observer, cone, feet)) {
+    if (count > 0u && cellsMarked(observer, cone, feet)) { // an empty list needs no look at the cells
         for (uint k = 0u; k < count; ++k) {
             uint other = g_nonPositive[first + k];
             if (glcRadialFeetMeet(feet, g_feet[other]) && glcRadialFootprintsMeet(cone, g_cones[other])) return;
