@@ -74,7 +74,8 @@ ivec3 glcRadialCellsHigh(vec4 cone, int grid) {
 }
 
 // Bits lo .. hi of a byte: the bins of the feet interval (an inverted or NaN interval: every bin,
-// as glcRadialFeetMeet may call it meeting anything).
+// as glcRadialFeetMeet may call it meeting anything; a compiler that assumes no NaN may drop that
+// check; feet are NaN only from non-finite positions, which EngineOptions::checkFinite reports).
 uint glcRadialFootBins(vec2 feet) {
     if (!(feet.x <= feet.y)) return (1u << uint(GLC_RADIAL_FOOT_BINS)) - 1u;
     float scale = float(GLC_RADIAL_FOOT_BINS);

@@ -3,7 +3,8 @@
 // which leaves every answer unchanged only if two footprints that the meeting tests call meeting
 // (glcRadialFootprintsMeet, glcRadialFeetMeet, as computed in float with their slack) always share a
 // (cell, bin). Checked here on random cones whose axes lie near the meeting limit (where the slack
-// decides), on cones of real footprints, and on feet with ends at bin boundaries, NaN and inverted;
+// decides), on cones of real footprints, and on feet with ends at bin boundaries, NaN (not in the
+// relaxed-float build, whose compiler may assume there is none) and inverted;
 // also that the cells hold every direction of a cone (double precision) and that a small cone covers
 // few cells (else the cells would skip nothing), and that the two grids' words are disjoint. Also in the
 // relaxed-float build (fast-math, FMA, FTZ/DAZ).
@@ -149,6 +150,13 @@ TEST(RadialCells, EveryDirectionOfAConeLiesInItsCells) {
 TEST(RadialCells, FeetThatTheMeetingTestCallsMeetingShareABin) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
+#ifdef GLCOLLIDE_RELAXED_FLOAT
+    // -ffinite-math-only lets the compiler drop the NaN checks, and NaN then reaches a float-to-int
+    // conversion (undefined in C++; UBSan stops there): NaN feet are outside that build's contract.
+    constexpr bool kNaNs = false;
+#else
+    constexpr bool kNaNs = true;
+#endif
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const auto end = [&](int kind) {
         switch (kind % 6) {
@@ -159,7 +167,7 @@ TEST(RadialCells, FeetThatTheMeetingTestCallsMeetingShareABin) {
         case 2:
             return std::nextafter(static_cast<float>(static_cast<int>(u(rng) * 9.0f)) / 8.0f, 1.0f);
         case 3:
-            return kind == 3 ? nan : u(rng);
+            return kind == 3 && kNaNs ? nan : u(rng);
         default:
             return u(rng);
         }
