@@ -13,6 +13,7 @@ CC=clang CXX=clang++ cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInf
   -DGLCOLLIDE_SANITIZE=address,undefined -DGLCOLLIDE_BUILD_FUZZERS=ON \
   -DGLCOLLIDE_WARNINGS_AS_ERRORS=ON -DGLCOLLIDE_INSTALL=OFF
 cmake --build "$build_dir" -j "$(nproc)"
+echo "test-sanitizers.sh: the sanitized build took ${SECONDS} s"
 supp="$PWD/tests/sanitizers"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:check_initialization_order=1"
 export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
@@ -25,7 +26,9 @@ mesa_driver=$(ls /usr/lib/*/dri/swrast_dri.so 2>/dev/null | head -1 || true)
 LD_PRELOAD="${mesa_driver}${LD_PRELOAD:+:$LD_PRELOAD}" \
   ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" -LE long 2>&1 | tee "$build_dir/ctest.log"
 scripts/check-skips.sh "$build_dir/ctest.log" || [ "${GLCOLLIDE_FAIL_ON_SKIP:-0}" != 1 ]
+echo "test-sanitizers.sh: build and sanitized ctest took ${SECONDS} s"
 # Repeatable fuzzing: 30,000 inputs per target from seed 1 (about 1-10 s each on llvmpipe's 2-core
 # machine); FUZZ_SECONDS is a safety net: a target it stops before its 30,000 runs fails.
 # scripts/fuzz.sh alone explores further with a random seed.
 GLCOLLIDE_FUZZ_RUNS=${GLCOLLIDE_FUZZ_RUNS:-30000} scripts/fuzz.sh "$fuzz_seconds" "$build_dir"
+echo "test-sanitizers.sh: build, ctest and fuzzing took ${SECONDS} s"

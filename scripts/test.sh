@@ -12,6 +12,8 @@ GLCOLLIDE_CMAKE_ARGS="${GLCOLLIDE_CMAKE_ARGS:-} -DGLCOLLIDE_WARNINGS_AS_ERRORS=O
 build_dir=${GLCOLLIDE_BUILD_DIR:-build}
 ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" 2>&1 | tee "$build_dir/ctest.log"
 scripts/check-skips.sh "$build_dir/ctest.log" || [ "${GLCOLLIDE_FAIL_ON_SKIP:-0}" != 1 ]
+# CI has 90 minutes for the whole of .ci/run: each stage says how long it took.
+echo "test.sh: dependencies, build and ctest took ${SECONDS} s"
 if [ "${GLCOLLIDE_SKIP_SANITIZERS:-0}" != 1 ]; then
   scripts/test-sanitizers.sh
 fi
