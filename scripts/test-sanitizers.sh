@@ -11,7 +11,7 @@ fuzz_seconds=${1:-${GLCOLLIDE_FUZZ_SECONDS:-60}}
 build_dir=${GLCOLLIDE_SANITIZE_BUILD_DIR:-build-sanitize}
 CC=clang CXX=clang++ cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DGLCOLLIDE_SANITIZE=address,undefined -DGLCOLLIDE_BUILD_FUZZERS=ON \
-  -DGLCOLLIDE_WARNINGS_AS_ERRORS=ON -DGLCOLLIDE_INSTALL=OFF
+  -DGLCOLLIDE_WARNINGS_AS_ERRORS=ON -DGLCOLLIDE_INSTALL=OFF -DGLCOLLIDE_LINE_TABLES_ONLY=ON
 cmake --build "$build_dir" -j "$(nproc)"
 echo "test-sanitizers.sh: the sanitized build took ${SECONDS} s"
 supp="$PWD/tests/sanitizers"

@@ -8,7 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-GLCOLLIDE_CMAKE_ARGS="${GLCOLLIDE_CMAKE_ARGS:-} -DGLCOLLIDE_WARNINGS_AS_ERRORS=ON" scripts/build.sh
+GLCOLLIDE_CMAKE_ARGS="${GLCOLLIDE_CMAKE_ARGS:-} -DGLCOLLIDE_WARNINGS_AS_ERRORS=ON -DGLCOLLIDE_LINE_TABLES_ONLY=ON" scripts/build.sh
 build_dir=${GLCOLLIDE_BUILD_DIR:-build}
 ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" 2>&1 | tee "$build_dir/ctest.log"
 scripts/check-skips.sh "$build_dir/ctest.log" || [ "${GLCOLLIDE_FAIL_ON_SKIP:-0}" != 1 ]
