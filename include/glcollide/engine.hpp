@@ -195,6 +195,10 @@ struct SolverStats {
     std::uint32_t lineSearchSteps = 0;
     std::uint32_t lineSearchShortened = 0;
     std::uint32_t lineSearchRejected = 0;
+    /// Further Newton steps of time.solver.newton_steps not taken because the step before had
+    /// converged (moved no node by more than time.solver.newton_tolerance of the thickness) or
+    /// kept none of its change; not those of substeps that recover from an intersecting start.
+    std::uint32_t newtonStepsSkipped = 0;
 };
 
 struct StepStats {

@@ -219,6 +219,14 @@ struct ImplicitSolverSettings {
     /// contacts found there, so contacts that enter the thickness during the substep act in the
     /// solve itself (decision 0024, "Newton steps"); each costs one more detection and solve.
     int newtonSteps = 0;
+    /// A Newton step after the second is taken only while the step before it moved some node's end
+    /// position by more than this fraction of collision.thickness, [0, 1]; 0 takes every step. The
+    /// thickness is where the contacts' forces change, so a step that moved no node by a good part
+    /// of it leaves the next step's system nearly the one just solved (decision 0024, "Newton
+    /// steps until converged"). A step the line search rejects ends the steps at any tolerance (the
+    /// next would solve the same system again). Needs the line search (without it every step is
+    /// taken).
+    double newtonTolerance = 0.25;
     /// Each further Newton step keeps the first of the fractions 1, ½, ¼ of its change whose
     /// incremental potential is not above the step's start (decision 0024, "Line search"), else
     /// none; false takes the whole step (for comparison).

@@ -342,12 +342,14 @@ struct GpuEnergyGuard {
 };
 
 // The Newton steps' line search (newton_line_search.comp): the last candidate's incremental
-// potential Φ (J) and the magnitude scale of its terms, and the partial sums of its terms groups
-// as GpuEnergyGuard's: (Φ, magnitude, unused, unused) and the contacts' exact sums.
+// potential Φ (J) and the magnitude scale of its terms, the largest change |δ| of a free node's
+// velocity, and the partial sums of its terms groups as GpuEnergyGuard's: (Φ, magnitude, unused,
+// unused) and the contacts' exact sums.
 struct GpuLineSearch {
-    float total;     // J: Φ of the last candidate summed
-    float magnitude; // J: the magnitude scale of its terms (the resolution's base)
-    uint pad0;
+    float total;         // J: Φ of the last candidate summed
+    float magnitude;     // J: the magnitude scale of its terms (the resolution's base)
+    uint largestChange;  // floatBitsToUint of max |δ| (m/s) over the free nodes: an atomicMax of
+                         // non-negative floats' bits, which order like the floats (order-independent)
     uint pad1;
     vec4 partials[GLC_ENERGY_GROUPS];
     uvec4 contactPartials[2 * GLC_ENERGY_GROUPS];

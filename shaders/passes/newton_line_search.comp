@@ -14,7 +14,9 @@
 //    takes them), the float terms in fixed trees and the contacts' exactly (common/energy_sum.glsl):
 //    deterministic, no float atomics.
 //  u_mode = 1 (total, one group): sums the partials in a fixed order into g_search.
-//  u_mode = 2 (candidate): v = v1 + u_alpha·(v_full − v1) and x = x0 + h·v for every free node.
+//  u_mode = 2 (candidate): v = v1 + u_alpha·(v_full − v1) and x = x0 + h·v for every free node,
+//    and the largest |v_full − v1| into g_search.largestChange (the host zeroes it per Newton step;
+//    it decides whether a further step is worth taking: ImplicitParams::newtonTolerance).
 // Twin: cpu::incrementalPotential.
 #include "common/layout.glsl"
 #include "common/lists.glsl"
@@ -125,6 +127,9 @@ void writeCandidate() {
     vec4 x0 = g_start[i];
     if (!(x0.w > 0.0)) return; // pinned: stays at x0 with its velocity
     vec3 start = g_searchVelocities[u_nodeCount + i].xyz, full = g_searchVelocities[2u * u_nodeCount + i].xyz;
+    // A maximum of non-negative floats by their bits: exact and the same in any order (a NaN's
+    // bits are above every finite float's, so a non-finite change reads as a large one).
+    atomicMax(g_search.largestChange, floatBitsToUint(length(full - start)));
     vec3 v = start + u_alpha * (full - start);
     g_velocities[i].xyz = v;
     g_positions[i] = vec4(x0.xyz + u_h * v, x0.w);

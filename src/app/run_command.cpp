@@ -40,10 +40,12 @@ nlohmann::json frameRecord(const Engine& engine) {
                             {"max_relative_residual", s.solver.maxRelativeResidual},
                             {"total_iterations", s.solver.totalIterations},
                             {"unconverged_substeps", s.solver.unconvergedSubsteps}};
-    if (s.solver.lineSearch)
+    if (s.solver.lineSearch) {
         record["solver"]["line_search"] = {{"steps", s.solver.lineSearchSteps},
                                            {"shortened", s.solver.lineSearchShortened},
                                            {"rejected", s.solver.lineSearchRejected}};
+        record["solver"]["newton_steps_skipped"] = s.solver.newtonStepsSkipped;
+    }
     if (s.collisions) {
         const CollisionStats& c = s.collision;
         record["collision"] = {{"box_pairs", c.boxPairs},

@@ -104,6 +104,10 @@ void record(const ResponseTally& t, RunResult& r) {
     r.set("line_search_steps", t.lineSearch ? t.lineSearchSteps : nan);
     r.set("line_search_shortened_fraction", search ? t.lineSearchShortened / t.lineSearchSteps : nan);
     r.set("line_search_rejected_fraction", search ? t.lineSearchRejected / t.lineSearchSteps : nan);
+    // Newton steps taken per substep: the first solve and each line-searched further step (steps
+    // after a converged one are not taken: time.solver.newton_tolerance).
+    r.set("newton_steps_per_substep",
+          t.lineSearch && t.substeps > 0 ? 1.0 + t.lineSearchSteps / t.substeps : nan);
     r.set("wall_ms_per_substep", r.wallMs.median / r.substeps);
     r.set("gpu_ms_per_substep", r.gpuMs.median / r.substeps);
 }

@@ -79,6 +79,10 @@ struct ImplicitParams {
     /// contacts and each further step is ImplicitSolverPass::dispatchNewton: the system assembled
     /// again at the previous step's end x1 with the contacts found there.
     int newtonSteps = 1;
+    /// m: a Newton step after the second is taken only while the step before it moved some node's
+    /// end position by more than this (time.solver.newton_tolerance × the contacts' thickness;
+    /// 0: every step). The engine decides from NewtonLineSearchPass's LineSearchStep::largestMove.
+    double newtonMoveTolerance = 0.0;
     double tolerance = 1.0e-4; ///< stop when ‖r‖ ≤ tolerance·‖b‖
     int maxIterations = 256;   ///< CG iteration cap (include/glcollide/scene.hpp says why 256)
 };

@@ -105,7 +105,13 @@ struct Engine::Impl {
     gl::Buffer makeBuffer(passes::BufferId id);
     void allocate();
     void makePass(engine::Stage stage);
-    bool newtonSkipped = false; ///< this substep's Newton steps are skipped: its start intersects
+    /// This substep takes no further Newton step: its start intersects (recovery, decision 0024)...
+    bool newtonRecovering = false;
+    /// ... or the last step converged: it moved no node by more than
+    /// ImplicitParams::newtonMoveTolerance, or kept none of its change.
+    bool newtonConverged = false;
+    [[nodiscard]] bool newtonDone() const { return newtonRecovering || newtonConverged; }
+    std::uint32_t newtonStepsSkipped = 0; ///< further Newton steps not taken this frame (converged)
     /// The last detection found intersecting pairs at its start (recovery): the contact iterations
     /// push (ContactParams::repulsion) even where the plan has them inelastic only.
     bool lastStartIntersected = false;
@@ -364,9 +370,10 @@ void Engine::Impl::makePass(engine::Stage stage) {
         break;
     case Stage::Commit:
         break; // SafeStepPass::commit: a copy
+    case Stage::NewtonPredict:
     case Stage::NewtonDetection:
     case Stage::ImplicitNewton:
-        break; // the CollisionDetection and ImplicitSolve stages' passes
+        break; // the NodePredict, CollisionDetection and ImplicitSolve stages' passes
     case Stage::FrameStep: {
         FrameStepParams& f = frameStepParams;
         f.external = plan.nodeForceParams;
@@ -518,6 +525,7 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             break;
         }
         case Stage::ImplicitSolve:
+            newtonRecovering = newtonConverged = false;
             if (plan.implicitContacts) {
                 // The contacts of the last substep's feature pairs at x0 (decision 0024); the
                 // first substep has none yet.
@@ -532,18 +540,24 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
                 run(*implicitSolve, plan.implicitParams);
             }
             break;
+        case Stage::NewtonPredict:
+            if (newtonDone()) break;
+            run(*nodePredict, plan.nodePredictParams, static_cast<std::uint32_t>(index));
+            break;
         case Stage::NewtonDetection:
+            if (newtonDone()) break;
             // The same detection over [x0, x1] for the Newton step's contacts; the substep's
             // counts (intersections at x0, CCD) are the final detection's.
             collision->setRadialCulling(radialPremise);
-            newtonSkipped =
+            // Not while the start intersects (recovery, decision 0024): the penalty's force ends at
+            // the band's edge, so a Newton step from a first step that pushed a pair out of the band
+            // sees no force and cancels the push (two overlapping boxes never came apart). The
+            // start is the same for every Newton step of the substep, so none is taken.
+            newtonRecovering =
                 collision->detect(buffers, options.gpuTiming ? &timer : nullptr).intersections > 0;
             break;
         case Stage::ImplicitNewton: {
-            // Not while the start intersects (recovery, decision 0024): the penalty's force ends at
-            // the band's edge, so a Newton step from a first step that pushed a pair out of the band
-            // sees no force and cancels the push (two overlapping boxes never came apart).
-            if (newtonSkipped) break;
+            if (newtonDone()) break;
             // The contacts of this substep's detection at x1; sides from x1 − h·v1 = x0.
             ContactParams params = plan.contact;
             params.substep = substeps.substepLength;
@@ -555,13 +569,22 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             break;
         }
         case Stage::NewtonLineSearch: {
-            if (newtonSkipped) break; // no Newton step was taken
+            if (newtonDone()) {
+                newtonStepsSkipped += newtonConverged ? 1u : 0u; // once per step of the plan
+                break;
+            }
             const passes::ContactInputs inputs = contactInputs();
             const gl::TimedSection section(options.gpuTiming ? &timer : nullptr,
                                            passes::passIndex(passes::NewtonLineSearchPass::kId),
                                            passes::NewtonLineSearchPass::kName);
-            (void)lineSearch->dispatch(buffers, &inputs, implicitSolve->startVelocities(),
-                                       implicitSolve->newtonStart(), plan.implicitParams.h);
+            const passes::LineSearchStep kept =
+                lineSearch->dispatch(buffers, &inputs, implicitSolve->startVelocities(),
+                                     implicitSolve->newtonStart(), plan.implicitParams.h);
+            // Converged (decision 0024, "Newton steps until converged"): a step that moved no node
+            // by more than the tolerance leaves the next step's contacts and system nearly this
+            // one's; a step that kept none of its change would be solved again unchanged.
+            newtonConverged =
+                kept.fraction == 0.0f || kept.largestMove <= plan.implicitParams.newtonMoveTolerance;
             break;
         }
         case Stage::ContactResponse:
@@ -674,6 +697,7 @@ void Engine::Impl::readSolverStats() {
     s.lineSearchSteps = l.steps;
     s.lineSearchShortened = l.shortened;
     s.lineSearchRejected = l.rejected;
+    s.newtonStepsSkipped = newtonStepsSkipped;
 }
 
 void Engine::Impl::checkFrameCompleted() {
@@ -724,6 +748,7 @@ void Engine::Impl::beginFrame() {
     stats.collision = {};
     if (implicitSolve) implicitSolve->resetStatistics();
     if (lineSearch) lineSearch->clearFrameCounts();
+    newtonStepsSkipped = 0;
     frameDispatchesBefore = gl::dispatchCount();
     frameWallMilliseconds = 0.0;
     // The energy guard's start: the host may have moved nodes since the last frame.

@@ -53,9 +53,11 @@ std::vector<Stage> PipelinePlan::safeStepStages() const {
     if (implicitSolve) s.push_back(Stage::ContactIterations);
     if (implicitSolve) s.push_back(Stage::ImplicitSolve);
     // Each further Newton step: the last step's end x1 is detected (the contacts it brings into the
-    // thickness join the feature-pair lists), then the system is solved again at x1.
+    // thickness join the feature-pair lists), then the system is solved again at x1. The engine
+    // skips a step's four stages once the steps have converged (ImplicitParams::newtonMoveTolerance)
+    // or the substep recovers from an intersecting start.
     for (int k = 1; implicitSolve && implicitContacts && k < implicitParams.newtonSteps; ++k) {
-        s.insert(s.end(), {Stage::NodePredict, Stage::NewtonDetection, Stage::ImplicitNewton});
+        s.insert(s.end(), {Stage::NewtonPredict, Stage::NewtonDetection, Stage::ImplicitNewton});
         if (lineSearch) s.push_back(Stage::NewtonLineSearch);
     }
     s.push_back(Stage::NodePredict);
@@ -84,6 +86,7 @@ std::vector<passes::PassId> PipelinePlan::passIds() const {
             p.push_back(PassId::SpringUpdate);
             break;
         case Stage::NodePredict:
+        case Stage::NewtonPredict:
             p.push_back(PassId::NodePredict);
             break;
         case Stage::CollisionDetection:
@@ -193,6 +196,8 @@ void planSafeStep(const Scene& scene, PipelinePlan& plan) {
     // Automatic Newton steps with the contacts in the solve: 2, so that the contacts the first
     // step brings into the thickness act in the solve (decision 0024, "Newton steps").
     if (plan.implicitSolve && scene.time.solver.newtonSteps == 0) plan.implicitParams.newtonSteps = 2;
+    // Steps after the second only while the last one moved a node by a part of the thickness.
+    plan.implicitParams.newtonMoveTolerance = scene.time.solver.newtonTolerance * plan.contact.thickness;
     const NodeForceParams& nf = plan.nodeForceParams;
     const NodeUpdateParams& nu = plan.nodeUpdateParams;
     // x1 is the whole step with the ground (SafeStep then commits it; there is no NodeUpdate):

@@ -26,6 +26,7 @@ enum class Stage : std::uint8_t {
     NodePredict,        ///< continuous detection: v += h·M⁻¹f and the predicted end positions x1
     CollisionDetection, ///< broad phase, TriTri and FeaturePairs (their own PassIds)
     ImplicitSolve,      ///< implicit Euler: the springs' linear solve, v += Δv
+    NewtonPredict,      ///< NodePredict of a further Newton step: x1 = x0 + h·v of the last step
     NewtonDetection,    ///< CollisionDetection of a Newton step's x1 (its counts are not the substep's)
     ImplicitNewton,     ///< implicit Euler: a further Newton step at x1 with the contacts found there
     NewtonLineSearch,   ///< implicit Euler: the fraction of that step that lowers the incremental potential

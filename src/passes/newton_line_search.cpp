@@ -7,6 +7,8 @@
 
 #include <epoxy/gl.h>
 
+#include <cstddef>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -44,6 +46,9 @@ void NewtonLineSearchPass::copyVelocities(const DeviceBuffers& b, const gl::Buff
     gl::copyBufferData(startVelocities, m_velocities, bytes, 0);
     gl::copyBufferData(stepStart, m_velocities, bytes, bytes);
     gl::copyBufferData(b.velocities, m_velocities, bytes, 2 * bytes);
+    // The candidates' largest |δ| is a maximum over this step's candidates only.
+    const std::uint32_t zero = 0;
+    m_state.upload(offsetof(gpu::GpuLineSearch, largestChange), sizeof zero, &zero);
 }
 
 void NewtonLineSearchPass::writeCandidate(const DeviceBuffers& b, float alpha, double h) const {
@@ -62,9 +67,14 @@ PotentialSum NewtonLineSearchPass::sum(double h) const {
     m_program.set("u_mode", 1u);
     gl::ComputeProgram::dispatch(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    float values[2] = {0.0f, 0.0f};
-    m_state.download(0, sizeof values, values);
-    return PotentialSum{values[0], values[1]};
+    struct {
+        float total, magnitude;
+        std::uint32_t largestChange;
+    } read{};
+    static_assert(offsetof(gpu::GpuLineSearch, largestChange) == 8);
+    m_state.download(0, 12, &read);
+    std::memcpy(&m_largestChange, &read.largestChange, sizeof m_largestChange);
+    return PotentialSum{read.total, read.magnitude};
 }
 
 PotentialSum NewtonLineSearchPass::evaluate(const DeviceBuffers& b, const ContactInputs* contacts,
@@ -74,10 +84,10 @@ PotentialSum NewtonLineSearchPass::evaluate(const DeviceBuffers& b, const Contac
     return sum(h);
 }
 
-float NewtonLineSearchPass::dispatch(const DeviceBuffers& b, const ContactInputs* contacts,
-                                     const gl::Buffer& startVelocities, const gl::Buffer& stepStart,
-                                     double h) const {
-    if (m_nodeCount == 0) return 1.0f;
+LineSearchStep NewtonLineSearchPass::dispatch(const DeviceBuffers& b, const ContactInputs* contacts,
+                                              const gl::Buffer& startVelocities, const gl::Buffer& stepStart,
+                                              double h) const {
+    if (m_nodeCount == 0) return {};
     copyVelocities(b, startVelocities, stepStart);
     ++m_counts.steps;
     const PotentialSum start = evaluate(b, contacts, 0.0f, h);
@@ -86,14 +96,14 @@ float NewtonLineSearchPass::dispatch(const DeviceBuffers& b, const ContactInputs
         const PotentialSum candidate = evaluate(b, contacts, alpha, h);
         if (candidate.total <= start.total + resolution * (start.magnitude + candidate.magnitude)) {
             if (alpha < 1.0f) ++m_counts.shortened;
-            return alpha;
+            return {alpha, static_cast<double>(alpha) * h * static_cast<double>(m_largestChange)};
         }
     }
     // No fraction lowers Φ: the Newton step's start stays.
     ++m_counts.shortened;
     ++m_counts.rejected;
     writeCandidate(b, 0.0f, h);
-    return 0.0f;
+    return {0.0f, 0.0};
 }
 
 } // namespace glcollide::passes

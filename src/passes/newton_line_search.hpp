@@ -34,6 +34,14 @@ struct LineSearchCounts {
     std::uint32_t rejected = 0;  ///< of those, steps that kept none of δ (back to v1)
 };
 
+/// What one line-searched Newton step kept.
+struct LineSearchStep {
+    float fraction = 1.0f; ///< α: the fraction of δ kept (0: none; the step's start v1 stays)
+    /// m: the largest distance the kept step moved a free node's end x1 = x0 + h·v, α·h·max|δ|
+    /// (δ's largest entry is exact: an order-independent maximum on the GPU).
+    double largestMove = 0.0;
+};
+
 /// One evaluation of Φ: the GPU's float total and the magnitude scale of its terms.
 struct PotentialSum {
     double total = 0.0;     ///< J
@@ -51,10 +59,10 @@ class NewtonLineSearchPass {
 
     /// After a Newton step's solve: `startVelocities` v0 (the substep's start), `stepStart` v1
     /// (the Newton step's start), the buffers' velocities v1 + δ. Leaves the velocities at the
-    /// kept candidate and predictedPositions at x0 + h·v; returns the fraction of δ kept.
-    /// `contacts`: the Newton step's detection lists (nullptr without collision effects).
-    float dispatch(const DeviceBuffers& buffers, const ContactInputs* contacts,
-                   const gl::Buffer& startVelocities, const gl::Buffer& stepStart, double h) const;
+    /// kept candidate and predictedPositions at x0 + h·v; returns the fraction of δ kept and how far
+    /// it moved x1. `contacts`: the Newton step's detection lists (nullptr without collision effects).
+    LineSearchStep dispatch(const DeviceBuffers& buffers, const ContactInputs* contacts,
+                            const gl::Buffer& startVelocities, const gl::Buffer& stepStart, double h) const;
 
     /// Φ at v = v1 + alpha·δ, with the velocity sets of the last dispatch (tests compare it with the
     /// twin's); leaves that candidate in the buffers.
@@ -81,7 +89,8 @@ class NewtonLineSearchPass {
     mutable gl::Buffer m_state;      ///< GpuLineSearch
     mutable gl::Buffer m_velocities; ///< vec4[3·nodes]: v0, v1, v1 + δ
     mutable LineSearchCounts m_counts;
-    mutable std::uint64_t m_terms = 0; ///< terms of the last evaluation's sum
+    mutable std::uint64_t m_terms = 0;    ///< terms of the last evaluation's sum
+    mutable float m_largestChange = 0.0f; ///< m/s: max |δ| over the free nodes, read with the last sum
     gl::ComputeProgram m_program;
 };
 

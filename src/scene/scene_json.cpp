@@ -118,7 +118,7 @@ std::string string(const Ctx& c, const json& j, const Ptr& p) {
 // ---- top level ----
 
 ImplicitSolverSettings parseSolver(const Ctx& c, const json& j, const Ptr& p) {
-    checkObject(c, j, p, {"tolerance", "max_iterations", "newton_steps", "line_search"});
+    checkObject(c, j, p, {"tolerance", "max_iterations", "newton_steps", "newton_tolerance", "line_search"});
     ImplicitSolverSettings s;
     if (const json* v = find(j, "tolerance")) {
         s.tolerance = positive(c, *v, p / "tolerance");
@@ -128,6 +128,12 @@ ImplicitSolverSettings parseSolver(const Ctx& c, const json& j, const Ptr& p) {
     if (const json* v = find(j, "max_iterations"))
         s.maxIterations = integer(c, *v, p / "max_iterations", 1, 1024);
     if (const json* v = find(j, "newton_steps")) s.newtonSteps = integer(c, *v, p / "newton_steps", 1, 4);
+    if (const json* v = find(j, "newton_tolerance")) {
+        s.newtonTolerance = number(c, *v, p / "newton_tolerance");
+        if (!(s.newtonTolerance >= 0.0 && s.newtonTolerance <= 1.0))
+            c.fail(p / "newton_tolerance",
+                   "expected a fraction of the thickness in [0, 1], got " + shown(*v));
+    }
     if (const json* v = find(j, "line_search")) {
         if (!v->is_boolean()) c.fail(p / "line_search", "expected true or false, got " + shown(*v));
         s.lineSearch = v->get<bool>();

@@ -57,6 +57,9 @@ void validateScene(const Scene& scene) {
     const int newtonSteps = scene.time.solver.newtonSteps;
     if (newtonSteps < 0 || newtonSteps > 4)
         fail("time.solver.newton_steps must be 1 … 4 (or 0: automatic), got " + std::to_string(newtonSteps));
+    const double newtonTolerance = scene.time.solver.newtonTolerance;
+    if (!(newtonTolerance >= 0.0 && newtonTolerance <= 1.0))
+        fail("time.solver.newton_tolerance must be in [0, 1], got " + std::to_string(newtonTolerance));
     if (newtonSteps > 1 &&
         (scene.time.integrator != Integrator::ImplicitEuler ||
          col.response != ContactResponse::IntersectionFree ||

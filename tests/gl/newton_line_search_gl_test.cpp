@@ -22,6 +22,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
@@ -125,8 +126,21 @@ TEST(NewtonLineSearchGl, KeepsTheFractionTheTwinsPotentialChooses) {
         b.predictedPositions = upload("predictedPositions", pack(model.state.positions, &w));
         const gl::Buffer start = upload("v0", pack(v0)), stepStart = upload("v1", pack(v1));
         const passes::NewtonLineSearchPass pass(params, b.nodeCount, b.springCount);
-        const float kept = pass.dispatch(b, nullptr, start, stepStart, kH);
+        const passes::LineSearchStep step = pass.dispatch(b, nullptr, start, stepStart, kH);
+        const float kept = step.fraction;
         const double resolution = pass.resolution();
+        // How far the kept step moved x1: α·h·max|δ| over the free nodes, δ = vFull − v1 (both
+        // floats, so δ's entries are exact in double). The GPU's |δ| is a float length: the
+        // subtraction, squares, sum and square root round it by at most 6 units in the last place
+        // of |vFull| + |v1| (Higham §3.1, with the inputs' sizes bounding the difference's error).
+        double largestChange = 0.0, changeTol = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (w[i] <= 0.0) continue;
+            largestChange = std::max(largestChange, glm::length(vFull[i] - v1[i]));
+            changeTol = std::max(changeTol, 6.0 * testing_support::kUnitRoundoff *
+                                                (glm::length(vFull[i]) + glm::length(v1[i])));
+        }
+        EXPECT_NEAR(step.largestMove, kept * kH * largestChange, kept * kH * changeTol) << "seed " << seed;
         // What it left: the kept candidate and its positions.
         const std::vector<glm::dvec3> keptV = candidate(v1, vFull, kept);
         const std::vector<glm::dvec4> gpuV = download(b.velocities, b.nodeCount);

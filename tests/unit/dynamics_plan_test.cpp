@@ -188,7 +188,7 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     EXPECT_TRUE(plan.lineSearch);
     EXPECT_EQ(plan.stages(),
               (std::vector<Stage>{Stage::SpringUpdate, Stage::ContactIterations, Stage::ImplicitSolve,
-                                  Stage::NodePredict, Stage::NewtonDetection, Stage::ImplicitNewton,
+                                  Stage::NewtonPredict, Stage::NewtonDetection, Stage::ImplicitNewton,
                                   Stage::NewtonLineSearch, Stage::NodePredict, Stage::RecoveryIterations,
                                   Stage::CollisionDetection, Stage::SafeStep, Stage::EnergyGuard,
                                   Stage::Untangle, Stage::Commit}));
@@ -200,6 +200,11 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     EXPECT_EQ(plan.lineSearchParams.potentials.groundStiffness, plan.energyGuardParams.groundStiffness);
     EXPECT_EQ(plan.lineSearchParams.potentials.groundLevel, plan.energyGuardParams.groundLevel);
     EXPECT_EQ(plan.lineSearchParams.potentials.gravity, plan.energyGuardParams.gravity);
+    // Steps after the second stop once the last moved no node by a quarter of the thickness.
+    EXPECT_DOUBLE_EQ(plan.implicitParams.newtonMoveTolerance, 0.25 * plan.contact.thickness);
+    scene.time.solver.newtonTolerance = 0.0;
+    EXPECT_EQ(engine::planPipeline(scene).implicitParams.newtonMoveTolerance, 0.0);
+    scene.time.solver.newtonTolerance = 0.25;
     scene.time.solver.newtonSteps = 3;
     EXPECT_EQ(engine::planPipeline(scene).stages().size(), plan.stages().size() + 4);
     // Switched off, each Newton step is taken whole.

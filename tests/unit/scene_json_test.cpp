@@ -374,6 +374,19 @@ TEST(SceneJson, SettingsAndEffects) {
     EXPECT_THAT(
         errorOf(scene(kCloth, R"("time": {"integrator": "implicit_euler", "solver": {"line_search": 1}})")),
         HasSubstr("/time/solver/line_search: expected true or false, got 1"));
+    // The Newton steps' tolerance (time.solver.newton_tolerance): a fraction of the thickness.
+    const std::string toleranceTime =
+        R"("time": {"integrator": "implicit_euler", "solver": {"newton_tolerance": )";
+    EXPECT_EQ(safe.time.solver.newtonTolerance, 0.25) << "documented default";
+    EXPECT_EQ(parse(scene(kCloth, toleranceTime + R"(0}}, "collision": {"response": "intersection_free"})",
+                          R"(["springs", "self_collisions"])"))
+                  .time.solver.newtonTolerance,
+              0.0);
+    EXPECT_THAT(
+        errorOf(scene(kCloth, toleranceTime + R"(1.5}})")),
+        HasSubstr("/time/solver/newton_tolerance: expected a fraction of the thickness in [0, 1], got 1.5"));
+    EXPECT_THAT(errorOf(scene(kCloth, toleranceTime + R"("a"}})")),
+                HasSubstr("/time/solver/newton_tolerance: expected a number, got \"a\""));
     EXPECT_EQ(c.collision.thickness, 0.002);
     EXPECT_EQ(c.collision.stiffness, 500.0);
     EXPECT_EQ(c.collision.damping, 0.1);
