@@ -370,6 +370,59 @@ TEST(IntersectionFreeGl, TheSameSceneRunsTheSameTwice) {
         << "the cloth must lie in contact with itself: the sums must have terms";
 }
 
+// Newton steps until converged (time.solver.newton_tolerance; decision 0024): a step after the
+// second is taken only while the last moved some node by more than the tolerance's part of the
+// thickness. Checked against the engine with every step taken or with only two: a substep whose
+// further steps were all skipped must end exactly where two steps end it (the skipped stages change
+// no buffer), every planned step is either taken (line-searched) or counted as skipped, and at the
+// default tolerance the crumpling cloth both takes third steps and skips them.
+TEST(IntersectionFreeGl, NewtonStepsAfterConvergenceAreSkippedAndChangeNothing) {
+    const auto crumplingCloth = [](int newtonSteps, double tolerance) {
+        std::ostringstream s;
+        s << R"({"format_version": 1, "name": "crumpling cloth", "effects": ["gravity", "springs", "damping", "ground", "self_collisions"],
+          "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 1,
+                   "solver": {"newton_steps": )"
+          << newtonSteps << R"(, "newton_tolerance": )" << tolerance << R"(}},
+          "damping": 0.05,
+          "ground": {"height": 0.0, "restitution": 0.0, "friction": 0.8},
+          "collision": {"broad_phase": "bvh", "response": "intersection_free", "thickness": 0.02, "stiffness": 100},
+          "objects": [
+            {"name": "cloth", "generator": {"type": "cloth", "size": [0.5, 0.5], "resolution": [16, 16]},
+             "transform": {"translate": [0, 0.28, 0], "rotate_deg": [10, 0, 3]}, "mass": 0.1,
+             "springs": {"stiffness": 60, "damping": 0.002, "shear_stiffness": 20, "bend_stiffness": 0.2}}]})";
+        return parseScene(s.str(), ".", "crumpling cloth");
+    };
+    // Two steps against up to four that stop once a step moved no node by the whole thickness.
+    Engine two(crumplingCloth(2, 0.25)), upToFour(crumplingCloth(4, 1.0)), adaptive(crumplingCloth(4, 0.25));
+    int identicalFrames = 0;
+    bool diverged = false;
+    std::uint32_t taken = 0, skipped = 0;
+    for (int frame = 1; frame <= 30; ++frame) {
+        two.step();
+        upToFour.step();
+        adaptive.step();
+        for (const Engine* e : {&upToFour, &adaptive}) {
+            const SolverStats& s = e->lastStep().solver;
+            const auto substeps = static_cast<std::uint32_t>(e->lastStep().substeps);
+            // The cloth never starts a substep intersecting, so no step is skipped for recovery.
+            ASSERT_EQ(e->lastStep().collision.maxIntersectingPairs, 0u) << "frame " << frame;
+            EXPECT_EQ(s.lineSearchSteps + s.newtonStepsSkipped, 3u * substeps) << "frame " << frame;
+            EXPECT_GE(s.lineSearchSteps, substeps)
+                << "frame " << frame << ": the second step is always taken";
+        }
+        diverged = diverged || upToFour.lastStep().solver.lineSearchSteps > 1u; // one substep per frame
+        if (!diverged) {
+            ASSERT_EQ(upToFour.readPositions(), two.readPositions()) << "frame " << frame;
+            ++identicalFrames;
+        }
+        taken += adaptive.lastStep().solver.lineSearchSteps - 1u; // steps after the second
+        skipped += adaptive.lastStep().solver.newtonStepsSkipped;
+    }
+    EXPECT_GE(identicalFrames, 10) << "the comparison must cover frames with contact";
+    EXPECT_GT(taken, 0u) << "some second steps moved a node by more than a quarter of the thickness";
+    EXPECT_GT(skipped, 0u) << "and some did not";
+}
+
 // Randomised drops: small tet boxes and a cloth thrown at each other fast (6 m/s), onto the
 // ground, under symplectic Euler at its automatic substeps and implicit Euler at one substep per
 // frame. Every substep starts intersection-free (the engine's exact TriTri) and so does the end
@@ -436,17 +489,19 @@ INSTANTIATE_TEST_SUITE_P(Seeds, IntersectionFreeDrops,
                          ::testing::Combine(::testing::Values(1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 13u, 17u),
                                             ::testing::Bool(), ::testing::Bool()));
 
-// The same drops with two Newton steps per substep (time.solver.newton_steps): the promises are the
+// The same drops with two Newton steps per substep (time.solver.newton_steps), and with up to four
+// that stop once converged (time.solver.newton_tolerance at its default): the promises are the
 // same, and the Newton step's detection and solve run in every substep (its contacts at x1).
-class IntersectionFreeNewtonDrops : public ::testing::TestWithParam<std::tuple<unsigned, bool>> {};
+class IntersectionFreeNewtonDrops : public ::testing::TestWithParam<std::tuple<unsigned, bool, int>> {};
 
 TEST_P(IntersectionFreeNewtonDrops, NoFacePairEverIntersectsAndNoEnergyIsGained) {
-    const auto [seed, self] = GetParam();
-    expectDropKeepsThePromises(randomDrop(seed, true, self, 2));
+    const auto [seed, self, newtonSteps] = GetParam();
+    expectDropKeepsThePromises(randomDrop(seed, true, self, newtonSteps));
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, IntersectionFreeNewtonDrops,
-                         ::testing::Combine(::testing::Values(1u, 2u, 3u, 4u), ::testing::Bool()));
+                         ::testing::Combine(::testing::Values(1u, 2u, 3u, 4u), ::testing::Bool(),
+                                            ::testing::Values(2, 4)));
 
 } // namespace
 } // namespace glcollide
