@@ -342,10 +342,13 @@ TEST(IntersectionFreeGl, APileUnderSymplecticEulerIsHeldByItsContactsNotFrozen) 
 // frame parted at frame 10 in one of three tries, and the guard's contact sums differed in their
 // last bits far more often. Now those terms are summed exactly: every frame's guard sums and
 // positions must be bit-identical between two runs.
-TEST(IntersectionFreeGl, TheSameSceneRunsTheSameTwice) {
+/// A cloth dropped onto the ground that crumples onto itself (implicit Euler, 1 substep per frame);
+/// `solver`: the members of time.solver, e.g. `"newton_steps": 4` (empty: the defaults).
+Scene crumplingCloth(const std::string& solver = "") {
     const std::string json =
         R"({"format_version": 1, "name": "crumpling cloth", "effects": ["gravity", "springs", "damping", "ground", "self_collisions"],
-      "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 1},
+      "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 1, "solver": {)" +
+        solver + R"(}},
       "damping": 0.05,
       "ground": {"height": 0.0, "restitution": 0.0, "friction": 0.8},
       "collision": {"broad_phase": "bvh", "response": "intersection_free", "thickness": 0.02, "stiffness": 100},
@@ -353,7 +356,11 @@ TEST(IntersectionFreeGl, TheSameSceneRunsTheSameTwice) {
         {"name": "cloth", "generator": {"type": "cloth", "size": [0.5, 0.5], "resolution": [16, 16]},
          "transform": {"translate": [0, 0.28, 0], "rotate_deg": [10, 0, 3]}, "mass": 0.1,
          "springs": {"stiffness": 60, "damping": 0.002, "shear_stiffness": 20, "bend_stiffness": 0.2}}]})";
-    const Scene scene = parseScene(json, ".", "crumpling cloth");
+    return parseScene(json, ".", "crumpling cloth");
+}
+
+TEST(IntersectionFreeGl, TheSameSceneRunsTheSameTwice) {
+    const Scene scene = crumplingCloth();
     Engine first(scene), second(scene);
     std::uint32_t framesWithContactEnergy = 0;
     for (int frame = 1; frame <= 30; ++frame) {
@@ -377,23 +384,13 @@ TEST(IntersectionFreeGl, TheSameSceneRunsTheSameTwice) {
 // no buffer), every planned step is either taken (line-searched) or counted as skipped, and at the
 // default tolerance the crumpling cloth both takes third steps and skips them.
 TEST(IntersectionFreeGl, NewtonStepsAfterConvergenceAreSkippedAndChangeNothing) {
-    const auto crumplingCloth = [](int newtonSteps, double tolerance) {
-        std::ostringstream s;
-        s << R"({"format_version": 1, "name": "crumpling cloth", "effects": ["gravity", "springs", "damping", "ground", "self_collisions"],
-          "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 1,
-                   "solver": {"newton_steps": )"
-          << newtonSteps << R"(, "newton_tolerance": )" << tolerance << R"(}},
-          "damping": 0.05,
-          "ground": {"height": 0.0, "restitution": 0.0, "friction": 0.8},
-          "collision": {"broad_phase": "bvh", "response": "intersection_free", "thickness": 0.02, "stiffness": 100},
-          "objects": [
-            {"name": "cloth", "generator": {"type": "cloth", "size": [0.5, 0.5], "resolution": [16, 16]},
-             "transform": {"translate": [0, 0.28, 0], "rotate_deg": [10, 0, 3]}, "mass": 0.1,
-             "springs": {"stiffness": 60, "damping": 0.002, "shear_stiffness": 20, "bend_stiffness": 0.2}}]})";
-        return parseScene(s.str(), ".", "crumpling cloth");
+    const auto withSteps = [](int newtonSteps, double tolerance) {
+        std::ostringstream solver;
+        solver << R"("newton_steps": )" << newtonSteps << R"(, "newton_tolerance": )" << tolerance;
+        return crumplingCloth(solver.str());
     };
     // Two steps against up to four that stop once a step moved no node by the whole thickness.
-    Engine two(crumplingCloth(2, 0.25)), upToFour(crumplingCloth(4, 1.0)), adaptive(crumplingCloth(4, 0.25));
+    Engine two(withSteps(2, 0.25)), upToFour(withSteps(4, 1.0)), adaptive(withSteps(4, 0.25));
     int identicalFrames = 0;
     bool diverged = false;
     std::uint32_t taken = 0, skipped = 0;
