@@ -48,11 +48,27 @@ bool crossedFacePlane(uint p, uvec3 face, float side) {
     return side != 0.0 && side * sPrev > 0.0;
 }
 
-// Vertex `p` against face (a, b, c) with ownership bits `faceOwned` (contact_vertex_face.comp).
-// The vertex's side of the face: closed objects, the outside (outward normals); open surfaces
-// (cloth, which has no inside), the side it was on at the start of the substep (previousPosition)
-// — so a vertex that got through the sheet within the substep is pushed back, not on through.
-ContactPair vertexFaceContact(uint p, uvec3 face, uint faceOwned, bool closed) {
+// Whether vertex p is kept on the outside of a face of object `faceObject`: when that object is
+// closed (outward normals) and p belongs to another object — p behind the face is inside that
+// body. A vertex of the same closed object within the thickness behind its own face is not inside
+// it: the body is thinner than the thickness there (a soft solid squashed flat, the two sides of a
+// crushed fold; the state is intersection-free), and pushing it out would push it through the face,
+// which the CCD forbids: the pair would stay deeper than the thickness for good (decision 0024,
+// "Thin parts of closed objects"). It keeps the side it had, as on open surfaces.
+bool keepsOutside(uint p, GpuObject faceObject) {
+    return faceObject.closed != 0u && (p < faceObject.firstNode || p - faceObject.firstNode >= faceObject.nodeCount);
+}
+
+// Vertex `p` against face (a, b, c) of object `faceObject` with ownership bits `faceOwned`
+// (contact_vertex_face.comp). The vertex's side of the face: another object's vertex against a
+// closed object (keepsOutside), the outside (outward normals); otherwise (cloth, which has no
+// inside, or the body's own vertex), the side it was on at the start of the substep
+// (previousPosition) — so a vertex that got through the sheet within the substep is pushed back,
+// not on through. Near an edge or a corner of a closed object the distance decides, whatever the
+// side: every edge there has a face on its other side, whose interior takes a vertex that went
+// through; only an open surface's rim needs the side there.
+ContactPair vertexFaceContact(uint p, uvec3 face, uint faceOwned, GpuObject faceObject) {
+    bool closed = faceObject.closed != 0u;
     vec3 x = g_positions[p].xyz;
     vec3 xa = g_positions[face.x].xyz, xb = g_positions[face.y].xyz, xc = g_positions[face.z].xyz;
     vec3 n = cross(xb - xa, xc - xa);
@@ -65,7 +81,7 @@ ContactPair vertexFaceContact(uint p, uvec3 face, uint faceOwned, bool closed) {
     float d = length(diff);
     float s = dot(n, x - xa);
     float side = 1.0;
-    if (!closed) {
+    if (!keepsOutside(p, faceObject)) {
         vec3 pa = previousPosition(face.x);
         float sPrev = dot(cross(previousPosition(face.y) - pa, previousPosition(face.z) - pa),
                           previousPosition(p) - pa);

@@ -107,7 +107,7 @@ vec2 contactEnergy(ContactPair c) {
 vec2 vertexFaceEnergy(uint k) {
     uvec2 item = g_vertexFace[k]; // (node, face)
     GpuFaceInfo info = g_faceInfo[item.y];
-    return contactEnergy(vertexFaceContact(item.x, faceNodes(item.y), info.owned, g_objects[info.object].closed != 0u));
+    return contactEnergy(vertexFaceContact(item.x, faceNodes(item.y), info.owned, g_objects[info.object]));
 }
 
 vec2 edgeEdgeEnergy(uint k) {

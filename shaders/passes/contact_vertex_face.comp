@@ -29,10 +29,10 @@ layout(std430, binding = GLC_BIND_FACE_INFO) readonly buffer FaceInfoBuf { GpuFa
 layout(std430, binding = GLC_BIND_OBJECTS) readonly buffer ObjectsBuf { GpuObject g_objects[]; };
 layout(std430, binding = GLC_BIND_VERTEX_FACE_PAIRS) readonly buffer VertexFacePairsBuf { uvec2 g_vertexFace[]; };
 
-// Vertex `p` against face (a, b, c) with ownership bits `faceOwned` (common/contact_pair.glsl).
-// Returns 1 when a force was applied.
-uint vertexFace(uint p, uvec3 face, uint faceOwned, bool closed) {
-    ContactPair c = vertexFaceContact(p, face, faceOwned, closed);
+// Vertex `p` against face (a, b, c) of `faceObject` with ownership bits `faceOwned`
+// (common/contact_pair.glsl). Returns 1 when a force was applied.
+uint vertexFace(uint p, uvec3 face, uint faceOwned, GpuObject faceObject) {
+    ContactPair c = vertexFaceContact(p, face, faceOwned, faceObject);
     return c.found ? respond(c.nodes, c.weights, c.normal, c.depth) : 0u;
 }
 
@@ -41,6 +41,6 @@ void main() {
     if (i >= storedCount(GLC_LIST_VERTEX_FACE)) return;
     uvec2 item = g_vertexFace[i]; // (node, face)
     GpuFaceInfo info = g_faceInfo[item.y];
-    bool closed = g_objects[info.object].closed != 0u;
-    if (vertexFace(item.x, faceNodes(item.y), info.owned, closed) != 0u) atomicAdd(g_counters.stats[GLC_STAT_CONTACTS], 1u);
+    if (vertexFace(item.x, faceNodes(item.y), info.owned, g_objects[info.object]) != 0u)
+        atomicAdd(g_counters.stats[GLC_STAT_CONTACTS], 1u);
 }

@@ -43,7 +43,7 @@ ContactPair contactOf(uint i) {
     if (u_edgeEdge == 0u) {
         uvec2 item = g_vertexFace[i]; // (node, face)
         GpuFaceInfo info = g_faceInfo[item.y];
-        return vertexFaceContact(item.x, faceNodes(item.y), info.owned, g_objects[info.object].closed != 0u);
+        return vertexFaceContact(item.x, faceNodes(item.y), info.owned, g_objects[info.object]);
     }
     uvec2 item = g_edgeEdge[i]; // (3*fa+e, 3*fb+g)
     if (faceTangled(item.x / 3u) || faceTangled(item.y / 3u)) return noContact(); // tangled.glsl

@@ -128,10 +128,10 @@ struct FaceData {
 FaceData faceData(const Scene& scene) {
     FaceData d;
     d.model = model::flatten(scene);
+    d.nodeObject = model::nodeObjects(d.model);
     for (std::uint32_t o = 0; o < d.model.objects.size(); ++o) {
         const model::ObjectRange& r = d.model.objects[o];
         d.faceObject.insert(d.faceObject.end(), r.faceCount, o);
-        d.nodeObject.insert(d.nodeObject.end(), r.nodeCount, o);
         d.closed.push_back(model::isClosedSurface(d.model.faceIndices, r.firstFace, r.faceCount));
     }
     d.rules.betweenObjects = scene.effects.has(Effect::Collisions);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <stdexcept>
 
 namespace glcollide::cpu {
 namespace {
@@ -23,6 +24,19 @@ bool ownsClosestFeature(std::uint32_t p, const std::array<std::uint32_t, 3>& fac
         if (zeros == 1 && w[k] == 0.0) return (owned & (GLC_OWN_EDGE01 << ((k + 1) % 3))) != 0;
     }
     return true;
+}
+
+// The face's object's kind, as contact_pair.glsl's vertexFaceContact reads it from GpuObject.
+struct FaceKind {
+    bool closed = false;       ///< the face's object is closed: the distance decides near its edges
+    bool keepsOutside = false; ///< and the vertex is another object's: kept on the outside
+};
+
+FaceKind faceKind(const ContactInput& in, std::uint32_t node, std::uint32_t face) {
+    if ((*in.faceClosed)[face] == 0) return {};
+    if (!in.nodeObject || !in.faceObject)
+        throw std::invalid_argument("cpu::ContactInput: a closed face needs nodeObject and faceObject");
+    return {true, (*in.nodeObject)[node] != (*in.faceObject)[face]};
 }
 
 // contact_pair.glsl: which feature pairs are contacts, and their nodes, weights, normal and depth.
@@ -46,7 +60,7 @@ struct Geometry {
     }
 
     std::optional<ContactGeometry> vertexFace(std::uint32_t node, const std::array<std::uint32_t, 3>& f,
-                                              std::uint32_t faceOwned, bool closed) const {
+                                              std::uint32_t faceOwned, FaceKind kind) const {
         const glm::dvec3 &xp = x(node), &xa = x(f[0]), &xb = x(f[1]), &xc = x(f[2]);
         glm::dvec3 n = glm::cross(xb - xa, xc - xa);
         const double area2 = glm::length(n);
@@ -57,7 +71,7 @@ struct Geometry {
         const glm::dvec3 diff = xp - (wts.x * xa + wts.y * xb + wts.z * xc);
         const double d = glm::length(diff), s = glm::dot(n, xp - xa), h = p.thickness;
         double side = 1.0;
-        if (!closed) {
+        if (!kind.keepsOutside) {
             const glm::dvec3 pa = previous(f[0]);
             const double sPrev =
                 glm::dot(glm::cross(previous(f[1]) - pa, previous(f[2]) - pa), previous(node) - pa);
@@ -75,7 +89,7 @@ struct Geometry {
             u = side * n;
             depth = h - sideDistance;
         } else if (d < h && d > 0.0) {
-            if (closed || sideDistance >= 0.0) {
+            if (kind.closed || sideDistance >= 0.0) {
                 u = diff / d;
                 depth = h - d;
             } else {
@@ -125,8 +139,7 @@ void forEachContact(const ContactParams& params, const ContactInput& in, const F
     for (const IndexPair& vf : pairs.vertexFace) {
         const auto [node, face] = vf;
         const std::array<std::uint32_t, 3> nodes{idx[3 * face], idx[3 * face + 1], idx[3 * face + 2]};
-        if (const auto c =
-                geometry.vertexFace(node, nodes, (*in.faceOwned)[face], (*in.faceClosed)[face] != 0))
+        if (const auto c = geometry.vertexFace(node, nodes, (*in.faceOwned)[face], faceKind(in, node, face)))
             f(*c);
     }
     for (const IndexPair& ee : pairs.edgeEdge) {
@@ -474,7 +487,7 @@ double ambiguousContactEnergy(const ContactParams& params, const ContactInput& i
         const std::uint32_t node = vf[0], face = vf[1]; // not a structured binding: the lambda captures them
         const std::array<std::uint32_t, 3> f{idx[3 * face], idx[3 * face + 1], idx[3 * face + 2]};
         const auto contact = [&] {
-            return geometry.vertexFace(node, f, (*in.faceOwned)[face], (*in.faceClosed)[face] != 0);
+            return geometry.vertexFace(node, f, (*in.faceOwned)[face], faceKind(in, node, face));
         };
         const std::optional<ContactGeometry> nominal = contact();
         double largest = nominal ? nominal->depth : 0.0;

@@ -26,6 +26,11 @@ struct ContactInput {
     const std::vector<double>* inverseMasses = nullptr;
     /// N per node: the forces at the start of the substep (ContactParams::predictedForces); nullptr: none.
     const std::vector<glm::dvec3>* predictedForces = nullptr;
+    /// The object of each node and of each face: only a vertex of another object is kept outside a
+    /// closed object's face; the object's own vertex keeps the side it had (contact_pair.glsl's
+    /// keepsOutside). Required when faceClosed marks a face (std::invalid_argument otherwise).
+    const std::vector<std::uint32_t>* nodeObject = nullptr;
+    const std::vector<std::uint32_t>* faceObject = nullptr;
 };
 
 struct ContactResult {

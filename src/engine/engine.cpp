@@ -1171,6 +1171,7 @@ auto Engine::Impl::withContactInput(const std::vector<glm::dvec3>& x, const std:
     std::vector<std::uint8_t> faceClosed(model.faceCount());
     const model::OctreeLayout& layout = collision->layout();
     for (std::size_t f = 0; f < faceClosed.size(); ++f) faceClosed[f] = layout.closed[layout.faceObject[f]];
+    const std::vector<std::uint32_t> nodeObject = model::nodeObjects(model);
     cpu::ContactInput in;
     in.positions = &x;
     in.velocities = &v;
@@ -1178,6 +1179,8 @@ auto Engine::Impl::withContactInput(const std::vector<glm::dvec3>& x, const std:
     in.faceOwned = &layout.faceOwned;
     in.faceClosed = &faceClosed;
     in.inverseMasses = &model.inverseMasses;
+    in.nodeObject = &nodeObject;
+    in.faceObject = &layout.faceObject;
     ContactParams params = plan.contact;
     params.substep = 0.0; // sides from x
     return use(params, in);

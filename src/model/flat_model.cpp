@@ -1,8 +1,19 @@
 #include "model/flat_model.hpp"
 
+#include <algorithm>
+
 #include <glcollide/error.hpp>
 
 namespace glcollide::model {
+
+std::vector<std::uint32_t> nodeObjects(const FlatModel& model) {
+    std::vector<std::uint32_t> objectOf(model.nodeCount(), 0);
+    for (std::uint32_t o = 0; o < model.objects.size(); ++o) {
+        const ObjectRange& r = model.objects[o];
+        std::fill_n(objectOf.begin() + r.firstNode, r.nodeCount, o);
+    }
+    return objectOf;
+}
 
 Csr buildAdjacency(std::size_t nodeCount, const std::vector<std::uint32_t>& itemNodes, std::size_t perItem) {
     Csr csr;

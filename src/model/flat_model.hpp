@@ -47,6 +47,9 @@ struct FlatModel {
 /// Concatenates the bodies of `scene`. Pinned nodes get inverse mass 0 and velocity 0.
 FlatModel flatten(const Scene& scene);
 
+/// The object of each node (ObjectRange::firstNode … + nodeCount).
+std::vector<std::uint32_t> nodeObjects(const FlatModel& model);
+
 /// Builds the node→item adjacency of items that each list `perItem` node indices.
 Csr buildAdjacency(std::size_t nodeCount, const std::vector<std::uint32_t>& itemNodes, std::size_t perItem);
 

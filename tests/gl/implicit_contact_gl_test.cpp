@@ -11,6 +11,7 @@
 #include "passes/collision/append_lists.hpp"
 #include "passes/implicit_solver.hpp"
 #include "passes/row_layout.hpp"
+#include "support/contact_objects.hpp"
 #include "support/random_dynamics_model.hpp"
 
 #include <gtest/gtest.h>
@@ -43,6 +44,9 @@ struct ContactScene {
         std::vector<std::uint8_t> c;
         for (std::uint32_t o : faceObject) c.push_back(objectClosed[o]);
         return c;
+    }
+    std::vector<std::uint32_t> nodeObject() const {
+        return test::nodeObjectsOfFaces(model.faceIndices, faceObject, model.state.positions.size());
     }
 };
 
@@ -173,8 +177,7 @@ GpuRun runGpu(const ContactScene& s, const ImplicitParams& p, const ContactParam
     passes::DeviceBuffers b = uploadModel(s.model);
     std::vector<gpu::GpuFaceInfo> info;
     for (std::size_t f = 0; f < s.owned.size(); ++f) info.push_back({s.faceObject[f], 0u, s.owned[f], 0u});
-    std::vector<gpu::GpuObject> objects;
-    for (std::uint8_t closed : s.objectClosed) objects.push_back({0, 0, 0, 0, 0, 0, 0, closed});
+    const std::vector<gpu::GpuObject> objects = test::gpuObjects(s.nodeObject(), s.objectClosed);
     const gl::Buffer faceInfo = upload("faceInfo", info), objectBuffer = upload("objects", objects);
     passes::AppendLists lists(0);
     const auto vf = static_cast<std::uint32_t>(pairs.vertexFace.size());
@@ -258,10 +261,15 @@ double norm(const std::vector<glm::dvec3>& v) {
     return std::sqrt(s);
 }
 
-cpu::ContactInput twinInput(const ContactScene& s, const std::vector<std::uint8_t>& faceClosed) {
-    return {
+/// The twin's input; `faceClosed` and `nodeObject` (s.faceClosed(), s.nodeObject()) outlive it.
+cpu::ContactInput twinInput(const ContactScene& s, const std::vector<std::uint8_t>& faceClosed,
+                            const std::vector<std::uint32_t>& nodeObject) {
+    cpu::ContactInput in{
         &s.model.state.positions,    &s.model.state.velocities, &s.model.faceIndices, &s.owned, &faceClosed,
         &s.model.state.inverseMasses};
+    in.nodeObject = &nodeObject;
+    in.faceObject = &s.faceObject;
+    return in;
 }
 
 /// The largest differences of the GPU's records from the twin's geometry of the same pairs, in
@@ -284,7 +292,8 @@ constexpr double kWeightErrorUnits = 256.0, kNormalErrorUnits = 16.0, kForceErro
 RecordErrors compareRecordsWithTwin(const GpuRun& r, const ContactScene& s, const ContactParams& cp,
                                     cpu::Crossings crossings, double L) {
     const std::vector<std::uint8_t> closed = s.faceClosed();
-    const cpu::ContactInput in = twinInput(s, closed);
+    const std::vector<std::uint32_t> nodeObject = s.nodeObject();
+    const cpu::ContactInput in = twinInput(s, closed, nodeObject);
     RecordErrors e;
     const auto compare = [&](std::uint32_t slot, const cpu::FeaturePairList& one, bool edgeEdge) {
         const std::vector<cpu::ContactGeometry> twin = cpu::contactGeometries(cp, in, one, crossings);
@@ -469,7 +478,8 @@ TEST_P(ImplicitContactGl, NewtonRecordsOfPairsThatWentThroughMatchTheTwin) {
     const GpuRun r = runGpu(s, p, cp, s.pairs, 0, true, &v0);
     const RecordErrors e = compareRecordsWithTwin(r, s, cp, cpu::Crossings::AtAnyDepth, 1.1);
     const std::vector<std::uint8_t> closed = s.faceClosed();
-    const cpu::ContactInput in = twinInput(s, closed);
+    const std::vector<std::uint32_t> nodeObject = s.nodeObject();
+    const cpu::ContactInput in = twinInput(s, closed, nodeObject);
     std::uint32_t deep = 0;
     for (const cpu::ContactGeometry& c : cpu::contactGeometries(cp, in, s.pairs, cpu::Crossings::AtAnyDepth))
         deep += c.depth > 2.0 * cp.thickness ? 1u : 0u;
@@ -565,8 +575,9 @@ TEST(ImplicitContactGlAnalytic, RestingNodeMatchesBackwardEulerOfOneSpring) {
             twinParams.stiffness = toFloat(k);
             twinParams.thickness = toFloat(thickness);
             const std::vector<std::uint8_t> closed = s.faceClosed();
+            const std::vector<std::uint32_t> nodeObject = s.nodeObject();
             const cpu::ImplicitContactSet contacts =
-                cpu::implicitContacts(twinParams, twinInput(s, closed), s.pairs);
+                cpu::implicitContacts(twinParams, twinInput(s, closed, nodeObject), s.pairs);
             ASSERT_EQ(contacts.contacts.size(), 1u);
             ASSERT_TRUE(cpu::implicitVelocityUpdate(p, {}, s.model.nodeSprings, twin, &contacts).converged);
             EXPECT_NEAR(twin.velocities[3].y, expected, 1e-12 * scale);
@@ -619,8 +630,9 @@ TEST(ImplicitContactGlAnalytic, NewtonStepCatchesAContactTheFirstStepMissed) {
         twinParams.stiffness = kf;
         twinParams.thickness = hc;
         const std::vector<std::uint8_t> closed = s.faceClosed();
+        const std::vector<std::uint32_t> nodeObject = s.nodeObject();
         const cpu::ImplicitContactSet contacts =
-            cpu::implicitContacts(twinParams, twinInput(s, closed), s.pairs);
+            cpu::implicitContacts(twinParams, twinInput(s, closed, nodeObject), s.pairs);
         ASSERT_EQ(contacts.contacts.size(), 1u);
         const std::vector<glm::dvec3> delta =
             cpu::implicitNewtonChangeDense(p, {}, s.model.nodeSprings, twin, start, &contacts);
