@@ -134,6 +134,7 @@ std::vector<std::pair<std::string, std::string>> tableMetrics(const Experiment& 
                 {"safe_step_froze_all", "froze all"},
                 {"energy_guard_fraction", "guard acted"},
                 {"energy_guard_pull_back_fraction", "pulled back"},
+                {"energy_guard_back_to_start_fraction", "back to start"},
                 {"solver_iterations_per_substep", "CG it./substep"},
                 {"gpu_ms_per_substep", "GPU ms/substep"}};
     }

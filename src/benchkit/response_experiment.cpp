@@ -16,7 +16,7 @@ struct ResponseTally {
     double substeps = 0, safeStepSubsteps = 0, safeStepCuts = 0, safeStepFrozeAll = 0;
     double safeStepMaxRounds = 0, groundCrossings = 0, substepsWithIntersections = 0;
     double solverIterations = 0, solverMaxIterations = 0, unconvergedSubsteps = 0;
-    double guardSubsteps = 0, guardPulledBack = 0, guardRemoved = 0;
+    double guardSubsteps = 0, guardPulledBack = 0, guardBackToStart = 0, guardRemoved = 0;
     double lineSearchSteps = 0, lineSearchShortened = 0, lineSearchRejected = 0;
     bool lineSearch = false;
     int substepsPerFrame = 1;
@@ -49,6 +49,7 @@ FrameHook tallyFrames(ResponseTally& t) {
             t.guard = true;
             t.guardSubsteps += s.collision.energyGuardSubsteps;
             t.guardPulledBack += s.collision.energyGuardPulledBack;
+            t.guardBackToStart += s.collision.energyGuardBackToStart;
             t.guardRemoved += s.collision.energyGuardRemoved;
         }
         t.solverIterations += s.solver.totalIterations;
@@ -84,6 +85,9 @@ void record(const ResponseTally& t, RunResult& r) {
     const bool guard = t.guard && t.substeps > 0;
     r.set("energy_guard_fraction", guard ? t.guardSubsteps / t.substeps : nan);
     r.set("energy_guard_pull_back_fraction", guard ? t.guardPulledBack / t.substeps : nan);
+    // Pulled all the way back to the start at rest: the scene stood still for that substep (a run of
+    // them is a freeze, which the other fractions do not tell from a shortened step).
+    r.set("energy_guard_back_to_start_fraction", guard ? t.guardBackToStart / t.substeps : nan);
     r.set("energy_guard_removed_j", guard ? t.guardRemoved : nan);
     double worst = 0.0;
     for (std::size_t k = 1; k < t.energy.size(); ++k) {

@@ -111,6 +111,7 @@ for b in resp:
         assert b["max_intersecting_pairs"] == 0 and 0 <= b["safe_step_fraction"] <= 1, b["name"]
         # The energy guard: how often it acted, and no frame rose beyond the float allowance.
         assert 0 <= b["energy_guard_fraction"] <= 1 and 0 <= b["energy_guard_pull_back_fraction"] <= 1, b["name"]
+        assert 0 <= b["energy_guard_back_to_start_fraction"] <= b["energy_guard_pull_back_fraction"], b["name"]
         assert 0 <= b["energy_rise_over_allowance"] <= 1, b["name"]
 svgs = [f for f in os.listdir(out) if f.endswith(".svg")]
 assert len(svgs) >= 6, svgs
