@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Radial view-based culling's benchmark (issue 24, item 6; docs/culling.md, "Measured").
 
-Runs scenes/cloth_ball.json (a soft ball of cloth crumpling on the ground) at several sizes, the
+Runs scenes/cloth_ball.json (a very soft tet ball crumpling on the ground) at several sizes, the
 same ball stretched 3x along x (a cigar: a long closed surface, for segment observers), and
 the open surfaces that ghost triangles close — scenes/sleeve.json (a twisting tube) at several
 resolutions and scenes/mask_fold.json (DEDO's mask folding over a ball) — and the flat sheet that
