@@ -237,9 +237,10 @@ struct GpuBox {
 };
 
 // Per-face data the collision passes need beside the three node indices.
-// One active contact of the implicit solve (implicit_contact_find.comp): nodes n with signed
-// weights a (vertex-face (1, −w0, −w1, −w2), edge-edge (1−s, s, −(1−t), −t)), unit normal u from
-// side B to side A, penalty force magnitude k·depth. normalForce.w = 0: the slot holds no contact.
+// One contact of the implicit solve (implicit_contact_find.comp): nodes n with signed weights a
+// (vertex-face (1, −w0, −w1, −w2), edge-edge (1−s, s, −(1−t), −t)), unit normal u from side B to
+// side A, penalty force magnitude k·depth: > 0 within the thickness, 0 for a pair within the margin
+// beyond it that approaches (ContactParams::solveMargin: stiffness without force).
 struct GpuImplicitContact {
     uvec4 nodes;
     vec4 weights;
@@ -302,6 +303,12 @@ struct GpuCollisionCounters {
 // the frame's solver statistics (cleared by the engine before each frame).
 #define GLC_SOLVER_RUNNING 0xFFFFFFFFu
 #define GLC_SOLVER_TINY_RESIDUAL2 1e-30 // ‖r‖² (kg² m²/s²) below which the solve is over whatever ‖b‖
+// A pair within the implicit solve's margin counts as approaching when its relative normal velocity
+// u·Σ a_i v_i is below −GLC_APPROACH_SLACK·Σ |a_i||v_i| (ContactParams::solveMargin). The weights sum
+// to 0 on each side, so a pair moving rigidly approaches at exactly 0, which a float sum of four
+// terms gets within a few units of 2⁻²⁴ of that scale; 2⁻¹⁶ leaves such pairs out on any GPU and
+// in the double twin alike.
+#define GLC_APPROACH_SLACK (1.0 / 65536.0)
 struct GpuSolverState {
     float rhsNormSquared;     // ‖b‖² of this substep's system
     float rz[2];              // r·z after the iteration of that parity

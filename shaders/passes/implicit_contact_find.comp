@@ -2,8 +2,13 @@
 // ImplicitContactFind — the contact term of the implicit solve, step 1 of 4: one invocation per
 // entry of GLC_LIST_VERTEX_FACE (u_edgeEdge = 0) or GLC_LIST_EDGE_EDGE (u_edgeEdge = 1), indirect
 // dispatch from the list's count. Whether the pair is a contact, and its nodes, weights, normal and
-// depth, are the penalty response's (common/contact_pair.glsl, at the positions of the start of the
-// substep). A contact appends a record (an atomic count: exact even when the capacity is exceeded,
+// depth, are the penalty response's (common/contact_pair.glsl, at the positions the solve is
+// linearised at), evaluated with the thickness plus the margin (ContactParams::solveMargin): a pair
+// within the thickness is a contact with force k·depth; a pair beyond it but within the margin that
+// approaches (its relative normal velocity below −GLC_APPROACH_SLACK of its scale) gets force 0 and
+// the stiffness k — the tangent quadratic bound of its penalty ½k·max(0, h − d)² at its distance
+// now, which the step cannot pass without resistance (decision 0024, "Approaching pairs in the
+// solve"). A record (an atomic count: exact even when the capacity is exceeded,
 // and then the host grows the records and runs this again; nothing is dropped) with the penalty
 // force k·depth and its pair's list slot (edge-edge: u_edgeEdgeBase + i); every node row the
 // contact adds to is counted with an integer atomic (order-independent). Which record a contact
@@ -26,7 +31,8 @@ layout(std430, binding = GLC_BIND_VERTEX_FACE_PAIRS) readonly buffer VertexFaceP
 layout(std430, binding = GLC_BIND_EDGE_EDGE_PAIRS) readonly buffer EdgeEdgePairsBuf { uvec2 g_edgeEdge[]; };
 layout(std430, binding = GLC_BIND_NODE_CONTACT_COUNTS) buffer NodeContactCountsBuf { uint g_nodeContactCounts[]; };
 
-uniform float u_thickness;    // m
+uniform float u_thickness;    // m: the band searched, the thickness plus the margin (contact_pair.glsl)
+uniform float u_margin;       // m: ContactParams::solveMargin (0: contacts within the thickness only)
 uniform float u_substep;      // s: the side rule's x − dt·v, as the penalty response (0: the current side)
 uniform uint u_edgeEdge;      // 0: the vertex-face list, 1: the edge-edge list
 uniform uint u_edgeEdgeBase;  // the first list slot of the edge-edge list: the vertex-face capacity
@@ -52,11 +58,28 @@ ContactPair contactOf(uint i) {
     return edgeEdgeContact(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]);
 }
 
+// Whether the pair closes at the velocities the solve is linearised at (GLC_APPROACH_SLACK).
+bool approaching(ContactPair pair) {
+    vec3 relative = vec3(0.0);
+    float scale = 0.0;
+    for (uint k = 0u; k < 4u; ++k) {
+        vec3 v = g_velocities[pair.nodes[k]].xyz;
+        relative += pair.weights[k] * v;
+        scale += abs(pair.weights[k]) * length(v);
+    }
+    return dot(pair.normal, relative) < -float(GLC_APPROACH_SLACK) * scale;
+}
+
 void main() {
     uint i = globalIndex();
     if (i >= storedCount(u_edgeEdge != 0u ? GLC_LIST_EDGE_EDGE : GLC_LIST_VERTEX_FACE)) return;
     ContactPair pair = contactOf(i);
     if (!pair.found || !(pair.depth > 0.0)) return;
+    pair.depth -= u_margin; // the depth inside the thickness itself
+    if (!(pair.depth > 0.0)) {
+        if (!approaching(pair)) return;
+        pair.depth = 0.0; // within the margin: stiffness, no force
+    }
     uint r = atomicAdd(g_contactData[u_contactCount], 1u);
     if (r >= u_recordCapacity) return; // counted: the host grows the records and runs this again
     GpuImplicitContact c;

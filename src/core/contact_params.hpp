@@ -44,6 +44,13 @@ struct ContactParams {
     /// with at most μ times its normal force and at most what stops it in the substep (needs
     /// substep > 0). 0: frictionless.
     double friction = 0.0;
+    /// m: the implicit solve's contacts (implicit_contact_find.comp, cpu::implicitContacts) also take
+    /// the listed pairs beyond the thickness but within it plus this margin that approach at the
+    /// velocities the solve is linearised at: each gets the stiffness k and no force, the tangent
+    /// quadratic bound of its penalty where it is, so a step cannot carry it into the thickness
+    /// unopposed (decision 0024, "Approaching pairs in the solve"). 0: contacts within the
+    /// thickness only. Set by the plan from time.solver.contact_margin; the responses ignore it.
+    double solveMargin = 0.0;
 };
 
 /// Contacts that may add to one node in one substep before its int32 fixed-point sum could

@@ -55,6 +55,18 @@ glm::dvec3 weightedSum(const ContactGeometry& c, const std::vector<glm::dvec3>& 
     return sum;
 }
 
+/// Whether the pair closes at `velocities`: u·Σ a_j v_j below −GLC_APPROACH_SLACK·Σ |a_j||v_j|
+/// (implicit_contact_find.comp's approaching).
+bool approaching(const ContactGeometry& c, const std::vector<glm::dvec3>& velocities) {
+    glm::dvec3 relative(0.0);
+    double scale = 0.0;
+    for (std::size_t k = 0; k < 4; ++k) {
+        relative += c.weights[k] * velocities[c.nodes[k]];
+        scale += std::abs(c.weights[k]) * glm::length(velocities[c.nodes[k]]);
+    }
+    return glm::dot(c.normal, relative) < -GLC_APPROACH_SLACK * scale;
+}
+
 /// The assembled per-node pieces of the system: right-hand side and diagonal blocks.
 struct Assembly {
     std::vector<glm::dvec3> b;
@@ -149,7 +161,18 @@ SpringBlock springBlock(const model::FlatSpring& s, const glm::dvec3& xi, const 
 
 ImplicitContactSet implicitContacts(const ContactParams& params, const ContactInput& in,
                                     const FeaturePairList& pairs) {
-    return {contactGeometries(params, in, pairs, Crossings::AtAnyDepth), params.stiffness};
+    ContactParams band = params; // the thickness plus the margin, taken off each depth again
+    band.thickness = params.thickness + params.solveMargin;
+    ImplicitContactSet set{{}, params.stiffness};
+    for (ContactGeometry c : contactGeometries(band, in, pairs, Crossings::AtAnyDepth)) {
+        c.depth -= params.solveMargin;
+        if (!(c.depth > 0.0)) {
+            if (!approaching(c, *in.velocities)) continue;
+            c.depth = 0.0; // within the margin: stiffness, no force
+        }
+        set.contacts.push_back(c);
+    }
+    return set;
 }
 
 ImplicitSolveStats implicitVelocityUpdate(const ImplicitParams& params,

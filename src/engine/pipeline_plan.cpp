@@ -198,6 +198,9 @@ void planSafeStep(const Scene& scene, PipelinePlan& plan) {
     if (plan.implicitSolve && scene.time.solver.newtonSteps == 0) plan.implicitParams.newtonSteps = 2;
     // Steps after the second only while the last one moved a node by a part of the thickness.
     plan.implicitParams.newtonMoveTolerance = scene.time.solver.newtonTolerance * plan.contact.thickness;
+    // Approaching pairs within the margin beyond the thickness enter the solve with stiffness and
+    // no force (decision 0024, "Approaching pairs in the solve").
+    plan.contact.solveMargin = plan.implicitSolve ? scene.time.solver.contactMargin * plan.contact.thickness : 0.0;
     const NodeForceParams& nf = plan.nodeForceParams;
     const NodeUpdateParams& nu = plan.nodeUpdateParams;
     // x1 is the whole step with the ground (SafeStep then commits it; there is no NodeUpdate):

@@ -118,7 +118,8 @@ std::string string(const Ctx& c, const json& j, const Ptr& p) {
 // ---- top level ----
 
 ImplicitSolverSettings parseSolver(const Ctx& c, const json& j, const Ptr& p) {
-    checkObject(c, j, p, {"tolerance", "max_iterations", "newton_steps", "newton_tolerance", "line_search"});
+    checkObject(c, j, p,
+                {"tolerance", "max_iterations", "newton_steps", "newton_tolerance", "line_search", "contact_margin"});
     ImplicitSolverSettings s;
     if (const json* v = find(j, "tolerance")) {
         s.tolerance = positive(c, *v, p / "tolerance");
@@ -133,6 +134,11 @@ ImplicitSolverSettings parseSolver(const Ctx& c, const json& j, const Ptr& p) {
         if (!(s.newtonTolerance >= 0.0 && s.newtonTolerance <= 1.0))
             c.fail(p / "newton_tolerance",
                    "expected a fraction of the thickness in [0, 1], got " + shown(*v));
+    }
+    if (const json* v = find(j, "contact_margin")) {
+        s.contactMargin = number(c, *v, p / "contact_margin");
+        if (!(s.contactMargin >= 0.0 && s.contactMargin <= 4.0))
+            c.fail(p / "contact_margin", "expected a multiple of the thickness in [0, 4], got " + shown(*v));
     }
     if (const json* v = find(j, "line_search")) {
         if (!v->is_boolean()) c.fail(p / "line_search", "expected true or false, got " + shown(*v));

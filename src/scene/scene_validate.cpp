@@ -60,6 +60,9 @@ void validateScene(const Scene& scene) {
     const double newtonTolerance = scene.time.solver.newtonTolerance;
     if (!(newtonTolerance >= 0.0 && newtonTolerance <= 1.0))
         fail("time.solver.newton_tolerance must be in [0, 1], got " + std::to_string(newtonTolerance));
+    const double contactMargin = scene.time.solver.contactMargin;
+    if (!(contactMargin >= 0.0 && contactMargin <= 4.0))
+        fail("time.solver.contact_margin must be in [0, 4], got " + std::to_string(contactMargin));
     if (newtonSteps > 1 &&
         (scene.time.integrator != Integrator::ImplicitEuler ||
          col.response != ContactResponse::IntersectionFree ||
