@@ -200,7 +200,8 @@ void planSafeStep(const Scene& scene, PipelinePlan& plan) {
     plan.implicitParams.newtonMoveTolerance = scene.time.solver.newtonTolerance * plan.contact.thickness;
     // Approaching pairs within the margin beyond the thickness enter the solve with stiffness and
     // no force (decision 0024, "Approaching pairs in the solve").
-    plan.contact.solveMargin = plan.implicitSolve ? scene.time.solver.contactMargin * plan.contact.thickness : 0.0;
+    plan.contact.solveMargin =
+        plan.implicitSolve ? scene.time.solver.contactMargin * plan.contact.thickness : 0.0;
     const NodeForceParams& nf = plan.nodeForceParams;
     const NodeUpdateParams& nu = plan.nodeUpdateParams;
     // x1 is the whole step with the ground (SafeStep then commits it; there is no NodeUpdate):

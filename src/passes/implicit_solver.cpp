@@ -135,7 +135,8 @@ void ImplicitSolverPass::buildContactRows(const DeviceBuffers& b, const Implicit
     m_nodeContactCounts.bindStorage(GLC_BIND_NODE_CONTACT_COUNTS);
 
     // The band searched: the thickness plus the margin, which the shader takes off the depth again.
-    m_contactFind.set("u_thickness", static_cast<float>(contacts.params.thickness + contacts.params.solveMargin));
+    m_contactFind.set("u_thickness",
+                      static_cast<float>(contacts.params.thickness + contacts.params.solveMargin));
     m_contactFind.set("u_margin", static_cast<float>(contacts.params.solveMargin));
     m_contactFind.set("u_substep", static_cast<float>(contacts.params.substep));
     m_contactFind.set("u_contactStiffness", static_cast<float>(contacts.params.stiffness));

@@ -118,8 +118,9 @@ std::string string(const Ctx& c, const json& j, const Ptr& p) {
 // ---- top level ----
 
 ImplicitSolverSettings parseSolver(const Ctx& c, const json& j, const Ptr& p) {
-    checkObject(c, j, p,
-                {"tolerance", "max_iterations", "newton_steps", "newton_tolerance", "line_search", "contact_margin"});
+    checkObject(
+        c, j, p,
+        {"tolerance", "max_iterations", "newton_steps", "newton_tolerance", "line_search", "contact_margin"});
     ImplicitSolverSettings s;
     if (const json* v = find(j, "tolerance")) {
         s.tolerance = positive(c, *v, p / "tolerance");
