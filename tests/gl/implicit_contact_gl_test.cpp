@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <numeric>
 #include <random>
 #include <tuple>
@@ -163,6 +164,7 @@ struct GpuRun {
     std::vector<glm::vec4> velocities; // as the GPU left them (bit comparisons)
     std::vector<gpu::GpuImplicitContact> records;
     std::vector<std::uint32_t> offsets, list;
+    std::vector<std::uint8_t> present; // per list slot: 1 where the pair has a record
     std::uint32_t edgeEdgeBase = 0;
     passes::ImplicitSolverCounts counts;
 };
@@ -217,11 +219,11 @@ GpuRun runGpu(const ContactScene& s, const ImplicitParams& p, const ContactParam
     const std::vector<std::uint32_t> slots = pass.downloadContactRecordSlots();
     r.records.assign(std::size_t{r.edgeEdgeBase} + lists.capacity(GLC_LIST_EDGE_EDGE),
                      gpu::GpuImplicitContact{});
-    std::vector<std::uint8_t> seen(r.records.size(), 0);
+    r.present.assign(r.records.size(), 0);
     for (std::size_t k = 0; k < appended.size(); ++k) {
         EXPECT_LT(slots[k], r.records.size());
         if (slots[k] >= r.records.size()) continue;
-        EXPECT_EQ(seen[slots[k]]++, 0) << "slot " << slots[k] << " has two records";
+        EXPECT_EQ(r.present[slots[k]]++, 0) << "slot " << slots[k] << " has two records";
         r.records[slots[k]] = appended[k];
     }
     r.offsets = pass.downloadNodeContactOffsets();
@@ -242,7 +244,7 @@ cpu::ImplicitContactSet gpuContacts(const GpuRun& r, double stiffness) {
     set.stiffness = toFloat(stiffness);
     for (std::size_t slot = 0; slot < r.records.size(); ++slot) {
         const gpu::GpuImplicitContact& c = r.records[slot];
-        if (!(c.normalForce.w > 0.0f)) continue;
+        if (!r.present[slot]) continue;
         cpu::ContactGeometry g;
         for (int k = 0; k < 4; ++k) {
             g.nodes[static_cast<std::size_t>(k)] = c.nodes[k];
@@ -278,7 +280,8 @@ cpu::ContactInput twinInput(const ContactScene& s, const std::vector<std::uint8_
 /// (the depth comes from differences of coordinates up to L).
 struct RecordErrors {
     double weights = 0, normal = 0, force = 0;
-    std::uint32_t vertexFace = 0, edgeEdge = 0; // active contacts
+    std::uint32_t vertexFace = 0, edgeEdge = 0; // records
+    std::uint32_t withinMargin = 0;             // of which approaching pairs within the margin (depth 0)
 };
 
 // Bounds of RecordErrors: measured on llvmpipe (weights 23.6 u: the edge-edge parameters divide
@@ -286,21 +289,22 @@ struct RecordErrors {
 // then about ×10 for another device's rounding (fused multiply-adds, other operation orders).
 constexpr double kWeightErrorUnits = 256.0, kNormalErrorUnits = 16.0, kForceErrorUnits = 8.0;
 
-/// Every record of `r` against the twin's geometry of its pair (cpu::contactGeometries with
-/// `crossings`), slot by slot: a record exactly where the twin has a contact, the same nodes, and
-/// the largest errors (L: the largest coordinate).
-RecordErrors compareRecordsWithTwin(const GpuRun& r, const ContactScene& s, const ContactParams& cp,
-                                    cpu::Crossings crossings, double L) {
-    const std::vector<std::uint8_t> closed = s.faceClosed();
-    const std::vector<std::uint32_t> nodeObject = s.nodeObject();
-    const cpu::ContactInput in = twinInput(s, closed, nodeObject);
+/// The twin's contacts of one feature pair.
+using TwinContacts = std::function<std::vector<cpu::ContactGeometry>(const cpu::FeaturePairList&)>;
+
+/// Every record of `r` against the twin's geometry of its pair (`twinOf`), slot by slot: a record
+/// exactly where the twin has a contact, the same nodes, and the largest errors (L: the largest
+/// coordinate).
+RecordErrors compareRecordsWithTwin(const GpuRun& r, const ContactParams& cp, const TwinContacts& twinOf,
+                                    const cpu::FeaturePairList& pairs, double L) {
     RecordErrors e;
     const auto compare = [&](std::uint32_t slot, const cpu::FeaturePairList& one, bool edgeEdge) {
-        const std::vector<cpu::ContactGeometry> twin = cpu::contactGeometries(cp, in, one, crossings);
+        const std::vector<cpu::ContactGeometry> twin = twinOf(one);
         const gpu::GpuImplicitContact& c = r.records[slot];
-        ASSERT_EQ(twin.size(), c.normalForce.w > 0.0f ? 1u : 0u) << "slot " << slot;
+        ASSERT_EQ(twin.size(), r.present[slot] ? 1u : 0u) << "slot " << slot;
         if (twin.empty()) return;
         ++(edgeEdge ? e.edgeEdge : e.vertexFace);
+        if (!(twin[0].depth > 0.0)) ++e.withinMargin;
         for (int k = 0; k < 4; ++k) {
             const auto kk = static_cast<std::size_t>(k);
             EXPECT_EQ(c.nodes[k], twin[0].nodes[kk]);
@@ -315,11 +319,23 @@ RecordErrors compareRecordsWithTwin(const GpuRun& r, const ContactScene& s, cons
         e.force = std::max(e.force, std::abs(c.normalForce.w - cp.stiffness * twin[0].depth) /
                                         (kUnitRoundoff * cp.stiffness * L));
     };
-    for (std::uint32_t i = 0; i < s.pairs.vertexFace.size(); ++i)
-        compare(i, {{s.pairs.vertexFace[i]}, {}}, false);
-    for (std::uint32_t i = 0; i < s.pairs.edgeEdge.size(); ++i)
-        compare(r.edgeEdgeBase + i, {{}, {s.pairs.edgeEdge[i]}}, true);
+    for (std::uint32_t i = 0; i < pairs.vertexFace.size(); ++i)
+        compare(i, {{pairs.vertexFace[i]}, {}}, false);
+    for (std::uint32_t i = 0; i < pairs.edgeEdge.size(); ++i)
+        compare(r.edgeEdgeBase + i, {{}, {pairs.edgeEdge[i]}}, true);
     return e;
+}
+
+/// compareRecordsWithTwin against cpu::contactGeometries with `crossings`.
+RecordErrors compareRecordsWithTwin(const GpuRun& r, const ContactScene& s, const ContactParams& cp,
+                                    cpu::Crossings crossings, double L) {
+    const std::vector<std::uint8_t> closed = s.faceClosed();
+    const std::vector<std::uint32_t> nodeObject = s.nodeObject();
+    const cpu::ContactInput in = twinInput(s, closed, nodeObject);
+    return compareRecordsWithTwin(
+        r, cp,
+        [&](const cpu::FeaturePairList& one) { return cpu::contactGeometries(cp, in, one, crossings); },
+        s.pairs, L);
 }
 
 class ImplicitContactGl : public ::testing::TestWithParam<bool> {}; // the ground is closed
@@ -348,7 +364,7 @@ TEST_P(ImplicitContactGl, RecordsAndRowsMatchTheTwin) {
     const auto addRows = [&](std::uint32_t slot, const cpu::IndexPair& pair, std::uint32_t kind) {
         const gpu::GpuImplicitContact& c = r.records[slot];
         for (std::uint32_t k = 0; k < 4; ++k)
-            if (c.normalForce.w > 0.0f && st.inverseMasses[c.nodes[k]] > 0.0 && c.weights[k] != 0.0f)
+            if (r.present[slot] && st.inverseMasses[c.nodes[k]] > 0.0 && c.weights[k] != 0.0f)
                 rows[c.nodes[k]].emplace_back(kind, pair[0], pair[1], 4 * slot + k);
     };
     for (std::uint32_t i = 0; i < s.pairs.vertexFace.size(); ++i) addRows(i, s.pairs.vertexFace[i], 0);
@@ -374,11 +390,9 @@ TEST_P(ImplicitContactGl, RecordsAndRowsMatchTheTwin) {
 /// c of the residual check: as implicit_gl_test.cpp's (tol + c·u)·‖b‖, c = 64.
 constexpr double kResidualRoundoffUnits = 64.0;
 
-TEST_P(ImplicitContactGl, SolveMatchesTheDenseSolveOfTheSameSystem) {
-    ContactScene s = clothOverGround(6, 0.01, GetParam(), 12);
-    const ImplicitParams p = solverParams(1.0 / 30.0, true);
-    const ContactParams cp = contactParams(0.01, 1.0e4);
-    const GpuRun r = runGpu(s, p, cp, s.pairs);
+/// The GPU's solve `r` of `s` against the dense solve of the same system with the GPU's records.
+void expectSolveMatchesTheDenseSolve(ContactScene& s, const ImplicitParams& p, const ContactParams& cp,
+                                     const GpuRun& r) {
     EXPECT_EQ(r.counts.unconvergedSubsteps, 0u);
     cpu::nodeForce(p.external, s.model.faceIndices, s.model.nodeFaces, s.model.state); // the GPU's f
     const cpu::ImplicitContactSet contacts = gpuContacts(r, cp.stiffness);
@@ -399,10 +413,9 @@ TEST_P(ImplicitContactGl, SolveMatchesTheDenseSolveOfTheSameSystem) {
         return norm(res);
     };
     const double rGpu = residual(dvGpu), rDense = residual(dvDense), bNorm = norm(b);
-    std::printf(
-        "closed ground %d: %zu contacts, %u iterations, true ‖b − AΔv‖/‖b‖ = %.4g (gap %.3g u), dense %.3g\n",
-        GetParam() ? 1 : 0, contacts.contacts.size(), r.counts.maxIterations, rGpu / bNorm,
-        (rGpu / bNorm - r.counts.maxRelativeResidual) / kUnitRoundoff, rDense / bNorm);
+    std::printf("%zu contacts, %u iterations, true ‖b − AΔv‖/‖b‖ = %.4g (gap %.3g u), dense %.3g\n",
+                contacts.contacts.size(), r.counts.maxIterations, rGpu / bNorm,
+                (rGpu / bNorm - r.counts.maxRelativeResidual) / kUnitRoundoff, rDense / bNorm);
     EXPECT_LE(rGpu, (p.tolerance + kResidualRoundoffUnits * kUnitRoundoff) * bNorm);
     // Δv − Δv* = A⁻¹(r − r*), A ⪰ M (springs and contacts are positive semidefinite).
     double maxInverseMass = 0.0, error2 = 0.0;
@@ -410,6 +423,49 @@ TEST_P(ImplicitContactGl, SolveMatchesTheDenseSolveOfTheSameSystem) {
     for (std::size_t i = 0; i < gpu.size(); ++i)
         error2 += glm::dot(dvGpu[i] - dvDense[i], dvGpu[i] - dvDense[i]);
     EXPECT_LE(std::sqrt(error2), (rGpu + rDense) * maxInverseMass * (1.0 + 1e-9));
+}
+
+TEST_P(ImplicitContactGl, SolveMatchesTheDenseSolveOfTheSameSystem) {
+    ContactScene s = clothOverGround(6, 0.01, GetParam(), 12);
+    const ImplicitParams p = solverParams(1.0 / 30.0, true);
+    const ContactParams cp = contactParams(0.01, 1.0e4);
+    const GpuRun r = runGpu(s, p, cp, s.pairs);
+    expectSolveMatchesTheDenseSolve(s, p, cp, r);
+}
+
+// Approaching pairs within the margin (ContactParams::solveMargin; decision 0024, "Approaching
+// pairs in the solve"): the cloth 0.15–0.85 of 1 cm above the ground, a contact thickness of 5 mm
+// and a margin of 5 mm. The pairs closer than 5 mm are contacts; those between 5 and 10 mm get a
+// record with force 0 when they approach at the cloth's random velocities and none when they
+// recede: every record against the twin's (cpu::implicitContacts), and the solve with those
+// records (stiffness without force) against the dense solve of the same system.
+TEST_P(ImplicitContactGl, ApproachingPairsWithinTheMarginMatchTheTwin) {
+    ContactScene s = clothOverGround(6, 0.01, GetParam(), 15);
+    const ImplicitParams p = solverParams(1.0 / 30.0, true);
+    ContactParams cp = contactParams(0.005, 1.0e4);
+    cp.solveMargin = 0.005;
+    const GpuRun r = runGpu(s, p, cp, s.pairs);
+    const std::vector<std::uint8_t> closed = s.faceClosed();
+    const std::vector<std::uint32_t> nodeObject = s.nodeObject();
+    const cpu::ContactInput in = twinInput(s, closed, nodeObject);
+    const RecordErrors e = compareRecordsWithTwin(
+        r, cp, [&](const cpu::FeaturePairList& one) { return cpu::implicitContacts(cp, in, one).contacts; },
+        s.pairs, 1.1);
+    ContactParams band = cp; // every pair within the thickness plus the margin
+    band.thickness = cp.thickness + cp.solveMargin;
+    band.solveMargin = 0.0;
+    const std::size_t inBand = cpu::contactGeometries(band, in, s.pairs, cpu::Crossings::AtAnyDepth).size();
+    const std::uint32_t records = e.vertexFace + e.edgeEdge;
+    std::printf("closed ground %d: %u records (%u approaching within the margin), %zu receding left out; max "
+                "error: weights %.3g u, normal %.3g u·L/d, force %.3g u·k·L\n",
+                GetParam() ? 1 : 0, records, e.withinMargin, inBand - records, e.weights, e.normal, e.force);
+    EXPECT_GT(records - e.withinMargin, 10u) << "contacts within the thickness";
+    EXPECT_GT(e.withinMargin, 10u) << "approaching pairs within the margin";
+    EXPECT_GT(inBand - records, 10u) << "receding pairs within the margin, left out";
+    EXPECT_LE(e.weights, kWeightErrorUnits);
+    EXPECT_LE(e.normal, kNormalErrorUnits);
+    EXPECT_LE(e.force, kForceErrorUnits);
+    expectSolveMatchesTheDenseSolve(s, p, cp, r);
 }
 
 // The Newton step (time.solver.newton_steps 2): the same contacts and matrix at x1, right-hand side
@@ -639,6 +695,53 @@ TEST(ImplicitContactGlAnalytic, NewtonStepCatchesAContactTheFirstStepMissed) {
         const double y1Rounding = std::ldexp(std::abs(st.positions[3].y), -24);
         EXPECT_NEAR(st.velocities[3].y + delta[3].y, expected,
                     kf * h * y1Rounding / (mass + h * h * kf) + 1e-12 * scale);
+    }
+}
+
+// A node 1.5 thicknesses above a pinned triangle with a margin of one thickness (decision 0024,
+// "Approaching pairs in the solve"). Falling, the pair enters the first solve with the stiffness k
+// and no force, anchored where it is: backward Euler's closed form along the normal is
+// v = (m·v0 − h·m·g)/(m + h²k) — the approach is resisted from x0 on, not only inside the
+// thickness. Rising, or at rest (relative velocity 0: not approaching), it is no record and the
+// node falls freely, v = v0 − h·g. GPU and twin.
+TEST(ImplicitContactGlAnalytic, AnApproachingPairWithinTheMarginGetsStiffnessWithoutForce) {
+    const double m = 0.05, k = 1.0e4, h = 1.0 / 30.0, thickness = 0.01;
+    const ImplicitParams p = solverParams(h, false);
+    ContactParams cp = contactParams(thickness, k);
+    cp.solveMargin = thickness;
+    for (const double v0 : {-0.2, -2.0, 0.0, 0.4}) {
+        ContactScene s = nodeOnTriangle(m, 1.5 * thickness, v0);
+        const cpu::NodeState& st = s.model.state;
+        const double mass = 1.0 / st.inverseMasses[3], vy = st.velocities[3].y, kf = toFloat(k);
+        const bool approaching = vy < 0.0;
+        const GpuRun r = runGpu(s, p, cp, s.pairs);
+        ASSERT_EQ(r.list.size(), approaching ? 1u : 0u) << "v0 " << v0;
+        if (approaching) {
+            EXPECT_EQ(r.records[0].normalForce.w, 0.0f) << "no force beyond the thickness";
+        }
+        const double expected =
+            approaching ? (mass * vy - h * mass * kGravity) / (mass + h * h * kf) : vy - h * kGravity;
+        // Float: as the resting test's bound, 64u·S/(m + h²k) with S = m|v0| + h·m·g + h²k|v0|
+        // (without the contact: 64u·(|v0| + h·g)).
+        const double scale = approaching
+                                 ? (mass * std::abs(vy) + h * mass * kGravity + h * h * kf * std::abs(vy)) /
+                                       (mass + h * h * kf)
+                                 : std::abs(vy) + h * kGravity;
+        EXPECT_NEAR(r.velocities[3].y, expected, 64.0 * kUnitRoundoff * scale) << "v0 " << v0;
+        // The twin: the same record (or none) and the same closed form in double.
+        cpu::NodeState twin = st;
+        cpu::nodeForce(p.external, s.model.faceIndices, s.model.nodeFaces, twin);
+        ContactParams twinParams = cp;
+        twinParams.stiffness = kf;
+        twinParams.thickness = toFloat(thickness);
+        twinParams.solveMargin = toFloat(thickness);
+        const std::vector<std::uint8_t> closed = s.faceClosed();
+        const std::vector<std::uint32_t> nodeObject = s.nodeObject();
+        const cpu::ImplicitContactSet contacts =
+            cpu::implicitContacts(twinParams, twinInput(s, closed, nodeObject), s.pairs);
+        ASSERT_EQ(contacts.contacts.size(), approaching ? 1u : 0u) << "v0 " << v0;
+        ASSERT_TRUE(cpu::implicitVelocityUpdate(p, {}, s.model.nodeSprings, twin, &contacts).converged);
+        EXPECT_NEAR(twin.velocities[3].y, expected, 1e-12 * scale) << "v0 " << v0;
     }
 }
 

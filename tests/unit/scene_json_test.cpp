@@ -387,6 +387,21 @@ TEST(SceneJson, SettingsAndEffects) {
         HasSubstr("/time/solver/newton_tolerance: expected a fraction of the thickness in [0, 1], got 1.5"));
     EXPECT_THAT(errorOf(scene(kCloth, toleranceTime + R"("a"}})")),
                 HasSubstr("/time/solver/newton_tolerance: expected a number, got \"a\""));
+    // Approaching pairs within a margin in the solve (time.solver.contact_margin): a multiple of the
+    // thickness in [0, 4].
+    const std::string marginTime =
+        R"("time": {"integrator": "implicit_euler", "solver": {"contact_margin": )";
+    EXPECT_EQ(safe.time.solver.contactMargin, 1.0) << "documented default";
+    EXPECT_EQ(parse(scene(kCloth, marginTime + R"(0}}, "collision": {"response": "intersection_free"})",
+                          R"(["springs", "self_collisions"])"))
+                  .time.solver.contactMargin,
+              0.0);
+    EXPECT_THAT(
+        errorOf(scene(kCloth, marginTime + R"(4.5}})")),
+        HasSubstr("/time/solver/contact_margin: expected a multiple of the thickness in [0, 4], got 4.5"));
+    EXPECT_THAT(
+        errorOf(scene(kCloth, marginTime + R"(-1}})")),
+        HasSubstr("/time/solver/contact_margin: expected a multiple of the thickness in [0, 4], got -1"));
     EXPECT_EQ(c.collision.thickness, 0.002);
     EXPECT_EQ(c.collision.stiffness, 500.0);
     EXPECT_EQ(c.collision.damping, 0.1);
