@@ -231,13 +231,14 @@ struct ImplicitSolverSettings {
     /// incremental potential is not above the step's start (decision 0024, "Line search"), else
     /// none; false takes the whole step (for comparison).
     bool lineSearch = true;
-    /// The margin beyond collision.thickness, as a fraction of it, [0, 4], within which a listed
+    /// The margin beyond collision.thickness, as a multiple of it, [0, 4], within which a listed
     /// pair that approaches at the velocities a solve is linearised at enters that solve (the
     /// intersection_free response) with the contacts' stiffness and no force: the tangent
     /// quadratic bound of its penalty where it is, so a step cannot carry it into the thickness
-    /// unopposed, and a step that does not approach it is not held (decision 0024, "Approaching
-    /// pairs in the solve"). 0: only pairs within the thickness (as before session 24).
-    double contactMargin = 1.0;
+    /// unopposed (decision 0024, "Approaching pairs in the solve"). 0 (default): only pairs within
+    /// the thickness. Not the default: the bound also resists sliding towards a neighbouring face
+    /// (a cloth at μ = 0 stayed on a sphere with 1).
+    double contactMargin = 0.0;
 };
 
 struct TimeSettings {

@@ -152,7 +152,9 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     EXPECT_FALSE(plan.contact.sidesFromPrevious);
     EXPECT_TRUE(plan.contact.velocityResponse);
     EXPECT_TRUE(plan.contact.repulsion);
-    EXPECT_EQ(plan.contact.solveMargin, 0.0) << "no solve, no margin";
+    scene.time.solver.contactMargin = 1.0;
+    EXPECT_EQ(engine::planPipeline(scene).contact.solveMargin, 0.0) << "no solve, no margin";
+    scene.time.solver.contactMargin = 0.0;
     EXPECT_TRUE(plan.nodePredictParams.bandResponse);
     // The velocity response's iterations: automatic (8 under symplectic Euler, where they are the
     // contacts' only support), or the scene's.
@@ -206,11 +208,11 @@ TEST(PipelinePlan, IntersectionFreeResponseCommitsTheCheckedStep) {
     scene.time.solver.newtonTolerance = 0.0;
     EXPECT_EQ(engine::planPipeline(scene).implicitParams.newtonMoveTolerance, 0.0);
     scene.time.solver.newtonTolerance = 0.25;
-    // Approaching pairs within one thickness beyond it enter the solve (contact_margin 1, default).
-    EXPECT_DOUBLE_EQ(plan.contact.solveMargin, plan.contact.thickness);
+    // Approaching pairs within contact_margin thicknesses beyond it enter the solve (default 0).
+    EXPECT_EQ(plan.contact.solveMargin, 0.0);
+    scene.time.solver.contactMargin = 1.5;
+    EXPECT_DOUBLE_EQ(engine::planPipeline(scene).contact.solveMargin, 1.5 * plan.contact.thickness);
     scene.time.solver.contactMargin = 0.0;
-    EXPECT_EQ(engine::planPipeline(scene).contact.solveMargin, 0.0);
-    scene.time.solver.contactMargin = 1.0;
     scene.time.solver.newtonSteps = 3;
     EXPECT_EQ(engine::planPipeline(scene).stages().size(), plan.stages().size() + 4);
     // Switched off, each Newton step is taken whole.

@@ -391,11 +391,11 @@ TEST(SceneJson, SettingsAndEffects) {
     // thickness in [0, 4].
     const std::string marginTime =
         R"("time": {"integrator": "implicit_euler", "solver": {"contact_margin": )";
-    EXPECT_EQ(safe.time.solver.contactMargin, 1.0) << "documented default";
-    EXPECT_EQ(parse(scene(kCloth, marginTime + R"(0}}, "collision": {"response": "intersection_free"})",
+    EXPECT_EQ(safe.time.solver.contactMargin, 0.0) << "documented default";
+    EXPECT_EQ(parse(scene(kCloth, marginTime + R"(1.5}}, "collision": {"response": "intersection_free"})",
                           R"(["springs", "self_collisions"])"))
                   .time.solver.contactMargin,
-              0.0);
+              1.5);
     EXPECT_THAT(
         errorOf(scene(kCloth, marginTime + R"(4.5}})")),
         HasSubstr("/time/solver/contact_margin: expected a multiple of the thickness in [0, 4], got 4.5"));
