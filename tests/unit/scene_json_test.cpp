@@ -374,34 +374,31 @@ TEST(SceneJson, SettingsAndEffects) {
     EXPECT_THAT(
         errorOf(scene(kCloth, R"("time": {"integrator": "implicit_euler", "solver": {"line_search": 1}})")),
         HasSubstr("/time/solver/line_search: expected true or false, got 1"));
+    // The solver's numbers of the intersection-free response: `key` set to `value`.
+    const auto withSolverNumber = [&](const std::string& key, const std::string& value) {
+        return scene(kCloth,
+                     R"("time": {"integrator": "implicit_euler", "solver": {")" + key + R"(": )" + value +
+                         R"(}}, "collision": {"response": "intersection_free"})",
+                     R"(["springs", "self_collisions"])");
+    };
     // The Newton steps' tolerance (time.solver.newton_tolerance): a fraction of the thickness.
-    const std::string toleranceTime =
-        R"("time": {"integrator": "implicit_euler", "solver": {"newton_tolerance": )";
     EXPECT_EQ(safe.time.solver.newtonTolerance, 0.25) << "documented default";
-    EXPECT_EQ(parse(scene(kCloth, toleranceTime + R"(0}}, "collision": {"response": "intersection_free"})",
-                          R"(["springs", "self_collisions"])"))
-                  .time.solver.newtonTolerance,
-              0.0);
+    EXPECT_EQ(parse(withSolverNumber("newton_tolerance", "0")).time.solver.newtonTolerance, 0.0);
     EXPECT_THAT(
-        errorOf(scene(kCloth, toleranceTime + R"(1.5}})")),
+        errorOf(withSolverNumber("newton_tolerance", "1.5")),
         HasSubstr("/time/solver/newton_tolerance: expected a fraction of the thickness in [0, 1], got 1.5"));
-    EXPECT_THAT(errorOf(scene(kCloth, toleranceTime + R"("a"}})")),
+    EXPECT_THAT(errorOf(withSolverNumber("newton_tolerance", R"("a")")),
                 HasSubstr("/time/solver/newton_tolerance: expected a number, got \"a\""));
     // Approaching pairs within a margin in the solve (time.solver.contact_margin): a multiple of the
     // thickness in [0, 4].
-    const std::string marginTime =
-        R"("time": {"integrator": "implicit_euler", "solver": {"contact_margin": )";
     EXPECT_EQ(safe.time.solver.contactMargin, 0.0) << "documented default";
-    EXPECT_EQ(parse(scene(kCloth, marginTime + R"(1.5}}, "collision": {"response": "intersection_free"})",
-                          R"(["springs", "self_collisions"])"))
-                  .time.solver.contactMargin,
-              1.5);
-    EXPECT_THAT(
-        errorOf(scene(kCloth, marginTime + R"(4.5}})")),
-        HasSubstr("/time/solver/contact_margin: expected a multiple of the thickness in [0, 4], got 4.5"));
-    EXPECT_THAT(
-        errorOf(scene(kCloth, marginTime + R"(-1}})")),
-        HasSubstr("/time/solver/contact_margin: expected a multiple of the thickness in [0, 4], got -1"));
+    EXPECT_EQ(parse(withSolverNumber("contact_margin", "1.5")).time.solver.contactMargin, 1.5);
+    for (const char* bad : {"4.5", "-1"})
+        EXPECT_THAT(
+            errorOf(withSolverNumber("contact_margin", bad)),
+            HasSubstr(std::string("/time/solver/contact_margin: expected a multiple of the thickness in "
+                                  "[0, 4], got ") +
+                      bad));
     EXPECT_EQ(c.collision.thickness, 0.002);
     EXPECT_EQ(c.collision.stiffness, 500.0);
     EXPECT_EQ(c.collision.damping, 0.1);
