@@ -86,6 +86,11 @@ for m in "${mutants[@]}"; do
     echo "mutants: $m has no '# Kills:' line" >&2
     exit 2
   fi
+  # A regex that names no test would "kill" every mutant (ctest fails on no tests): refuse it.
+  if ! ctest --test-dir "$build" -N -R "$kills" | grep -qE '^\s*Test +#'; then
+    echo "mutants: $m: '# Kills: $kills' matches no test (a ctest -R regex; alternatives with |)" >&2
+    exit 2
+  fi
   if ! git -C "$tree" apply --unidiff-zero "$source_dir/$m" 2>"$scratch/apply.log"; then
     cat "$scratch/apply.log" >&2
     echo "mutants: $m no longer applies: update it with the code it mutates" >&2
