@@ -435,46 +435,37 @@ TEST_P(ImplicitContactGl, SolveMatchesTheDenseSolveOfTheSameSystem) {
 
 // Approaching pairs within the margin (ContactParams::solveMargin; decision 0024, "Approaching
 // pairs in the solve"): the cloth 0.15–0.85 of 1 cm above the ground, a contact thickness of 5 mm
-// and a margin of 5 mm. The pairs closer than 5 mm are contacts; those between 5 and 10 mm whose
-// distance is a plane's get a record when they approach at the cloth's random velocities (force 0
-// in a Newton step's rule, approachStep 0; k·max(h − d̄, h·vn) ≤ 0 in the first solve's) and none
-// when they recede: every record against the twin's (cpu::implicitContacts), and the solve with
-// those records against the dense solve of the same system.
+// and a margin of 5 mm. The pairs closer than 5 mm are contacts; those between 5 and 10 mm get a
+// record with force 0 when they approach at the cloth's random velocities and none when they
+// recede: every record against the twin's (cpu::implicitContacts), and the solve with those
+// records (stiffness without force) against the dense solve of the same system.
 TEST_P(ImplicitContactGl, ApproachingPairsWithinTheMarginMatchTheTwin) {
-    for (const double step : {0.0, 1.0 / 30.0}) { // a Newton step's rule, the first solve's
-        SCOPED_TRACE(step > 0.0 ? "approachStep h" : "approachStep 0");
-        ContactScene s = clothOverGround(6, 0.01, GetParam(), 15);
-        const ImplicitParams p = solverParams(1.0 / 30.0, true);
-        ContactParams cp = contactParams(0.005, 1.0e4);
-        cp.solveMargin = 0.005;
-        cp.approachStep = step;
-        const GpuRun r = runGpu(s, p, cp, s.pairs);
-        const std::vector<std::uint8_t> closed = s.faceClosed();
-        const std::vector<std::uint32_t> nodeObject = s.nodeObject();
-        const cpu::ContactInput in = twinInput(s, closed, nodeObject);
-        const RecordErrors e = compareRecordsWithTwin(
-            r, cp,
-            [&](const cpu::FeaturePairList& one) { return cpu::implicitContacts(cp, in, one).contacts; },
-            s.pairs, 1.1);
-        ContactParams band = cp; // every pair within the thickness plus the margin
-        band.thickness = cp.thickness + cp.solveMargin;
-        band.solveMargin = 0.0;
-        const std::size_t inBand =
-            cpu::contactGeometries(band, in, s.pairs, cpu::Crossings::AtAnyDepth).size();
-        const std::uint32_t records = e.vertexFace + e.edgeEdge;
-        std::printf(
-            "closed ground %d: %u records (%u approaching within the margin), %zu left out (receding or "
-            "beside a face); max "
-            "error: weights %.3g u, normal %.3g u·L/d, force %.3g u·k·L\n",
-            GetParam() ? 1 : 0, records, e.withinMargin, inBand - records, e.weights, e.normal, e.force);
-        EXPECT_GT(records - e.withinMargin, 10u) << "contacts within the thickness";
-        EXPECT_GT(e.withinMargin, 10u) << "approaching pairs within the margin";
-        EXPECT_GT(inBand - records, 10u) << "receding pairs within the margin, left out";
-        EXPECT_LE(e.weights, kWeightErrorUnits);
-        EXPECT_LE(e.normal, kNormalErrorUnits);
-        EXPECT_LE(e.force, kForceErrorUnits);
-        expectSolveMatchesTheDenseSolve(s, p, cp, r);
-    }
+    ContactScene s = clothOverGround(6, 0.01, GetParam(), 15);
+    const ImplicitParams p = solverParams(1.0 / 30.0, true);
+    ContactParams cp = contactParams(0.005, 1.0e4);
+    cp.solveMargin = 0.005;
+    const GpuRun r = runGpu(s, p, cp, s.pairs);
+    const std::vector<std::uint8_t> closed = s.faceClosed();
+    const std::vector<std::uint32_t> nodeObject = s.nodeObject();
+    const cpu::ContactInput in = twinInput(s, closed, nodeObject);
+    const RecordErrors e = compareRecordsWithTwin(
+        r, cp, [&](const cpu::FeaturePairList& one) { return cpu::implicitContacts(cp, in, one).contacts; },
+        s.pairs, 1.1);
+    ContactParams band = cp; // every pair within the thickness plus the margin
+    band.thickness = cp.thickness + cp.solveMargin;
+    band.solveMargin = 0.0;
+    const std::size_t inBand = cpu::contactGeometries(band, in, s.pairs, cpu::Crossings::AtAnyDepth).size();
+    const std::uint32_t records = e.vertexFace + e.edgeEdge;
+    std::printf("closed ground %d: %u records (%u approaching within the margin), %zu receding left out; max "
+                "error: weights %.3g u, normal %.3g u·L/d, force %.3g u·k·L\n",
+                GetParam() ? 1 : 0, records, e.withinMargin, inBand - records, e.weights, e.normal, e.force);
+    EXPECT_GT(records - e.withinMargin, 10u) << "contacts within the thickness";
+    EXPECT_GT(e.withinMargin, 10u) << "approaching pairs within the margin";
+    EXPECT_GT(inBand - records, 10u) << "receding pairs within the margin, left out";
+    EXPECT_LE(e.weights, kWeightErrorUnits);
+    EXPECT_LE(e.normal, kNormalErrorUnits);
+    EXPECT_LE(e.force, kForceErrorUnits);
+    expectSolveMatchesTheDenseSolve(s, p, cp, r);
 }
 
 // The Newton step (time.solver.newton_steps 2): the same contacts and matrix at x1, right-hand side
@@ -708,106 +699,49 @@ TEST(ImplicitContactGlAnalytic, NewtonStepCatchesAContactTheFirstStepMissed) {
 }
 
 // A node 1.5 thicknesses above a pinned triangle with a margin of one thickness (decision 0024,
-// "Approaching pairs in the solve"). Falling (v0 < 0 along the normal), the pair enters the solve
-// with the stiffness k about c = max(h_c, d̄ + s·v0), s = ContactParams::approachStep: the force
-// k·(c − d̄) ≤ 0 and backward Euler's closed form along the normal is
-// v = (m·v0 − h·m·g + h·k·(c − d̄))/(m + h²k). In a Newton step (s = 0) the node is held where it
-// is (v = (m·v0 − h·m·g)/(m + h²k)); in the first solve (s = h) it may close by h·v0 — at
-// v0 = −0.1 m/s exactly that, v = v0 − h·m·g/(m + h²k): its approach goes on, gravity's addition
-// is resisted — and never past the thickness (v0 = −0.2, −2: c = h_c). Rising, or at rest
-// (relative velocity 0: not approaching), it is no record and the node falls freely,
-// v = v0 − h·g. GPU and twin.
-TEST(ImplicitContactGlAnalytic, AnApproachingPairWithinTheMarginMayCloseByItsVelocityButNotPastTheThickness) {
+// "Approaching pairs in the solve"). Falling, the pair enters the first solve with the stiffness k
+// and no force, anchored where it is: backward Euler's closed form along the normal is
+// v = (m·v0 − h·m·g)/(m + h²k) — the approach is resisted from x0 on, not only inside the
+// thickness. Rising, or at rest (relative velocity 0: not approaching), it is no record and the
+// node falls freely, v = v0 − h·g. GPU and twin.
+TEST(ImplicitContactGlAnalytic, AnApproachingPairWithinTheMarginGetsStiffnessWithoutForce) {
     const double m = 0.05, k = 1.0e4, h = 1.0 / 30.0, thickness = 0.01;
     const ImplicitParams p = solverParams(h, false);
-    for (const double step : {0.0, h}) {
-        ContactParams cp = contactParams(thickness, k);
-        cp.solveMargin = thickness;
-        cp.approachStep = step;
-        for (const double v0 : {-0.1, -0.2, -2.0, 0.0, 0.4}) {
-            ContactScene s = nodeOnTriangle(m, 1.5 * thickness, v0);
-            const cpu::NodeState& st = s.model.state;
-            const double mass = 1.0 / st.inverseMasses[3], vy = st.velocities[3].y, kf = toFloat(k);
-            const bool approaching = vy < 0.0;
-            // c − d̄ in double from the float state and parameters, as the twin's.
-            const double closing =
-                approaching ? std::max(toFloat(thickness) - st.positions[3].y, toFloat(step) * vy) : 0.0;
-            const GpuRun r = runGpu(s, p, cp, s.pairs);
-            ASSERT_EQ(r.list.size(), approaching ? 1u : 0u) << "step " << step << ", v0 " << v0;
-            if (approaching) {
-                // Its rounding: the distance's, of a node 0.35 m from the face's corner (u·0.35 m),
-                // and s·v0's (u·|s·v0|); 4 units of each.
-                EXPECT_NEAR(r.records[0].normalForce.w, kf * closing,
-                            4.0 * kUnitRoundoff * kf * (0.35 + std::abs(step * vy)))
-                    << "step " << step << ", v0 " << v0 << ": no push beyond the thickness";
-                EXPECT_LE(r.records[0].normalForce.w, 0.0f);
-            }
-            const double expected =
-                approaching ? (mass * vy - h * mass * kGravity + h * kf * closing) / (mass + h * h * kf)
-                            : vy - h * kGravity;
-            // Float: as the resting test's bound, 64u·S/(m + h²k) with S = m|v0| + h·m·g + h²k|v0|
-            // + h·k·(|c − d̄| + 0.35 m) (the force's rounding above); without the contact
-            // 64u·(|v0| + h·g).
-            const double scale = approaching
-                                     ? (mass * std::abs(vy) + h * mass * kGravity +
-                                        h * h * kf * std::abs(vy) + h * kf * (std::abs(closing) + 0.35)) /
-                                           (mass + h * h * kf)
-                                     : std::abs(vy) + h * kGravity;
-            EXPECT_NEAR(r.velocities[3].y, expected, 64.0 * kUnitRoundoff * scale)
-                << "step " << step << ", v0 " << v0;
-            // The twin: the same record (or none) and the same closed form in double.
-            cpu::NodeState twin = st;
-            cpu::nodeForce(p.external, s.model.faceIndices, s.model.nodeFaces, twin);
-            ContactParams twinParams = cp;
-            twinParams.stiffness = kf;
-            twinParams.thickness = toFloat(thickness);
-            twinParams.solveMargin = toFloat(thickness);
-            twinParams.approachStep = toFloat(step);
-            const std::vector<std::uint8_t> closed = s.faceClosed();
-            const std::vector<std::uint32_t> nodeObject = s.nodeObject();
-            const cpu::ImplicitContactSet contacts =
-                cpu::implicitContacts(twinParams, twinInput(s, closed, nodeObject), s.pairs);
-            ASSERT_EQ(contacts.contacts.size(), approaching ? 1u : 0u) << "step " << step << ", v0 " << v0;
-            ASSERT_TRUE(cpu::implicitVelocityUpdate(p, {}, s.model.nodeSprings, twin, &contacts).converged);
-            EXPECT_NEAR(twin.velocities[3].y, expected, 1e-12 * scale) << "step " << step << ", v0 " << v0;
-        }
-    }
-}
-
-// The same node beyond the thickness but beside the face, over its edge x = 0 (closest point on
-// the edge, distance √(0.004² + 0.0125²) = 13 mm: beyond the 10 mm thickness, within the margin),
-// falling and sliding towards the face: its distance is a line's, not a plane's, so it is no
-// record in either solve (a node sliding past an edge approaches and leaves it again; bound
-// linearly it would be held back like friction — decision 0024, "Approaching pairs in the solve")
-// and the node falls freely, v = v0 − h·g, until it is within the thickness. GPU and twin.
-TEST(ImplicitContactGlAnalytic, AnApproachingPairBesideAFaceIsLeftToTheThickness) {
-    const double m = 0.05, k = 1.0e4, h = 1.0 / 30.0, thickness = 0.01;
-    const ImplicitParams p = solverParams(h, false);
-    for (const double step : {0.0, h}) {
-        ContactParams cp = contactParams(thickness, k);
-        cp.solveMargin = thickness;
-        cp.approachStep = step;
-        ContactScene s = nodeOnTriangle(m, 0.0125, -0.5);
-        s.model.state.positions[3] = glm::dvec3(toFloat(-0.004), toFloat(0.0125), 0.5);
+    ContactParams cp = contactParams(thickness, k);
+    cp.solveMargin = thickness;
+    for (const double v0 : {-0.2, -2.0, 0.0, 0.4}) {
+        ContactScene s = nodeOnTriangle(m, 1.5 * thickness, v0);
         const cpu::NodeState& st = s.model.state;
+        const double mass = 1.0 / st.inverseMasses[3], vy = st.velocities[3].y, kf = toFloat(k);
+        const bool approaching = vy < 0.0;
+        const GpuRun r = runGpu(s, p, cp, s.pairs);
+        ASSERT_EQ(r.list.size(), approaching ? 1u : 0u) << "v0 " << v0;
+        if (approaching) {
+            EXPECT_EQ(r.records[0].normalForce.w, 0.0f) << "no force beyond the thickness";
+        }
+        const double expected =
+            approaching ? (mass * vy - h * mass * kGravity) / (mass + h * h * kf) : vy - h * kGravity;
+        // Float: as the resting test's bound, 64u·S/(m + h²k) with S = m|v0| + h·m·g + h²k|v0|
+        // (without the contact: 64u·(|v0| + h·g)).
+        const double scale = approaching
+                                 ? (mass * std::abs(vy) + h * mass * kGravity + h * h * kf * std::abs(vy)) /
+                                       (mass + h * h * kf)
+                                 : std::abs(vy) + h * kGravity;
+        EXPECT_NEAR(r.velocities[3].y, expected, 64.0 * kUnitRoundoff * scale) << "v0 " << v0;
+        // The twin: the same record (or none) and the same closed form in double.
+        cpu::NodeState twin = st;
+        cpu::nodeForce(p.external, s.model.faceIndices, s.model.nodeFaces, twin);
+        ContactParams twinParams = cp;
+        twinParams.stiffness = kf;
+        twinParams.thickness = toFloat(thickness);
+        twinParams.solveMargin = toFloat(thickness);
         const std::vector<std::uint8_t> closed = s.faceClosed();
         const std::vector<std::uint32_t> nodeObject = s.nodeObject();
-        ContactParams band = cp; // the pair is within the thickness plus the margin, and approaches
-        band.thickness = 2.0 * thickness;
-        band.solveMargin = 0.0;
-        const std::vector<cpu::ContactGeometry> inBand = cpu::contactGeometries(
-            band, twinInput(s, closed, nodeObject), s.pairs, cpu::Crossings::AtAnyDepth);
-        ASSERT_EQ(inBand.size(), 1u);
-        ASSERT_GT(inBand[0].depth, 0.0);
-        ASSERT_LT(inBand[0].depth, thickness);
-        EXPECT_LT(inBand[0].normal.x, -0.2) << "the edge's offset, not the face's normal";
-        const GpuRun r = runGpu(s, p, cp, s.pairs);
-        EXPECT_EQ(r.list.size(), 0u) << "step " << step;
-        EXPECT_NEAR(r.velocities[3].y, st.velocities[3].y - h * kGravity,
-                    64.0 * kUnitRoundoff * (std::abs(st.velocities[3].y) + h * kGravity))
-            << "step " << step;
-        EXPECT_TRUE(cpu::implicitContacts(cp, twinInput(s, closed, nodeObject), s.pairs).contacts.empty())
-            << "step " << step;
+        const cpu::ImplicitContactSet contacts =
+            cpu::implicitContacts(twinParams, twinInput(s, closed, nodeObject), s.pairs);
+        ASSERT_EQ(contacts.contacts.size(), approaching ? 1u : 0u) << "v0 " << v0;
+        ASSERT_TRUE(cpu::implicitVelocityUpdate(p, {}, s.model.nodeSprings, twin, &contacts).converged);
+        EXPECT_NEAR(twin.velocities[3].y, expected, 1e-12 * scale) << "v0 " << v0;
     }
 }
 
