@@ -81,12 +81,11 @@ uint incidenceCorner(uint entry) {
 
 // Whether corner k of record c has a row of its own: a node that moves (inverse mass > 0; a pinned
 // node keeps Δv = 0) and a weight that is not 0 (a vertex-face contact at an edge or a corner of
-// the face leaves the other corners out). Every record has a row whatever its force's sign: a
-// contact pushes (> 0); an approaching pair within the margin has the stiffness k and a force ≤ 0
-// (implicit_contact_find.comp). Counting and scattering use this one rule, so the counts and the
-// entries agree.
+// the face leaves the other corners out). Every record is a contact (force > 0) or an approaching
+// pair within the margin (force 0, stiffness k). Counting and scattering use this one rule, so the
+// counts and the entries agree.
 bool hasRow(GpuImplicitContact c, uint k, float inverseMass) {
-    return inverseMass > 0.0 && c.weights[k] != 0.0;
+    return c.normalForce.w >= 0.0 && inverseMass > 0.0 && c.weights[k] != 0.0;
 }
 
 #endif

@@ -4,12 +4,11 @@
 // dispatch from the list's count. Whether the pair is a contact, and its nodes, weights, normal and
 // depth, are the penalty response's (common/contact_pair.glsl, at the positions the solve is
 // linearised at), evaluated with the thickness plus the margin (ContactParams::solveMargin): a pair
-// within the thickness is a contact with force k·depth; a pair at a distance d̄ beyond it but within
-// the margin whose distance is a plane's and which approaches (relative normal velocity vn below
-// −GLC_APPROACH_SLACK of its scale) gets the stiffness k about c = max(h, d̄ + step·vn): it may
-// close by what its velocity carries it within the step (the first solve; a Newton step, whose
-// positions are the step's end already, 0: held where it is, the tangent bound of its penalty),
-// never past the thickness, and no faster (decision 0024, "Approaching pairs in the solve"). A record (an atomic count: exact even when the capacity is exceeded,
+// within the thickness is a contact with force k·depth; a pair beyond it but within the margin that
+// approaches (its relative normal velocity below −GLC_APPROACH_SLACK of its scale) gets force 0 and
+// the stiffness k — the tangent quadratic bound of its penalty ½k·max(0, h − d)² at its distance
+// now, which the step cannot pass without resistance (decision 0024, "Approaching pairs in the
+// solve"). A record (an atomic count: exact even when the capacity is exceeded,
 // and then the host grows the records and runs this again; nothing is dropped) with the penalty
 // force k·depth and its pair's list slot (edge-edge: u_edgeEdgeBase + i); every node row the
 // contact adds to is counted with an integer atomic (order-independent). Which record a contact
@@ -35,7 +34,6 @@ layout(std430, binding = GLC_BIND_NODE_CONTACT_COUNTS) buffer NodeContactCountsB
 uniform float u_thickness;    // m: the band searched, the thickness plus the margin (contact_pair.glsl)
 uniform float u_margin;       // m: ContactParams::solveMargin (0: contacts within the thickness only)
 uniform float u_substep;      // s: the side rule's x − dt·v, as the penalty response (0: the current side)
-uniform float u_approachStep; // s: ContactParams::approachStep (the first solve: the substep; a Newton step: 0)
 uniform uint u_edgeEdge;      // 0: the vertex-face list, 1: the edge-edge list
 uniform uint u_edgeEdgeBase;  // the first list slot of the edge-edge list: the vertex-face capacity
 uniform uint u_recordCapacity; // records the buffer holds
@@ -60,17 +58,8 @@ ContactPair contactOf(uint i) {
     return edgeEdgeContact(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]);
 }
 
-// Whether the pair's distance is a plane's: a vertex over a face's interior, or two edges whose
-// closest points are inside both (no weight is 0), so that it changes linearly as the nodes move
-// and a bound along the normal is tight. A vertex near a face's edge or corner (closestOnTriangle's
-// exact zeros) has a distance to a line or a point, which a node sliding past approaches and leaves
-// again: bound linearly, the slide would be held back like friction.
-bool planeDistance(ContactPair pair) { return all(notEqual(pair.weights, vec4(0.0))); }
-
-// The relative normal velocity u·Σ a_j v_j at the velocities the solve is linearised at (< 0:
-// closing), and whether it closes: below −GLC_APPROACH_SLACK·Σ|a_j||v_j|, so that a pair moving
-// rigidly (exactly 0, within float's few units of 2⁻²⁴ of that scale) decides the same everywhere.
-float normalVelocity(ContactPair pair, out bool closes) {
+// Whether the pair closes at the velocities the solve is linearised at (GLC_APPROACH_SLACK).
+bool approaching(ContactPair pair) {
     vec3 relative = vec3(0.0);
     float scale = 0.0;
     for (uint k = 0u; k < 4u; ++k) {
@@ -78,9 +67,7 @@ float normalVelocity(ContactPair pair, out bool closes) {
         relative += pair.weights[k] * v;
         scale += abs(pair.weights[k]) * length(v);
     }
-    float vn = dot(pair.normal, relative);
-    closes = vn < -float(GLC_APPROACH_SLACK) * scale;
-    return vn;
+    return dot(pair.normal, relative) < -float(GLC_APPROACH_SLACK) * scale;
 }
 
 void main() {
@@ -89,12 +76,9 @@ void main() {
     ContactPair pair = contactOf(i);
     if (!pair.found || !(pair.depth > 0.0)) return;
     pair.depth -= u_margin; // the depth inside the thickness itself
-    if (!(pair.depth > 0.0)) { // within the margin
-        bool closes;
-        float vn = normalVelocity(pair, closes);
-        if (!closes || !planeDistance(pair)) return;
-        // The spring k about d̄ + step·vn, never nearer than the thickness (depth ≤ 0: no push).
-        pair.depth = max(pair.depth, u_approachStep * vn);
+    if (!(pair.depth > 0.0)) {
+        if (!approaching(pair)) return;
+        pair.depth = 0.0; // within the margin: stiffness, no force
     }
     uint r = atomicAdd(g_contactData[u_contactCount], 1u);
     if (r >= u_recordCapacity) return; // counted: the host grows the records and runs this again

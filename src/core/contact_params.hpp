@@ -46,16 +46,11 @@ struct ContactParams {
     double friction = 0.0;
     /// m: the implicit solve's contacts (implicit_contact_find.comp, cpu::implicitContacts) also take
     /// the listed pairs beyond the thickness but within it plus this margin that approach at the
-    /// velocities the solve is linearised at and whose distance is a plane's (no weight 0): each gets
-    /// the stiffness k about the distance it may close to (approachStep), so a step cannot carry it
-    /// into the thickness unopposed (decision 0024, "Approaching pairs in the solve"). 0: contacts
-    /// within the thickness only. Set by the plan from time.solver.contact_margin; the responses ignore it.
+    /// velocities the solve is linearised at: each gets the stiffness k and no force, the tangent
+    /// quadratic bound of its penalty where it is, so a step cannot carry it into the thickness
+    /// unopposed (decision 0024, "Approaching pairs in the solve"). 0: contacts within the
+    /// thickness only. Set by the plan from time.solver.contact_margin; the responses ignore it.
     double solveMargin = 0.0;
-    /// s: with a margin, how far an approaching pair may close in the solve: its spring's centre is
-    /// max(thickness, d̄ + approachStep·vn) (vn < 0: its relative normal velocity). The engine sets
-    /// the substep for the first solve, which starts at x0; a Newton step's positions are already
-    /// the step's end, so 0 there (held where it is). Decision 0024, "Approaching pairs in the solve".
-    double approachStep = 0.0;
 };
 
 /// Contacts that may add to one node in one substep before its int32 fixed-point sum could

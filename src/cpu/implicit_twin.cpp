@@ -55,25 +55,16 @@ glm::dvec3 weightedSum(const ContactGeometry& c, const std::vector<glm::dvec3>& 
     return sum;
 }
 
-/// Whether the pair's distance is a plane's (no weight is 0: a face's interior, or two edges'
-/// interiors), so that a linear bound along its normal is tight (implicit_contact_find.comp's
-/// planeDistance).
-bool planeDistance(const ContactGeometry& c) {
-    return std::all_of(c.weights.begin(), c.weights.end(), [](double a) { return a != 0.0; });
-}
-
-/// The pair's relative normal velocity u·Σ a_j v_j at `velocities`, and whether it closes: below
-/// −GLC_APPROACH_SLACK·Σ |a_j||v_j| (implicit_contact_find.comp's normalVelocity).
-double normalVelocity(const ContactGeometry& c, const std::vector<glm::dvec3>& velocities, bool& closes) {
+/// Whether the pair closes at `velocities`: u·Σ a_j v_j below −GLC_APPROACH_SLACK·Σ |a_j||v_j|
+/// (implicit_contact_find.comp's approaching).
+bool approaching(const ContactGeometry& c, const std::vector<glm::dvec3>& velocities) {
     glm::dvec3 relative(0.0);
     double scale = 0.0;
     for (std::size_t k = 0; k < 4; ++k) {
         relative += c.weights[k] * velocities[c.nodes[k]];
         scale += std::abs(c.weights[k]) * glm::length(velocities[c.nodes[k]]);
     }
-    const double vn = glm::dot(c.normal, relative);
-    closes = vn < -GLC_APPROACH_SLACK * scale;
-    return vn;
+    return glm::dot(c.normal, relative) < -GLC_APPROACH_SLACK * scale;
 }
 
 /// The assembled per-node pieces of the system: right-hand side and diagonal blocks.
@@ -176,11 +167,8 @@ ImplicitContactSet implicitContacts(const ContactParams& params, const ContactIn
     for (ContactGeometry c : contactGeometries(band, in, pairs, Crossings::AtAnyDepth)) {
         c.depth -= params.solveMargin;
         if (!(c.depth > 0.0)) {
-            bool closes = false;
-            const double vn = normalVelocity(c, *in.velocities, closes);
-            if (!closes || !planeDistance(c)) continue;
-            // The spring k about d̄ + step·vn, never nearer than the thickness (depth ≤ 0: no push).
-            c.depth = std::max(c.depth, params.approachStep * vn);
+            if (!approaching(c, *in.velocities)) continue;
+            c.depth = 0.0; // within the margin: stiffness, no force
         }
         set.contacts.push_back(c);
     }

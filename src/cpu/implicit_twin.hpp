@@ -48,10 +48,9 @@ struct ImplicitContactSet {
 /// The contacts of the feature pairs for the implicit solve: contactGeometries at params.thickness
 /// and params.substep (the side rule), crossings at any depth (Crossings::AtAnyDepth: a Newton
 /// step's predicted end may have gone through), with params.stiffness; and, with
-/// params.solveMargin > 0, the pairs beyond the thickness but within the margin whose distance is a
-/// plane's (no weight 0) and that approach at in.velocities (GLC_APPROACH_SLACK), with depth
-/// max(h − d̄, params.approachStep·vn) ≤ 0: the stiffness about the distance they may close to
-/// (decision 0024, "Approaching pairs in the solve"). Needs in.velocities when the margin is > 0.
+/// params.solveMargin > 0, the pairs beyond the thickness but within the margin that approach at
+/// in.velocities (GLC_APPROACH_SLACK), with depth 0: stiffness, no force (decision 0024,
+/// "Approaching pairs in the solve"). Needs in.velocities when the margin is > 0.
 ImplicitContactSet implicitContacts(const ContactParams& params, const ContactInput& in,
                                     const FeaturePairList& pairs);
 

@@ -531,7 +531,6 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
                 // first substep has none yet.
                 ContactParams params = plan.contact;
                 if (!params.sidesFromPrevious) params.substep = 0.0; // sides from x0 itself
-                params.approachStep = substeps.substepLength;        // margin pairs may close by v0·h
                 const passes::ImplicitContacts contacts{contactInputs(), params};
                 run(*implicitSolve, plan.implicitParams, &contacts);
                 // The frame's contact count is the solve's: the velocity filter before it counts
