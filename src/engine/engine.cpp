@@ -561,6 +561,10 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             // The contacts of this substep's detection at x1; sides from x1 − h·v1 = x0.
             ContactParams params = plan.contact;
             params.substep = substeps.substepLength;
+            // The margin's approaching pairs are the first solve's only (decision 0024, "Approaching
+            // pairs in the solve"): held at x1 they would keep a landing body hovering in the
+            // margin, out of its friction's reach, and a node sliding past an edge held back.
+            params.solveMargin = 0.0;
             const passes::ImplicitContacts contacts{contactInputs(), params};
             const gl::TimedSection section(options.gpuTiming ? &timer : nullptr,
                                            passes::passIndex(passes::ImplicitSolverPass::kId),
