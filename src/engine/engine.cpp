@@ -562,8 +562,8 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             ContactParams params = plan.contact;
             params.substep = substeps.substepLength;
             // The margin's approaching pairs are the first solve's only (decision 0024, "Approaching
-            // pairs in the solve"): held at x1 they would keep a landing body hovering in the
-            // margin, out of its friction's reach, and a node sliding past an edge held back.
+            // pairs in the solve"): held at x1 too, a landing body hovered in the margin, out of
+            // its friction's reach, and a node sliding past an edge was held back for good.
             params.solveMargin = 0.0;
             const passes::ImplicitContacts contacts{contactInputs(), params};
             const gl::TimedSection section(options.gpuTiming ? &timer : nullptr,

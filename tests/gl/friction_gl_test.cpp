@@ -274,10 +274,16 @@ TEST(FrictionGl, AtOneSubstepPerFrameTheIntersectionFreeBlockSticksOrSlidesByThe
 // pinned sphere of radius 0.3 centred at the origin, off centre by 4 cm so that more of it hangs on
 // one side; no ground. Bridson's response (the cloth scenes' choice, decision 0019) at the
 // automatic substeps, or (`implicitIntersectionFree`) the intersection-free response under implicit
-// Euler at 2 substeps per frame (decision 0024: friction in the filter before the solve).
-Scene clothOnSphere(double mu, bool implicitIntersectionFree = false) {
-    const std::string time = implicitIntersectionFree ? R"("integrator": "implicit_euler", "substeps": 2)"
-                                                      : R"("substeps": "auto")";
+// Euler at 2 substeps per frame (decision 0024: friction in the filter before the solve), there
+// also with approaching pairs in the solve (`contactMargin` thicknesses; decision 0024,
+// "Approaching pairs in the solve": the margin must neither hold a frictionless cloth back nor keep
+// a cloth with friction from landing in the thickness, where its friction acts).
+Scene clothOnSphere(double mu, bool implicitIntersectionFree = false, int contactMargin = 0) {
+    const std::string time =
+        implicitIntersectionFree
+            ? R"("integrator": "implicit_euler", "substeps": 2, "solver": {"contact_margin": )" +
+                  std::to_string(contactMargin) + "}"
+            : R"("substeps": "auto")";
     const std::string response = implicitIntersectionFree ? "intersection_free" : "bridson";
     const std::string json = R"({"format_version": 1, "name": "cloth on sphere",
       "effects": ["gravity", "springs", "damping", "collisions"],
@@ -314,18 +320,25 @@ glm::dvec3 clothCentreAfter(Engine& engine, int frames) {
 // cloth that hangs on the sphere; measured 0.244 m) and, from frame 30 to 60, within 1 cm of
 // where it landed in x (measured 0.3 mm: the creep of docs/collisions.md's limits); at μ = 0 it
 // has slid off, its centre below the sphere's bottom −0.3 m (measured −1.28 m: falling freely).
+// Implicit, intersection-free (llvmpipe, session 25): μ = 0.5 moved 1.6 mm, μ = 0 reached −1.17 m;
+// with a contact margin of 1 (its pairs in the first solve only) 1.2 mm and −0.42 m — slower: the
+// first solve still holds a node sliding past an edge — where session 24's margin, in the Newton
+// steps too, failed both (0.18 m; 0.03 m).
 TEST(FrictionGl, ClothStaysOnASphereWithFrictionAndSlidesOffWithout) {
-    for (const bool implicitIntersectionFree : {false, true}) {
-        SCOPED_TRACE(implicitIntersectionFree ? "intersection_free, implicit Euler, 2 substeps per frame"
-                                              : "bridson");
-        Engine held(clothOnSphere(0.5, implicitIntersectionFree));
+    for (const auto& [implicitIntersectionFree, margin] : {std::pair{false, 0}, {true, 0}, {true, 1}}) {
+        SCOPED_TRACE(implicitIntersectionFree
+                         ? "intersection_free, implicit Euler, 2 substeps per frame, contact "
+                           "margin " +
+                               std::to_string(margin)
+                         : "bridson");
+        Engine held(clothOnSphere(0.5, implicitIntersectionFree, margin));
         const glm::dvec3 landed = clothCentreAfter(held, 30), stays = clothCentreAfter(held, 30);
         std::printf("mu 0.5: cloth centre (%.4f, %.4f) at 0.5 s, (%.4f, %.4f) at 1 s, contacts %u\n",
                     landed.x, landed.y, stays.x, stays.y, held.lastStep().collision.contacts);
         EXPECT_GT(stays.y, 0.0);
         EXPECT_NEAR(stays.x, landed.x, 0.01);
         EXPECT_GT(held.lastStep().collision.contacts, 0u);
-        Engine slides(clothOnSphere(0.0, implicitIntersectionFree));
+        Engine slides(clothOnSphere(0.0, implicitIntersectionFree, margin));
         const glm::dvec3 off = clothCentreAfter(slides, 60);
         std::printf("mu 0: cloth centre (%.4f, %.4f) at 1 s\n", off.x, off.y);
         EXPECT_LT(off.y, -0.3);
