@@ -8,7 +8,7 @@
 // approaches (its relative normal velocity below −GLC_APPROACH_SLACK of its scale) gets force 0 and
 // the stiffness k — the tangent quadratic bound of its penalty ½k·max(0, h − d)² at its distance
 // now, which the step cannot pass without resistance (decision 0024, "Approaching pairs in the
-// solve"). A record (an atomic count: exact even when the capacity is exceeded,
+// solve"; the engine gives the first solve a margin, its Newton steps none). A record (an atomic count: exact even when the capacity is exceeded,
 // and then the host grows the records and runs this again; nothing is dropped) with the penalty
 // force k·depth and its pair's list slot (edge-edge: u_edgeEdgeBase + i); every node row the
 // contact adds to is counted with an integer atomic (order-independent). Which record a contact

@@ -49,7 +49,9 @@ struct ContactParams {
     /// velocities the solve is linearised at: each gets the stiffness k and no force, the tangent
     /// quadratic bound of its penalty where it is, so a step cannot carry it into the thickness
     /// unopposed (decision 0024, "Approaching pairs in the solve"). 0: contacts within the
-    /// thickness only. Set by the plan from time.solver.contact_margin; the responses ignore it.
+    /// thickness only. Set by the plan from time.solver.contact_margin for the first solve; the
+    /// engine's Newton steps set 0 (held at x1, a landing body hovered out of its friction's
+    /// reach); the responses ignore it.
     double solveMargin = 0.0;
 };
 
