@@ -8,8 +8,9 @@
 // approaches (its relative normal velocity below −GLC_APPROACH_SLACK of its scale) gets force 0 and
 // the stiffness k — the tangent quadratic bound of its penalty ½k·max(0, h − d)² at its distance
 // now, which the step cannot pass without resistance (decision 0024, "Approaching pairs in the
-// solve"; the engine gives the first solve a margin, its Newton steps none). A record (an atomic count: exact even when the capacity is exceeded,
-// and then the host grows the records and runs this again; nothing is dropped) with the penalty
+// solve"; the engine gives the first solve a margin, its Newton steps none). A record (an atomic
+// count: exact even when the capacity is exceeded, and then the host grows the records and runs
+// this again; nothing is dropped) with the penalty
 // force k·depth and its pair's list slot (edge-edge: u_edgeEdgeBase + i); every node row the
 // contact adds to is counted with an integer atomic (order-independent). Which record a contact
 // gets depends on thread order; ImplicitContactSort orders the rows by the pair, not the record.
