@@ -102,13 +102,14 @@ def shape(nodes):
     return centroid, extent, gyration
 
 
-def compare(frames, reference, scale):
-    """Every compared frame of `frames` against `reference`, divided by `scale` (the diagonal)."""
+def compare(frames, reference, reference_shapes, scale):
+    """Every compared frame of `frames` against `reference` (whose shape() per frame is
+    `reference_shapes`, computed once per scene), divided by `scale` (the diagonal)."""
     measures = {"rms": [], "max_distance": [], "centroid": [], "extent": [], "gyration": []}
     keys = [k for k in sorted(reference) if k in frames]
     for k in keys:
         rms, far = distances(frames[k], reference[k])
-        (c, e, g), (rc, re, rg) = shape(frames[k]), shape(reference[k])
+        (c, e, g), (rc, re, rg) = shape(frames[k]), reference_shapes[k]
         measures["rms"].append(rms / scale)
         measures["max_distance"].append(far / scale)
         measures["centroid"].append(math.dist(c, rc) / scale)
@@ -160,13 +161,14 @@ def main():
             ref_frames = {k: [v[i] for i in moving] for k, v in ref_frames.items()}
             extent = diagonal(ref_frames[0])
             reference = summary(ref_stats)
+            ref_shapes = {k: shape(v) for k, v in ref_frames.items()}
 
             def row(label, patch):
                 stats, frames = run(args.glcollide, merge(shipped, patch), f"{name}_{label}", args.frames,
                                     args.every, temp)
                 frames = {k: [v[i] for i in moving] for k, v in frames.items()}
                 out = summary(stats)
-                out.update(compare(frames, ref_frames, extent))
+                out.update(compare(frames, ref_frames, ref_shapes, extent))
                 out["fewer_substeps"] = reference["substeps"] / out["substeps"]
                 return out
 
