@@ -302,7 +302,6 @@ struct GpuCollisionCounters {
 // The implicit solver's shared scalars (written by one invocation, read by the next passes) and
 // the frame's solver statistics (cleared by the engine before each frame).
 #define GLC_SOLVER_RUNNING 0xFFFFFFFFu
-#define GLC_SOLVER_TINY_RESIDUAL2 1e-30 // ‖r‖² (kg² m²/s²) below which the solve is over whatever ‖b‖
 // A pair within the implicit solve's margin counts as approaching when its relative normal velocity
 // u·Σ a_i v_i is below −GLC_APPROACH_SLACK·Σ |a_i||v_i| (ContactParams::solveMargin). The weights sum
 // to 0 on each side, so a pair moving rigidly approaches at exactly 0, which a float sum of four

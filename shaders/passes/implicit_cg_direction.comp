@@ -53,7 +53,7 @@ vec3 contactProduct(uint i, float beta) {
 
 uniform uint u_iteration;     // k = 0, 1, …, u_maxIterations (the last one only checks)
 uniform uint u_maxIterations; // the cap
-uniform float u_tolerance2;   // tolerance²
+uniform float u_inverseTolerance2; // 1/tolerance²
 
 #ifdef GLC_IMPLICIT_GROUND
 uniform float u_groundStiffness; // N/m per node
@@ -65,10 +65,13 @@ void main() {
     uint k = u_iteration;
     vec2 rz_rr = sumPartialsR(); // the same bits in every group
     float rhsNormSquared = (k == 0u) ? rz_rr.y : g_state.rhsNormSquared;
-    // Also converged when ‖r‖² is below GLC_SOLVER_TINY_RESIDUAL2 (kg²m²/s²): near rest ‖b‖² can be
-    // so small that tolerance²·‖b‖² underflows to 0 and p·q flushes to 0 (found by the oscillator
-    // benchmark: 0/0 = NaN); such a residual moves no float velocity of any realistic mass.
-    bool converged = rz_rr.y <= u_tolerance2 * rhsNormSquared || rz_rr.y < GLC_SOLVER_TINY_RESIDUAL2;
+    // ‖r‖ ≤ tolerance·‖b‖, tested as ‖r‖²/tolerance² ≤ ‖b‖²: near rest ‖b‖² can be so small that
+    // tolerance²·‖b‖² underflows to 0 (found by the oscillator benchmark), which ‖r‖²/tolerance², larger
+    // than ‖r‖², cannot. Also over when r·z is no longer positive: the residual has flushed to zero
+    // and the next beta would divide by it (0/0 = NaN). No absolute floor: the answers do not depend
+    // on the units of length or mass (an absolute floor of 10⁻³⁰ kg²m²/s² stopped a scene drawn at
+    // 2⁻¹² of its size earlier than the same scene in metres: UnitsGl).
+    bool converged = rz_rr.y * u_inverseTolerance2 <= rhsNormSquared || rz_rr.x <= 0.0;
     bool over = converged || k >= u_maxIterations;
     if (groupIndex() == 0u && gl_LocalInvocationID.x == 0u) {
         if (k == 0u) g_state.rhsNormSquared = rz_rr.y;

@@ -192,10 +192,10 @@ ImplicitSolveStats implicitVelocityUpdate(const ImplicitParams& params,
     std::vector<glm::dvec3> dv(n, glm::dvec3(0.0)), r = a.b, z = precondition(r), direction = z;
     double rz = dotAll(r, z), rr = dotAll(r, r), previousRz = 0.0;
     const double bb = rr;
-    const double tol2 = params.tolerance * params.tolerance;
+    const double inverseTol2 = 1.0 / (params.tolerance * params.tolerance);
     ImplicitSolveStats stats;
     for (int k = 0;; ++k) {
-        if (rr <= tol2 * bb || rr < GLC_SOLVER_TINY_RESIDUAL2) { // the GPU's rule
+        if (rr * inverseTol2 <= bb || rz <= 0.0) { // the GPU's rule
             stats.iterations = k;
             stats.converged = true;
             break;

@@ -256,7 +256,7 @@ void ImplicitSolverPass::solve(const DeviceBuffers& b, const ImplicitParams& par
     m_layout.dispatch(setup);
 
     const auto maxIterations = static_cast<std::uint32_t>(params.maxIterations);
-    const float tolerance2 = static_cast<float>(params.tolerance * params.tolerance);
+    const float inverseTolerance2 = static_cast<float>(1.0 / (params.tolerance * params.tolerance));
     for (std::uint32_t k = 0; k <= maxIterations; ++k) {
         // Direction k reads p from buffer k % 2 and writes the new p into the other one.
         bindLayout(direction, b);
@@ -266,7 +266,7 @@ void ImplicitSolverPass::solve(const DeviceBuffers& b, const ImplicitParams& par
         direction.set("u_massFactor", massFactor);
         direction.set("u_iteration", k);
         direction.set("u_maxIterations", maxIterations);
-        direction.set("u_tolerance2", tolerance2);
+        direction.set("u_inverseTolerance2", inverseTolerance2);
         m_layout.dispatch(direction);
         if (k == maxIterations) break; // that dispatch only checked the residual
         if (k % kConvergenceCheckInterval == kConvergenceCheckInterval - 1 && converged()) break;
