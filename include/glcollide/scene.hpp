@@ -161,6 +161,11 @@ struct CollisionSettings {
     /// >= 0: Coulomb coefficient μ of the vertex-face and edge-edge contacts (the tangential force
     /// is at most μ times the normal one, and at most what stops the sliding); 0: frictionless
     double friction = 0.0;
+    /// s, > 0: Bridson's response (bridson, and intersection_free where it pushes: under symplectic
+    /// Euler and while recovering from intersecting input) separates a pair within the thickness
+    /// at no more than depth / max(10·substep, relaxationTime). A time of the scene's own: the same
+    /// scene in other units of time sets it in those units (decision 0020, "Units").
+    double relaxationTime = 0.01;
     /// The default, intersection_free, needs `detection` Continuous (its default too); penalty and
     /// bridson were built for, and are measured with, Discrete: set both when choosing them.
     ContactResponse response = ContactResponse::IntersectionFree;

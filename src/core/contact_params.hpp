@@ -38,8 +38,9 @@ struct ContactParams {
     /// contact that sticks does not creep by one substep of those forces per substep (decision
     /// 0024). A program variant (GLC_PREDICTED_FORCES): the force buffer is bound.
     bool predictedForces = false;
-    double relaxationTime = 0.01; ///< s: the thickness is restored over at least this long (0.05 let cloth
-                                  ///< sink into a pinned sphere)
+    /// s: the thickness is restored over at least this long (CollisionSettings::relaxationTime; 0.05
+    /// let cloth sink into a pinned sphere)
+    double relaxationTime = 0.01;
     /// Coulomb μ between bodies: each pushing contact also opposes the relative tangential velocity
     /// with at most μ times its normal force and at most what stops it in the substep (needs
     /// substep > 0). 0: frictionless.
@@ -78,6 +79,7 @@ inline ContactParams contactParams(const CollisionSettings& s) {
         s.response == ContactResponse::Bridson || s.response == ContactResponse::IntersectionFree;
     p.sidesFromPrevious = s.response != ContactResponse::IntersectionFree;
     p.friction = s.friction;
+    p.relaxationTime = s.relaxationTime;
     p.forceCap = 4.0 * s.stiffness * s.thickness;
     // Largest power of two with headroom·cap·√(1 + μ²)·scale ≤ 2^31 - 1: resolution
     // cap·√(1 + μ²)·headroom/2^31 (~5e-7 of the cap without friction), exact in float.

@@ -556,7 +556,7 @@ void requireRadial(const Ctx& c, const CollisionSettings& s, const Ptr& p, const
 CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p,
                 {"broad_phase", "octree_depth", "precision", "response", "thickness", "stiffness", "damping",
-                 "friction", "initial_capacity", "bvh", "detection", "ccd", "energy_guard",
+                 "friction", "relaxation_time", "initial_capacity", "bvh", "detection", "ccd", "energy_guard",
                  "response_iterations", "culling", "ghost_max_perimeter", "observers", "cluster_max_angle",
                  "cluster_max_faces"});
     CollisionSettings s;
@@ -682,6 +682,14 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     }
     if (const json* v = find(j, "damping")) s.damping = nonNegative(c, *v, p / "damping");
     if (const json* v = find(j, "friction")) s.friction = nonNegative(c, *v, p / "friction");
+    if (const json* v = find(j, "relaxation_time")) {
+        if (s.response == ContactResponse::Penalty)
+            c.fail(p / "relaxation_time",
+                   "the penalty response does not relax: only \"bridson\" and \"intersection_free\" have one");
+        s.relaxationTime = number(c, *v, p / "relaxation_time", "a positive number of seconds");
+        if (!(s.relaxationTime > 0.0))
+            c.fail(p / "relaxation_time", "expected a positive number of seconds, got " + shown(*v));
+    }
     if (const json* v = find(j, "initial_capacity")) {
         if (!v->is_number_integer() || v->get<long long>() < 1 || v->get<long long>() > (1LL << 30))
             c.fail(p / "initial_capacity", "expected an integer in 1 ... 2^30, got " + shown(*v));

@@ -48,6 +48,8 @@ void validateScene(const Scene& scene) {
         fail("collision.damping must be finite and >= 0");
     if (!(col.friction >= 0.0) || !std::isfinite(col.friction))
         fail("collision.friction must be finite and >= 0");
+    if (!(col.relaxationTime > 0.0) || !std::isfinite(col.relaxationTime))
+        fail("collision.relaxation_time must be finite and > 0");
     if (col.initialCapacity < 1) fail("collision.initial_capacity must be >= 1");
     if (col.response == ContactResponse::IntersectionFree && col.detection != Detection::Continuous)
         fail("collision.response intersection_free needs collision.detection continuous");

@@ -1,13 +1,15 @@
 // The engine's answers do not depend on the units a scene is drawn in. The same scene with every
-// length times 2^k (a mask in units of 2^-12 m, or of 4,096 m), or with every mass, stiffness and
-// damping times 2^j, is the same physical system; every float operation the engine does on it is
-// then the original one times a power of two, which is exact as long as nothing overflows or
+// length times 2^k (a mask in units of 2^-12 m, or of 4,096 m), with every mass, stiffness and
+// damping times 2^j, or with every time times 2^t (and so velocities, accelerations, stiffnesses and
+// dampings in those units) is the same physical system; every float operation the engine does on it
+// is then the original one times a power of two, which is exact as long as nothing overflows or
 // underflows. So the positions must come out bit for bit the original ones times 2^k (or equal),
 // frame after frame, with the same counts (contacts, CCD, safe-step cuts, energy-guard actions, CG
 // iterations). Any constant with a unit — an absolute floor, an epsilon in metres or joules —
 // breaks that exactness where it decides something. The first one found this way: the CG stopped
 // when ‖r‖² fell below 10⁻³⁰ kg²m²/s², so DEDO's mask drawn at 2⁻¹² of its size stopped its solves
-// earlier than in metres and parted from the first frame (decision 0020, "Units").
+// earlier than in metres and parted from the first frame (decision 0020, "Units"); the second, Bridson's
+// relaxation time of 0.01 s, is now the scene's collision.relaxation_time.
 // Independent reference: the same engine on the unscaled scene; the property is exact, so there is
 // no tolerance. Ranges the engine states elsewhere stay out: the contact energy's fixed point has
 // units of 2⁻⁶⁴ J (decision 0024, "Energy guard"), so the scales here keep every energy within it.
@@ -68,6 +70,27 @@ Scene inMassUnit(Scene s, int j) {
     return s;
 }
 
+/// The scene with every time times 2^t: the frame's length, velocities (2^-t), accelerations and
+/// stiffnesses (N/m = kg/s²: 2^-2t), dampings (2^-t) and the response's relaxation time (2^t).
+Scene inTimeUnit(Scene s, int t) {
+    s.time.dt = std::ldexp(s.time.dt, t);
+    for (Body& b : s.bodies) {
+        for (glm::dvec3& v : b.velocities) v = times2(v, -t);
+        for (Spring& spring : b.springs) {
+            spring.stiffness = std::ldexp(spring.stiffness, -2 * t);
+            spring.damping = std::ldexp(spring.damping, -t);
+        }
+    }
+    s.gravity = times2(s.gravity, -2 * t);
+    s.damping = std::ldexp(s.damping, -t);
+    s.wind.velocity = times2(s.wind.velocity, -t);
+    s.wind.drag = std::ldexp(s.wind.drag, -t);
+    s.collision.stiffness = std::ldexp(s.collision.stiffness, -2 * t);
+    s.collision.damping = std::ldexp(s.collision.damping, -t);
+    s.collision.relaxationTime = std::ldexp(s.collision.relaxationTime, t);
+    return s;
+}
+
 /// What must agree exactly between the two runs besides the positions.
 void expectSameCounts(const StepStats& a, const StepStats& b, int frame) {
     EXPECT_EQ(a.substeps, b.substeps) << "frame " << frame;
@@ -90,7 +113,9 @@ std::uint64_t expectUnitsChangeNothing(const Scene& scene, int frames) {
     const Copy copies[] = {{"lengths x 2^-12", inLengthUnit(scene, -12), -12},
                            {"lengths x 2^12", inLengthUnit(scene, 12), 12},
                            {"masses x 2^-10", inMassUnit(scene, -10), 0},
-                           {"masses x 2^10", inMassUnit(scene, 10), 0}};
+                           {"masses x 2^10", inMassUnit(scene, 10), 0},
+                           {"times x 2^-3", inTimeUnit(scene, -3), 0},
+                           {"times x 2^3", inTimeUnit(scene, 3), 0}};
     Engine reference(scene);
     std::vector<Engine> engines;
     engines.reserve(std::size(copies));

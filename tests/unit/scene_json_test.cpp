@@ -279,7 +279,7 @@ TEST(SceneJson, SettingsAndEffects) {
         HasSubstr("/collision/detection: the default response, intersection_free, needs \"detection\": "
                   "\"continuous\"; name \"response\": \"penalty\" or \"bridson\" to detect discretely"));
     const Scene c = parse(scene(kCloth, R"("collision": {"broad_phase": "masked", "octree_depth": 3,
-        "precision": "fast", "response": "bridson", "thickness": 0.002, "stiffness": 500, "damping": 0.1, "friction": 0.4, "initial_capacity": 1})",
+        "precision": "fast", "response": "bridson", "thickness": 0.002, "stiffness": 500, "damping": 0.1, "friction": 0.4, "relaxation_time": 0.02, "initial_capacity": 1})",
                                 R"(["springs", "self_collisions"])"));
     EXPECT_EQ(c.collision.broadPhase, BroadPhase::Masked);
     EXPECT_EQ(c.collision.octreeDepth, 3);
@@ -404,6 +404,8 @@ TEST(SceneJson, SettingsAndEffects) {
     EXPECT_EQ(c.collision.damping, 0.1);
     EXPECT_EQ(c.collision.friction, 0.4);
     EXPECT_EQ(s.collision.friction, 0.0) << "documented default: frictionless";
+    EXPECT_EQ(c.collision.relaxationTime, 0.02);
+    EXPECT_EQ(s.collision.relaxationTime, 0.01) << "documented default";
     EXPECT_EQ(c.collision.initialCapacity, 1u);
     EXPECT_EQ(c.collision.detection, Detection::Discrete) << "documented default";
     EXPECT_EQ(c.collision.ccd.budget, 4096u) << "documented default";
@@ -482,6 +484,11 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
                 HasSubstr("/collision/friction: expected a number >= 0, got -0.1"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"friction": "high"})", collide)),
                 HasSubstr("/collision/friction: expected a number >= 0"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"relaxation_time": 0})", collide)),
+                HasSubstr("/collision/relaxation_time: expected a positive number of seconds, got 0"));
+    EXPECT_THAT(
+        errorOf(scene(kCloth, R"("collision": {"response": "penalty", "relaxation_time": 0.02})", collide)),
+        HasSubstr("/collision/relaxation_time: the penalty response does not relax"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"detection": "swept"})", collide)),
                 HasSubstr("/collision/detection: unknown detection \"swept\"; expected \"discrete\" or "
                           "\"continuous\""));
