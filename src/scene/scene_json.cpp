@@ -555,9 +555,25 @@ void requireRadial(const Ctx& c, const CollisionSettings& s, const Ptr& p, const
 
 CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     checkObject(c, j, p,
-                {"broad_phase", "octree_depth", "precision", "response", "thickness", "stiffness", "damping",
-                 "friction", "relaxation_time", "initial_capacity", "bvh", "detection", "ccd", "energy_guard",
-                 "response_iterations", "culling", "ghost_max_perimeter", "observers", "cluster_max_angle",
+                {"broad_phase",
+                 "octree_depth",
+                 "precision",
+                 "response",
+                 "thickness",
+                 "stiffness",
+                 "damping",
+                 "friction",
+                 "relaxation_time",
+                 "initial_capacity",
+                 "bvh",
+                 "detection",
+                 "ccd",
+                 "energy_guard",
+                 "response_iterations",
+                 "culling",
+                 "ghost_max_perimeter",
+                 "observers",
+                 "cluster_max_angle",
                  "cluster_max_faces"});
     CollisionSettings s;
     if (const json* v = find(j, "broad_phase")) {
@@ -684,8 +700,9 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     if (const json* v = find(j, "friction")) s.friction = nonNegative(c, *v, p / "friction");
     if (const json* v = find(j, "relaxation_time")) {
         if (s.response == ContactResponse::Penalty)
-            c.fail(p / "relaxation_time",
-                   "the penalty response does not relax: only \"bridson\" and \"intersection_free\" have one");
+            c.fail(
+                p / "relaxation_time",
+                "the penalty response does not relax: only \"bridson\" and \"intersection_free\" have one");
         s.relaxationTime = number(c, *v, p / "relaxation_time", "a positive number of seconds");
         if (!(s.relaxationTime > 0.0))
             c.fail(p / "relaxation_time", "expected a positive number of seconds, got " + shown(*v));

@@ -110,12 +110,10 @@ std::uint64_t expectUnitsChangeNothing(const Scene& scene, int frames) {
         Scene scene;
         int lengthExponent;
     };
-    const Copy copies[] = {{"lengths x 2^-12", inLengthUnit(scene, -12), -12},
-                           {"lengths x 2^12", inLengthUnit(scene, 12), 12},
-                           {"masses x 2^-10", inMassUnit(scene, -10), 0},
-                           {"masses x 2^10", inMassUnit(scene, 10), 0},
-                           {"times x 2^-3", inTimeUnit(scene, -3), 0},
-                           {"times x 2^3", inTimeUnit(scene, 3), 0}};
+    const Copy copies[] = {
+        {"lengths x 2^-12", inLengthUnit(scene, -12), -12}, {"lengths x 2^12", inLengthUnit(scene, 12), 12},
+        {"masses x 2^-10", inMassUnit(scene, -10), 0},      {"masses x 2^10", inMassUnit(scene, 10), 0},
+        {"times x 2^-3", inTimeUnit(scene, -3), 0},         {"times x 2^3", inTimeUnit(scene, 3), 0}};
     Engine reference(scene);
     std::vector<Engine> engines;
     engines.reserve(std::size(copies));
