@@ -59,6 +59,19 @@ bool keepsOutside(uint p, GpuObject faceObject) {
     return faceObject.closed != 0u && (p < faceObject.firstNode || p - faceObject.firstNode >= faceObject.nodeCount);
 }
 
+// A vertex exactly in the plane of another object's face, then and now (coplanar or coincident
+// input: two sheets laid in one plane), has no side to keep; left without a contact such sheets
+// never came apart. The side is then chosen the same way for every such pair: the object whose
+// nodes come first (the scene's order) goes to the positive side of the face's normal turned towards
+// GLC_COPLANAR_DIRECTION, the other object to the negative side, so the two sheets part (decision
+// 0024, "Coplanar input"). 0 (no contact, as before) within one object, or for a normal
+// perpendicular to that direction.
+const vec3 GLC_COPLANAR_DIRECTION = vec3(0.5772, 0.5774, 0.5776);
+float coplanarSide(uint p, vec3 n, GpuObject faceObject) {
+    float lower = p < faceObject.firstNode ? 1.0 : (p - faceObject.firstNode >= faceObject.nodeCount ? -1.0 : 0.0);
+    return lower * sign(dot(n, GLC_COPLANAR_DIRECTION));
+}
+
 // Vertex `p` against face (a, b, c) of object `faceObject` with ownership bits `faceOwned`
 // (contact_vertex_face.comp). The vertex's side of the face: another object's vertex against a
 // closed object (keepsOutside), the outside (outward normals); otherwise (cloth, which has no
@@ -86,6 +99,7 @@ ContactPair vertexFaceContact(uint p, uvec3 face, uint faceOwned, GpuObject face
         float sPrev = dot(cross(previousPosition(face.y) - pa, previousPosition(face.z) - pa),
                           previousPosition(p) - pa);
         side = sPrev > 0.0 ? 1.0 : (sPrev < 0.0 ? -1.0 : sign(s));
+        if (side == 0.0) side = coplanarSide(p, n, faceObject);
     }
     // Signed distance on the vertex's side (< 0: on the wrong side); 0 when it was and is in the
     // face's plane (no side to keep: only the distance rule below acts).
@@ -95,10 +109,12 @@ ContactPair vertexFaceContact(uint p, uvec3 face, uint faceOwned, GpuObject face
     if (kContactCrossings && inside && !(sideDistance > -u_thickness) && crossedFacePlane(p, face, side)) {
         c.normal = side * n; // went through the face, deeper than the thickness: back to its side
         c.depth = u_thickness - sideDistance;
-    } else if (side != 0.0 && inside && sideDistance < u_thickness && sideDistance > -u_thickness) {
+    } else if (side != 0.0 && (inside || d == 0.0) && sideDistance < u_thickness && sideDistance > -u_thickness) {
         c.normal = side * n;
         c.depth = u_thickness - sideDistance;
-    } else if (d < u_thickness && d > 0.0) {
+    } else if (d < u_thickness && d > 0.0 && (side != 0.0 || !inside)) {
+        // (Inside the face with no side the vertex is in its plane: d is the rounding of the closest
+        // point, and diff / d a direction of rounding noise; no contact.)
         if (closed || sideDistance >= 0.0) {
             c.normal = diff / d;
             c.depth = u_thickness - d;

@@ -39,6 +39,21 @@ FaceKind faceKind(const ContactInput& in, std::uint32_t node, std::uint32_t face
     return {true, (*in.nodeObject)[node] != (*in.faceObject)[face]};
 }
 
+// contact_pair.glsl's coplanarSide: a vertex in another object's face plane then and now goes to the
+// positive side of the normal turned towards a fixed direction when its object's nodes come first.
+// Objects' nodes are consecutive, so the vertex's node comes before the face object's nodes exactly
+// when it comes before the face's first node.
+double coplanarSide(const ContactInput& in, std::uint32_t node, std::uint32_t face,
+                    const std::array<std::uint32_t, 3>& f, const glm::dvec3& n) {
+    if (!in.nodeObject || !in.faceObject)
+        throw std::invalid_argument(
+            "cpu::ContactInput: a vertex in a face's plane needs nodeObject and faceObject");
+    if ((*in.nodeObject)[node] == (*in.faceObject)[face]) return 0.0;
+    const double lower = node < f[0] ? 1.0 : -1.0;
+    const double towards = glm::dot(n, glm::dvec3(0.5772, 0.5774, 0.5776)); // GLC_COPLANAR_DIRECTION
+    return lower * (towards > 0.0 ? 1.0 : (towards < 0.0 ? -1.0 : 0.0));
+}
+
 // contact_pair.glsl: which feature pairs are contacts, and their nodes, weights, normal and depth.
 struct Geometry {
     const ContactParams& p;
@@ -59,8 +74,9 @@ struct Geometry {
         return side != 0.0 && side * sPrev > 0.0;
     }
 
-    std::optional<ContactGeometry> vertexFace(std::uint32_t node, const std::array<std::uint32_t, 3>& f,
-                                              std::uint32_t faceOwned, FaceKind kind) const {
+    std::optional<ContactGeometry> vertexFace(std::uint32_t node, std::uint32_t face,
+                                              const std::array<std::uint32_t, 3>& f, std::uint32_t faceOwned,
+                                              FaceKind kind) const {
         const glm::dvec3 &xp = x(node), &xa = x(f[0]), &xb = x(f[1]), &xc = x(f[2]);
         glm::dvec3 n = glm::cross(xb - xa, xc - xa);
         const double area2 = glm::length(n);
@@ -76,6 +92,7 @@ struct Geometry {
             const double sPrev =
                 glm::dot(glm::cross(previous(f[1]) - pa, previous(f[2]) - pa), previous(node) - pa);
             side = sPrev > 0.0 ? 1.0 : (sPrev < 0.0 ? -1.0 : (s > 0.0 ? 1.0 : (s < 0.0 ? -1.0 : 0.0)));
+            if (side == 0.0) side = coplanarSide(in, node, face, f, n);
         }
         const double sideDistance = side * s;
         const bool inside = wts.x > 0.0 && wts.y > 0.0 && wts.z > 0.0;
@@ -85,10 +102,10 @@ struct Geometry {
             crossedFacePlane(node, f, side)) {
             u = side * n;
             depth = h - sideDistance;
-        } else if (side != 0.0 && inside && sideDistance < h && sideDistance > -h) {
+        } else if (side != 0.0 && (inside || d == 0.0) && sideDistance < h && sideDistance > -h) {
             u = side * n;
             depth = h - sideDistance;
-        } else if (d < h && d > 0.0) {
+        } else if (d < h && d > 0.0 && (side != 0.0 || !inside)) { // contact_pair.glsl: no noise normal
             if (kind.closed || sideDistance >= 0.0) {
                 u = diff / d;
                 depth = h - d;
@@ -139,7 +156,8 @@ void forEachContact(const ContactParams& params, const ContactInput& in, const F
     for (const IndexPair& vf : pairs.vertexFace) {
         const auto [node, face] = vf;
         const std::array<std::uint32_t, 3> nodes{idx[3 * face], idx[3 * face + 1], idx[3 * face + 2]};
-        if (const auto c = geometry.vertexFace(node, nodes, (*in.faceOwned)[face], faceKind(in, node, face)))
+        if (const auto c =
+                geometry.vertexFace(node, face, nodes, (*in.faceOwned)[face], faceKind(in, node, face)))
             f(*c);
     }
     for (const IndexPair& ee : pairs.edgeEdge) {
@@ -487,7 +505,7 @@ double ambiguousContactEnergy(const ContactParams& params, const ContactInput& i
         const std::uint32_t node = vf[0], face = vf[1]; // not a structured binding: the lambda captures them
         const std::array<std::uint32_t, 3> f{idx[3 * face], idx[3 * face + 1], idx[3 * face + 2]};
         const auto contact = [&] {
-            return geometry.vertexFace(node, f, (*in.faceOwned)[face], faceKind(in, node, face));
+            return geometry.vertexFace(node, face, f, (*in.faceOwned)[face], faceKind(in, node, face));
         };
         const std::optional<ContactGeometry> nominal = contact();
         double largest = nominal ? nominal->depth : 0.0;

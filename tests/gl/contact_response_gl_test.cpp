@@ -524,6 +524,63 @@ TEST(ContactResponseGl, ClosedObjectsPushAnotherObjectsShallowPenetrationOutAlon
     EXPECT_NEAR(twin.forces[3].y, pushedDown, penaltyTolerance(params, pushedDown, 1));
 }
 
+// A vertex exactly in another object's face plane, at rest (decision 0024, "Coplanar input"): it had
+// no side and got no contact, so sheets laid in one plane never came apart. Now the object whose
+// nodes come first goes to the positive side of the normal turned towards GLC_COPLANAR_DIRECTION,
+// the other object to the negative side, with the full depth h. A probe inside the big face (normal
+// +y): pushed along -y when its nodes come last, +y when first. A probe on the big face's corner
+// (d = 0, a node on a node): one of the two coincident vertices carries the contact, along its
+// face's normal; the two objects are pushed apart with k·h. Within one object: no contact (before,
+// the inside probe got one along a direction of rounding noise, diff / d with d ~ 1e-17).
+// GPU and twin alike, node by node.
+Soup coplanarProbe(glm::dvec3 at, bool probeFirst) {
+    Soup s = probeAboveFace(0.0, false);
+    s.positions[3] = at;
+    if (!probeFirst) return s;
+    // The probe's triangle takes nodes 0-2 (the probe is node 0), the face nodes 3-5; face 0 stays
+    // the big face (object 0), face 1 the probe's (object 1).
+    std::rotate(s.positions.begin(), s.positions.begin() + 3, s.positions.end());
+    s.faces = {3, 4, 5, 0, 1, 2};
+    return s;
+}
+
+TEST(ContactResponseGl, AVertexInAnotherObjectsFacePlaneIsPushedToTheSideTheNodeOrderGives) {
+    const ContactParams params = testParams(0.1);
+    const double full = params.stiffness * params.thickness; // k (h - 0)
+    for (const bool onCorner : {false, true}) {
+        for (const bool probeFirst : {false, true}) {
+            SCOPED_TRACE(std::string("the probe ") + (onCorner ? "on a corner" : "inside") + ", its nodes " +
+                         (probeFirst ? "first" : "last"));
+            Soup s = coplanarProbe(onCorner ? glm::dvec3(-1.0, 0.0, -1.0) : glm::dvec3(0.25, 0.0, 0.25),
+                                   probeFirst);
+            const std::uint32_t probe = probeFirst ? 0u : 3u, big = probeFirst ? 3u : 0u; // first nodes
+            const GpuResult gpu = runGpu(s, params);
+            const cpu::ContactResult twin = runCpu(s, params);
+            EXPECT_EQ(gpu.contacts, 1u);
+            EXPECT_EQ(twin.contacts, 1u);
+            for (std::size_t n = 0; n < s.positions.size(); ++n)
+                for (int c = 0; c < 3; ++c)
+                    EXPECT_NEAR(gpu.forces[n][c], twin.forces[n][c], penaltyTolerance(params, full, 3))
+                        << "node " << n << " axis " << c;
+            const glm::dvec3 onProbe = gpu.forces[probe] + gpu.forces[probe + 1] + gpu.forces[probe + 2];
+            const glm::dvec3 onBig = gpu.forces[big] + gpu.forces[big + 1] + gpu.forces[big + 2];
+            EXPECT_NEAR(glm::length(onProbe), full, penaltyTolerance(params, full, 3));
+            EXPECT_NEAR(glm::length(onProbe + onBig), 0.0, 2.0 * penaltyTolerance(params, full, 3));
+            // Apart: the object whose nodes come first along the side the rule gives it.
+            const glm::dvec3 firstObject = probeFirst ? onProbe : onBig;
+            if (!onCorner) {
+                EXPECT_NEAR(firstObject.y, full, penaltyTolerance(params, full, 3)); // +y: the turned normal
+            } else {
+                EXPECT_GT(glm::dot(firstObject, glm::dvec3(0.5772, 0.5774, 0.5776)), 0.0);
+            }
+            s.faceObject = {0, 0}; // one object: no side to choose
+            s.objectClosed = {0};
+            EXPECT_EQ(runGpu(s, params).contacts, 0u);
+            EXPECT_EQ(runCpu(s, params).contacts, 0u);
+        }
+    }
+}
+
 TEST(ContactResponseGl, AVertexSharedByTwoCandidateFacesActsOnce) {
     // Two faces share the probe vertex 3; only face 1 owns it. Both are candidates with face 0.
     Soup s = probeAboveFace(0.05, false);

@@ -184,6 +184,63 @@ TEST(IntersectionFreeGl, AnIntersectingStartIsPushedApart) {
     EXPECT_EQ(exactIntersectingPairs(engine), 0u);
 }
 
+// Two sheets laid in one plane (decision 0024, "Coplanar input"): the same cloth twice (every node on
+// a node of the other) and the second shifted 0.1 mm within their plane. Every vertex lies in the
+// other sheet's plane, so no vertex had a side to keep: before, no contact pushed them (the
+// coincident sheets fell through the whole run with 1,060 intersecting pairs; the shifted ones froze,
+// every substep pulled back to its start by the energy guard). The side rule for such vertices parts
+// them: intersection-free within a few substeps, never intersecting again, falling under gravity (not
+// frozen), and free by the exact CPU oracle at the end.
+TEST(IntersectionFreeGl, SheetsLaidInOnePlaneArePushedApart) {
+    for (const char* height : {"0.3", "0.3001"}) {
+        SCOPED_TRACE(std::string("second sheet's centre at y = ") + height + " m (the first's: 0.3 m)");
+        const std::string json =
+            std::string(
+                R"({"format_version": 1, "name": "sheets in one plane", "effects": ["gravity", "springs", "collisions"],
+          "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 1},
+          "collision": {"broad_phase": "bvh", "thickness": 0.01, "stiffness": 1000, "response": "intersection_free"},
+          "objects": [
+            {"name": "a", "generator": {"type": "cloth", "size": [0.4, 0.4], "resolution": [8, 8]},
+             "transform": {"translate": [0, 0.3, 0]}, "mass": 0.05, "springs": {"stiffness": 300}},
+            {"name": "b", "generator": {"type": "cloth", "size": [0.4, 0.4], "resolution": [8, 8]},
+             "transform": {"translate": [0, )") +
+            height + R"(, 0]}, "mass": 0.05, "springs": {"stiffness": 300}}]})";
+        // The cloth generator lies in the xy plane: both sheets are vertical, at z = 0, and the
+        // shift (along y) keeps them in that plane.
+        Engine engine(parseScene(json, ".", "sheets in one plane"));
+        ASSERT_GT(exactIntersectingPairs(engine), 0u) << "the start must intersect";
+        const auto centreHeight = [&engine] {
+            double y = 0.0;
+            const std::vector<glm::dvec3> x = engine.readPositions();
+            for (const glm::dvec3& p : x) y += p.y;
+            return y / static_cast<double>(x.size());
+        };
+        const double startHeight = centreHeight();
+        bool free = false;
+        std::uint32_t backToStart = 0;
+        for (int frame = 1; frame <= 12; ++frame) {
+            engine.step();
+            const CollisionStats& c = engine.lastStep().collision;
+            EXPECT_EQ(c.safeStepFrozeAll, 0u) << "frame " << frame;
+            if (frame == 1) {
+                EXPECT_GT(c.maxIntersectingPairs, 0u) << "reported";
+            }
+            if (free) {
+                EXPECT_EQ(c.maxIntersectingPairs, 0u) << "frame " << frame << ": intersecting again";
+            }
+            free = c.reachedIntersectionFree;
+            backToStart += c.energyGuardBackToStart;
+        }
+        EXPECT_TRUE(free);
+        EXPECT_LE(engine.lastStep().collision.substepsUntilIntersectionFree, 4u);
+        EXPECT_EQ(exactIntersectingPairs(engine), 0u);
+        EXPECT_LE(backToStart, 1u) << "the recovery's first substep may return to its start, no later one";
+        // Free fall for 0.2 s would be 0.196 m; the sheets, parted and falling, must have dropped
+        // most of that (frozen, they dropped nothing).
+        EXPECT_LT(centreHeight(), startHeight - 0.1);
+    }
+}
+
 // Steps `frames` frames checking that no frame gains energy; counts the substeps in which the
 // energy guard acted after frame `restFrom` (the bodies should be at rest by then).
 struct RestingRun {

@@ -29,22 +29,28 @@ inline std::vector<std::uint32_t> nodeObjectsOfFaces(const std::vector<std::uint
 }
 
 /// One GpuObject per entry of `objectClosed` (only firstNode, nodeCount and closed are set: what
-/// the contact passes read), a closed object with its node range — an open object's is not read,
-/// and random soups interleave their objects' nodes. Throws when a closed object's nodes are not
-/// consecutive.
+/// the contact passes read) with its node range, as the engine lays objects out. Random soups
+/// interleave their objects' nodes: an open object whose nodes are not consecutive gets the empty
+/// range (read only by the coplanar side rule, for a vertex exactly in a face's plane, which such
+/// soups do not reach). Throws when a closed object's nodes are not consecutive.
 inline std::vector<gpu::GpuObject> gpuObjects(const std::vector<std::uint32_t>& nodeObject,
                                               const std::vector<std::uint8_t>& objectClosed) {
     std::vector<gpu::GpuObject> objects(objectClosed.size(), gpu::GpuObject{});
+    std::vector<bool> scattered(objects.size(), false);
     for (std::size_t o = 0; o < objects.size(); ++o) objects[o].closed = objectClosed[o];
     for (std::uint32_t n = 0; n < nodeObject.size(); ++n) {
         gpu::GpuObject& o = objects.at(nodeObject[n]);
-        if (o.closed == 0) continue;
         if (o.nodeCount == 0) o.firstNode = n;
-        if (o.firstNode + o.nodeCount != n)
-            throw Error("gpuObjects: the nodes of object " + std::to_string(nodeObject[n]) +
-                        " are not consecutive (node " + std::to_string(n) + ")");
+        if (o.firstNode + o.nodeCount != n) {
+            if (o.closed != 0)
+                throw Error("gpuObjects: the nodes of object " + std::to_string(nodeObject[n]) +
+                            " are not consecutive (node " + std::to_string(n) + ")");
+            scattered[nodeObject[n]] = true;
+        }
         ++o.nodeCount;
     }
+    for (std::size_t o = 0; o < objects.size(); ++o)
+        if (scattered[o]) objects[o].firstNode = objects[o].nodeCount = 0;
     return objects;
 }
 
