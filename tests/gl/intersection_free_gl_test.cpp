@@ -162,6 +162,30 @@ TEST(IntersectionFreeGl, ABallAtAThousandMetresPerSecondStaysAboveAPinnedCloth) 
     expectTheBallStaysAboveThePinnedCloth(1000, 10);
 }
 
+// Steps `frames` frames of a scene that starts intersecting: the intersection is reported in frame 1,
+// nothing freezes, and once a frame ends intersection-free no later substep intersects again.
+struct RecoveryRun {
+    bool free = false;             ///< the last frame reached an intersection-free start
+    std::uint32_t backToStart = 0; ///< substeps the energy guard pulled back to their start
+};
+RecoveryRun runFromAnIntersectingStart(Engine& engine, int frames) {
+    RecoveryRun run;
+    for (int frame = 1; frame <= frames; ++frame) {
+        engine.step();
+        const CollisionStats& c = engine.lastStep().collision;
+        EXPECT_EQ(c.safeStepFrozeAll, 0u) << "frame " << frame;
+        if (frame == 1) {
+            EXPECT_GT(c.maxIntersectingPairs, 0u) << "reported";
+        }
+        if (run.free) {
+            EXPECT_EQ(c.maxIntersectingPairs, 0u) << "frame " << frame << ": intersecting again";
+        }
+        run.free = c.reachedIntersectionFree;
+        run.backToStart += c.energyGuardBackToStart;
+    }
+    return run;
+}
+
 // Recovery from intersecting input (issue 23, item 5): two tet boxes that overlap by 4 mm (within
 // the thickness) at the start. The scene is simulated, not refused; the intersecting pairs are
 // reported; the CCD leaves their regions out (nothing freezes) and the response pushes them apart;
@@ -178,20 +202,7 @@ TEST(IntersectionFreeGl, AnIntersectingStartIsPushedApart) {
          "transform": {"translate": [0.096, 0.02, 0.01]}, "mass": 0.2, "springs": {"stiffness": 400}}]})";
     Engine engine(parseScene(json, ".", "tangled"));
     ASSERT_GT(exactIntersectingPairs(engine), 0u) << "the start must intersect";
-    bool free = false;
-    for (int frame = 1; frame <= 20; ++frame) {
-        engine.step();
-        const CollisionStats& c = engine.lastStep().collision;
-        EXPECT_EQ(c.safeStepFrozeAll, 0u) << "frame " << frame;
-        if (frame == 1) {
-            EXPECT_GT(c.maxIntersectingPairs, 0u) << "reported";
-        }
-        if (free) {
-            EXPECT_EQ(c.maxIntersectingPairs, 0u) << "frame " << frame << ": intersecting again";
-        }
-        free = c.reachedIntersectionFree;
-    }
-    EXPECT_TRUE(free);
+    EXPECT_TRUE(runFromAnIntersectingStart(engine, 20).free);
     EXPECT_GT(engine.lastStep().collision.substepsUntilIntersectionFree, 0u);
     EXPECT_EQ(exactIntersectingPairs(engine), 0u);
 }
@@ -228,25 +239,12 @@ TEST(IntersectionFreeGl, SheetsLaidInOnePlaneArePushedApart) {
             return y / static_cast<double>(x.size());
         };
         const double startHeight = centreHeight();
-        bool free = false;
-        std::uint32_t backToStart = 0;
-        for (int frame = 1; frame <= 12; ++frame) {
-            engine.step();
-            const CollisionStats& c = engine.lastStep().collision;
-            EXPECT_EQ(c.safeStepFrozeAll, 0u) << "frame " << frame;
-            if (frame == 1) {
-                EXPECT_GT(c.maxIntersectingPairs, 0u) << "reported";
-            }
-            if (free) {
-                EXPECT_EQ(c.maxIntersectingPairs, 0u) << "frame " << frame << ": intersecting again";
-            }
-            free = c.reachedIntersectionFree;
-            backToStart += c.energyGuardBackToStart;
-        }
-        EXPECT_TRUE(free);
+        const RecoveryRun run = runFromAnIntersectingStart(engine, 12);
+        EXPECT_TRUE(run.free);
         EXPECT_LE(engine.lastStep().collision.substepsUntilIntersectionFree, 4u);
         EXPECT_EQ(exactIntersectingPairs(engine), 0u);
-        EXPECT_LE(backToStart, 1u) << "the recovery's first substep may return to its start, no later one";
+        EXPECT_LE(run.backToStart, 1u)
+            << "the recovery's first substep may return to its start, no later one";
         // Free fall for 0.2 s would be 0.196 m; the sheets, parted and falling, must have dropped
         // most of that (frozen, they dropped nothing).
         EXPECT_LT(centreHeight(), startHeight - 0.1);
