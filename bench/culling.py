@@ -4,7 +4,8 @@
 Runs scenes/cloth_ball.json (a very soft tet ball crumpling on the ground) at several sizes, the
 same ball stretched 3x along x (a cigar: a long closed surface, for segment observers), and
 the open surfaces that ghost triangles close — scenes/sleeve.json (a twisting tube) at several
-resolutions and scenes/mask_fold.json (DEDO's mask folding over a ball) — and the flat sheet that
+resolutions, scenes/elbow.json (a bent tube folding, watched by a skeleton) and
+scenes/mask_fold.json (DEDO's mask folding over a ball) — and the flat sheet that
 clusters serve (scenes/sheet_fold.json, at several resolutions) with "culling": "none"
 and "radial", through `glcollide run --stats`, and reports per size the medians over the frames
 after the first (the first frame's wall time holds the start-up check of decision 0025, "Culling
@@ -14,9 +15,10 @@ candidate pairs tested with and without culling, and the GPU time of each detect
 RadialCulling + BvhBuild + BvhRefit + BvhTraverse + TriTri + FeaturePairs + Ccd. The cost exponent
 is the slope of log(detection time) against log(faces) between the smallest and largest size.
 
-usage: bench/culling.py [--glcollide build/src/glcollide] [--frames 45] [--scenes ball,cigar,sleeve,mask,sheet]
+usage: bench/culling.py [--glcollide build/src/glcollide] [--frames 45] [--scenes ball,cigar,sleeve,elbow,mask,sheet]
                         [--observers auto|objects|clusters] [--observer X,Y,Z[;X,Y,Z]|none]
-                        [--subdivisions 3,4,5] [--sleeve-resolutions 32x20,64x40] [--sheet-resolutions 32,48,96]
+                        [--subdivisions 3,4,5] [--sleeve-resolutions 32x20,64x40] [--elbow-resolutions 32x31,64x61]
+                        [--sheet-resolutions 32,48,96]
                         [--out bench/results/<device>/culling_<commit>]
        bench/culling.py --write-scenes DIR ...   (only writes the scene variants, for a machine without
                                                 python: run each with `glcollide run X.json --stats X_stats.json`)
@@ -68,6 +70,13 @@ def variants(args):
                 scene = json.loads(json.dumps(base))
                 scene["objects"][0]["generator"]["resolution"] = [around, along]
                 out.append(("sleeve", f"sleeve{around}x{along}", scene))
+        elif name == "elbow":
+            base = load_scene(os.path.join(ROOT, "scenes", "elbow.json"))
+            for res in args.elbow_resolutions.split(","):
+                around, along = (int(v) for v in res.split("x"))
+                scene = json.loads(json.dumps(base))
+                scene["objects"][0]["generator"]["resolution"] = [around, along]
+                out.append(("elbow", f"elbow{around}x{along}", scene))
         elif name == "mask":
             scene = load_scene(os.path.join(ROOT, "scenes", "mask_fold.json"))
             for obj in scene["objects"]:
@@ -81,7 +90,7 @@ def variants(args):
                 scene["objects"][0]["generator"]["resolution"] = [res, res]
                 out.append(("sheet_fold", f"sheet{res}", scene))
         else:
-            sys.exit(f"culling.py: unknown scene {name!r}; expected ball, cigar, sleeve, mask or sheet")
+            sys.exit(f"culling.py: unknown scene {name!r}; expected ball, cigar, sleeve, elbow, mask or sheet")
     return out
 
 
@@ -171,12 +180,14 @@ def main():
     ap.add_argument("--scenes", default="ball")
     ap.add_argument("--subdivisions", default="3,4,5")
     ap.add_argument("--sleeve-resolutions", default="32x20,64x40")
+    ap.add_argument("--elbow-resolutions", default="32x31,64x61")
     ap.add_argument("--sheet-resolutions", default="32,48,96")
     ap.add_argument("--observers", default=None,
                     help="collision.observers of the radial runs (auto, objects, clusters; default: the scene's)")
     ap.add_argument("--observer", default=None,
                     help="a user observer X,Y,Z, a segment X,Y,Z;X,Y,Z (m, the first object's own "
-                         "coordinates) or none (the scene's observer removed: the centroid) for the radial runs (docs/culling.md, \"User observers\", \"Segment observers\")")
+                         "coordinates) or none (the scene's observer or skeleton removed: the centroid) for the radial runs; "
+                         "either replaces a skeleton (docs/culling.md, \"User observers\", \"Segment observers\", \"Skeletons\")")
     ap.add_argument("--out", default=None)
     ap.add_argument("--write-scenes", default=None)
     ap.add_argument("--stats-dir", default=None)
@@ -194,12 +205,15 @@ def main():
                         scene["collision"].pop(key, None)
                     for obj in scene["objects"]:
                         obj.pop("observer", None)
+                        obj.pop("skeleton", None)
                 else:
                     if args.observers:
                         scene["collision"]["observers"] = args.observers
                     if args.observer == "none":  # the automatic observer (the centroid)
                         scene["objects"][0].pop("observer", None)
+                        scene["objects"][0].pop("skeleton", None)
                     elif args.observer:  # a point X,Y,Z or a segment X,Y,Z;X,Y,Z
+                        scene["objects"][0].pop("skeleton", None)
                         points = [[float(v) for v in p.split(",")] for p in args.observer.split(";")]
                         scene["objects"][0]["observer"] = points[0] if len(points) == 1 else points
                 runs[culling] = run(args.glcollide, scene, args.frames, work, f"{tag}_{culling}", args.stats_dir,

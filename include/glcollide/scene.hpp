@@ -49,6 +49,11 @@ struct Body {
     /// m, world space: with `observer`, the other end of a segment observer (the object's
     /// "observer": [[x, y, z], [x, y, z]]; docs/culling.md, "Segment observers"), e.g. a limb's bone.
     std::optional<glm::dvec3> observerEnd;
+    /// m, world space: radial culling's skeleton of this object (the object's "skeleton",
+    /// transformed with it), one segment per bone: each face is watched by the bone nearest it at
+    /// rest, each bone's faces closed by ghost fans into surfaces of their own (docs/culling.md,
+    /// "Skeletons"), e.g. a limb bent at a joint. Empty: none. Not with `observer`.
+    std::vector<std::array<glm::dvec3, 2>> skeleton;
 };
 
 /// A horizontal plane y = height that nodes cannot go below.

@@ -401,6 +401,7 @@ void Engine::Impl::makePass(engine::Stage stage) {
             for (const Body& body : scene.bodies) {
                 observers.objectObservers.push_back(body.observer);
                 observers.objectObserverEnds.push_back(body.observerEnd);
+                observers.objectSkeletons.push_back(body.skeleton);
             }
             config.radial = passes::radialCullingConfig(model, observers);
         }

@@ -319,6 +319,53 @@ void observeClusters(RadialCullingConfig& config, const model::FlatModel& model,
     }
 }
 
+/// Object `r` (the model's object `object`) watched by its skeleton (docs/culling.md, "Skeletons"):
+/// the faces nearest each bone, piece by piece (model::boneClusters), each closed by fans over all
+/// its loops and watched by its bone, whose ends are tied to the object's nodes like a user
+/// segment's; a piece that cannot be closed gets no observer.
+void observeBones(RadialCullingConfig& config, const model::FlatModel& model, const model::ObjectRange& r,
+                  std::size_t object, const std::vector<model::Bone>& bones) {
+    const std::vector<model::Triangle> faces = objectFaces(model, r);
+    const std::vector<glm::dvec3> positions = objectPositions(model, r);
+    model::BoneClusters pieces;
+    try {
+        pieces = model::boneClusters(faces, positions, bones);
+    } catch (const std::invalid_argument& e) {
+        throw Error(std::string(RadialCullingPass::kName) + ": object " + std::to_string(object) +
+                    "'s skeleton: " + e.what());
+    }
+    std::vector<std::vector<std::uint32_t>> members(pieces.count);
+    for (std::uint32_t f = 0; f < r.faceCount; ++f) members[pieces.faceCluster[f]].push_back(f);
+    for (std::uint32_t piece = 0; piece < pieces.count; ++piece) {
+        std::vector<model::Triangle> pieceFaces;
+        for (std::uint32_t f : members[piece]) pieceFaces.push_back(faces[f]);
+        const model::BoneClosure closure = model::closeBoneCluster(pieceFaces, positions);
+        if (!closure.closed) {
+            ++config.openClusters;
+            continue;
+        }
+        const auto observer = static_cast<std::uint32_t>(config.surfaces.size());
+        RadialSurface surface{r.firstNode, r.nodeCount,
+                              static_cast<std::uint32_t>(config.ghosts.faceObserver.size()),
+                              static_cast<std::uint32_t>(closure.ghosts.faces.size()), closure.volume6 < 0.0};
+        const model::Bone& bone = bones[pieces.clusterBone[piece]];
+        frameObserver(surface.frameNodes, surface.frameWeights, model, r, object, bone[0]);
+        frameObserver(surface.segmentFrameNodes, surface.segmentFrameWeights, model, r, object, bone[1]);
+        surface.framed = surface.segment = true;
+        appendGhostFans(config.ghosts, r, observer, closure.ghosts.faces);
+        for (std::uint32_t loop : closure.ghosts.ghostNodeLoop) {
+            const std::vector<std::uint32_t>& nodes = closure.ghosts.loops[loop].nodes;
+            RadialGhostNode node;
+            node.loopFirst = appendLoop(config.ghosts, r, nodes);
+            node.loopCount = static_cast<std::uint32_t>(nodes.size());
+            config.ghosts.nodes.push_back(node);
+        }
+        for (std::uint32_t f : members[piece]) config.faceObserver[r.firstFace + f] = observer;
+        config.surfaces.push_back(std::move(surface));
+        ++config.clusters;
+    }
+}
+
 /// Per node: the observer shared by every face around it (RadialCullingConfig::nodeObserver).
 std::vector<std::uint32_t> nodeObservers(const RadialCullingConfig& config, const model::FlatModel& model) {
     constexpr std::uint32_t kUnset = kNoRadialObserver - 1u;
@@ -342,6 +389,10 @@ RadialCullingConfig radialCullingConfig(const model::FlatModel& model,
     config.ghosts.nodeCount = static_cast<std::uint32_t>(model.nodeCount());
     for (std::size_t object = 0; object < model.objects.size(); ++object) {
         const model::ObjectRange& r = model.objects[object];
+        if (object < settings.objectSkeletons.size() && !settings.objectSkeletons[object].empty()) {
+            observeBones(config, model, r, object, settings.objectSkeletons[object]);
+            continue;
+        }
         if (observeObject(config, model, r, object, settings)) continue;
         if (object < settings.objectObservers.size() && settings.objectObservers[object])
             throw Error(std::string(RadialCullingPass::kName) + ": object " + std::to_string(object) +

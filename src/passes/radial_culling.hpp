@@ -13,6 +13,7 @@
 
 #include "gl/handles.hpp"
 #include "gl/program.hpp"
+#include "model/bone_clusters.hpp"
 #include "model/flat_model.hpp"
 #include "model/surface_clusters.hpp"
 #include "passes/collision/append_lists.hpp"
@@ -115,6 +116,10 @@ struct RadialObserverSettings {
     /// Per object (or empty): the second end of a user segment observer (Body::observerEnd, m),
     /// whose first end is objectObservers' point.
     std::vector<std::optional<glm::dvec3>> objectObserverEnds = {};
+    /// Per object (or empty): a skeleton (Body::skeleton, m; empty: none). Its object is cut into
+    /// the pieces nearest each bone (model::boneClusters), each closed by ghost fans over all its
+    /// loops and watched by its bone as a segment observer; a piece that cannot be closed gets none.
+    std::vector<std::vector<model::Bone>> objectSkeletons = {};
 };
 
 /// The engine's observers (decision 0025): one per object of `model` whose surface is closed,
@@ -123,7 +128,8 @@ struct RadialObserverSettings {
 /// model's positions) close its boundary loops of perimeter <= settings.ghostMaxPerimeter m. The
 /// other objects are split into clusters (model::surfaceClusters, closed by model::closeCluster),
 /// each with an observer of its own — unless settings.observers is Objects: then their faces get no
-/// observer and are never culled.
+/// observer and are never culled. An object with a skeleton (settings.objectSkeletons) is watched
+/// by its bones instead (docs/culling.md, "Skeletons").
 RadialCullingConfig radialCullingConfig(const model::FlatModel& model,
                                         const RadialObserverSettings& settings);
 /// Objects only, ghosts up to `ghostMaxPerimeter`: radialCullingConfig with RadialObservers::Objects.

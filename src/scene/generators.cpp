@@ -81,14 +81,46 @@ Body generateCloth(double width, double height, int nx, int ny, bool withShear, 
     return body;
 }
 
-Body generateTube(double radius, double length, int around, int along) {
+namespace {
+/// The bent tube's axis at arc length s from the top (generateTube): its point and the angle by
+/// which its tangent has turned from −Y towards +X (about +Z).
+struct AxisPoint {
+    glm::dvec3 point;
+    double turned = 0.0;
+};
+AxisPoint bentAxis(double length, double bendRadians, double s) {
+    const double third = length / 3.0, radius = third / bendRadians;
+    const glm::dvec3 bendStart(0.0, 0.5 * length - third, 0.0), centre = bendStart + glm::dvec3(radius, 0, 0);
+    const auto onArc = [&](double angle) {
+        return centre + radius * glm::dvec3(-std::cos(angle), -std::sin(angle), 0.0);
+    };
+    if (s <= third) return {{0.0, 0.5 * length - s, 0.0}, 0.0};
+    if (s <= 2.0 * third) {
+        const double angle = bendRadians * (s - third) / third;
+        return {onArc(angle), angle};
+    }
+    const glm::dvec3 tangent(std::sin(bendRadians), -std::cos(bendRadians), 0.0);
+    return {onArc(bendRadians) + (s - 2.0 * third) * tangent, bendRadians};
+}
+} // namespace
+
+Body generateTube(double radius, double length, int around, int along, double bendDegrees) {
     Body body;
     const auto idx = [around](int i, int j) { return u32(j * around + (i % around)); };
+    const double bend = bendDegrees * std::numbers::pi / 180.0;
     for (int j = 0; j < along; ++j)
         for (int i = 0; i < around; ++i) {
             const double angle = 2.0 * std::numbers::pi * i / around;
-            body.positions.emplace_back(radius * std::cos(angle), 0.5 * length - length * j / (along - 1),
-                                        radius * std::sin(angle));
+            if (bend == 0.0) { // straight: the formula of the scenes written before bends
+                body.positions.emplace_back(radius * std::cos(angle), 0.5 * length - length * j / (along - 1),
+                                            radius * std::sin(angle));
+                continue;
+            }
+            // The ring's frame turns with the tangent: its +X direction becomes (cos, sin, 0).
+            const AxisPoint axis = bentAxis(length, bend, length * j / (along - 1));
+            const glm::dvec3 across(std::cos(axis.turned), std::sin(axis.turned), 0.0);
+            body.positions.push_back(axis.point + radius * std::cos(angle) * across +
+                                     glm::dvec3(0.0, 0.0, radius * std::sin(angle)));
         }
     // Along a ring (i -> i + 1) the tangent is (-sin, 0, cos); down the tube (j -> j + 1) it is -Y;
     // their cross product (cos, 0, sin) points away from the axis: (a, b, c) and (a, c, d) face out.

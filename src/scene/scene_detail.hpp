@@ -128,7 +128,10 @@ Body generateCloth(double width, double height, int nx, int ny, bool withShear, 
 /// node (i, j) has index j·around + i, node i of a ring at angle 2πi/around from +X towards +Z.
 /// Faces face away from the axis; two boundary loops (the rings at both ends). No springs: the
 /// scene gives it a surface's edge and bend springs, as for a surface mesh.
-Body generateTube(double radius, double length, int around, int along);
+/// `bendDegrees` in [0, 180) bends the middle third of the axis into a circular arc turning from −Y
+/// towards +X (an elbow); the top third stays where the straight tube's is, the rings stay
+/// perpendicular to the axis, and `length` is measured along it. 0: the straight tube above.
+Body generateTube(double radius, double length, int around, int along, double bendDegrees = 0.0);
 
 /// A box of `size` m centred at the origin, `cells` cubes per axis, each split into 6 tets along
 /// its main diagonal (the Freudenthal split, conforming between neighbour cells). Springs: unique

@@ -273,7 +273,7 @@ Body generate(const Ctx& c, const json& g, const Ptr& p, const SpringParams& spr
         return detail::generateCloth(w, h, nx, ny, springs.shear > 0.0, springs.bend > 0.0);
     }
     if (type == "tube") {
-        checkObject(c, g, p, {"type", "radius", "length", "resolution"});
+        checkObject(c, g, p, {"type", "radius", "length", "resolution", "bend_deg"});
         const Ptr pr = p / "resolution";
         const double radius = positive(c, require(c, g, p, "radius"), p / "radius");
         const double length = positive(c, require(c, g, p, "length"), p / "length");
@@ -281,7 +281,21 @@ Body generate(const Ctx& c, const json& g, const Ptr& p, const SpringParams& spr
         if (!res.is_array() || res.size() != 2)
             c.fail(pr, "expected [around, along] node counts (per ring, rings), got " + shown(res));
         const int around = integer(c, res[0], pr / 0, 3, 4096), along = integer(c, res[1], pr / 1, 2, 4096);
-        return detail::generateTube(radius, length, around, along);
+        double bend = 0.0;
+        if (const json* v = find(g, "bend_deg")) {
+            bend = number(c, *v, p / "bend_deg");
+            if (!(bend >= 0.0 && bend < 180.0))
+                c.fail(p / "bend_deg", "expected an angle in degrees in [0, 180), got " + shown(*v));
+            // The arc's radius is the bent third's length over its angle; a tube as wide folds its
+            // inner side onto itself.
+            const double arcRadius = length / 3.0 / (bend * std::numbers::pi / 180.0);
+            if (bend > 0.0 && !(radius < arcRadius))
+                c.fail(p / "bend_deg",
+                       "the bend's arc radius (" + std::to_string(arcRadius) +
+                           " m: a third of the length over the angle) must exceed the radius " +
+                           std::to_string(radius) + " m, or the rings cross inside the bend");
+        }
+        return detail::generateTube(radius, length, around, along, bend);
     }
     if (type == "tet_box") {
         checkObject(c, g, p, {"type", "size", "resolution"});
@@ -365,6 +379,10 @@ void applyTransform(const Ctx& c, const json& j, const Ptr& p, Body& body) {
     for (glm::dvec3& x : body.positions) transform(x);
     if (body.observer) transform(*body.observer);
     if (body.observerEnd) transform(*body.observerEnd);
+    for (std::array<glm::dvec3, 2>& bone : body.skeleton) {
+        transform(bone[0]);
+        transform(bone[1]);
+    }
 }
 
 /// "observer": a point [x, y, z], or a segment [[x, y, z], [x, y, z]] with two different ends.
@@ -377,6 +395,20 @@ void parseObserver(const Ctx& c, const json& j, const Ptr& p, Body& body) {
     body.observerEnd = vec3(c, j[1], p / 1);
     if (*body.observer == *body.observerEnd)
         c.fail(p, "a segment observer's two ends must differ (a point observer is [x, y, z])");
+}
+
+/// "skeleton": [[[x, y, z], [x, y, z]], ...], one or more bones, each two different ends.
+void parseSkeleton(const Ctx& c, const json& j, const Ptr& p, Body& body) {
+    if (!j.is_array() || j.empty())
+        c.fail(p, "expected an array of bones [[x, y, z], [x, y, z]], got " + shown(j));
+    for (std::size_t b = 0; b < j.size(); ++b) {
+        const json& bone = j[b];
+        if (!bone.is_array() || bone.size() != 2)
+            c.fail(p / b, "expected a bone [[x, y, z], [x, y, z]] (its two ends), got " + shown(bone));
+        const glm::dvec3 a = vec3(c, bone[0], p / b / 0), e = vec3(c, bone[1], p / b / 1);
+        if (a == e) c.fail(p / b, "a bone's two ends must differ");
+        body.skeleton.push_back({a, e});
+    }
 }
 
 void applyPinned(const Ctx& c, const json& j, const Ptr& p, Body& body) {
@@ -411,7 +443,7 @@ void applyPinned(const Ctx& c, const json& j, const Ptr& p, Body& body) {
 Body parseObject(const Ctx& c, const json& j, const Ptr& p, const EffectSet& effects, std::size_t index) {
     checkObject(c, j, p,
                 {"name", "mesh", "generator", "transform", "velocity", "angular_velocity", "mass", "density",
-                 "springs", "pinned", "observer"});
+                 "springs", "pinned", "observer", "skeleton"});
     const json* mesh = find(j, "mesh");
     const json* gen = find(j, "generator");
     if ((mesh == nullptr) == (gen == nullptr)) c.fail(p, "give exactly one of 'mesh' and 'generator'");
@@ -432,6 +464,10 @@ Body parseObject(const Ctx& c, const json& j, const Ptr& p, const EffectSet& eff
     body.name = "object " + std::to_string(index);
     if (const json* v = find(j, "name")) body.name = string(c, *v, p / "name");
     if (const json* v = find(j, "observer")) parseObserver(c, *v, p / "observer", body);
+    if (const json* v = find(j, "skeleton")) {
+        if (body.observer) c.fail(p / "skeleton", "give 'observer' or 'skeleton', not both");
+        parseSkeleton(c, *v, p / "skeleton", body);
+    }
     if (const json* v = find(j, "transform")) applyTransform(c, *v, p / "transform", body);
 
     if (!effects.has(Effect::Springs)) {
@@ -808,9 +844,13 @@ Scene parseRoot(const Ctx& c, const json& root) {
         c.fail(p / "objects", "expected a non-empty array of objects");
     for (std::size_t i = 0; i < objects.size(); ++i) {
         scene.bodies.push_back(parseObject(c, objects[i], p / "objects" / i, scene.effects, i));
-        if (scene.bodies.back().observer && !(collides && scene.collision.culling == Culling::Radial))
+        const bool radial = collides && scene.collision.culling == Culling::Radial;
+        if (scene.bodies.back().observer && !radial)
             c.fail(p / "objects" / i / "observer",
                    "an observer serves radial culling only: add \"collision\": {\"culling\": \"radial\"}");
+        if (!scene.bodies.back().skeleton.empty() && !radial)
+            c.fail(p / "objects" / i / "skeleton",
+                   "a skeleton serves radial culling only: add \"collision\": {\"culling\": \"radial\"}");
     }
     return scene;
 }

@@ -55,6 +55,28 @@ std::string sleeveScene(const std::string& culling, double spin) {
          "pinned": {"inside": {"min": [-0.1, 0.699, -0.1], "max": [0.1, 0.701, 0.1]}}}]})";
 }
 
+/// scenes/elbow.json's limb, coarser (16 × 16 nodes, 480 faces): a tube bent by 90 degrees, hung
+/// from its top ring and turned about +Z, so that the forearm swings up and the elbow flexes, then
+/// falls back; with culling, watched by a skeleton
+/// of three bones (docs/culling.md, "Skeletons").
+std::string elbowScene(const std::string& culling) {
+    const std::string skeleton = culling == "radial" ? R"(, "skeleton": [[[0, 0.27, 0], [0, 0.13, 0]],
+        [[0.0112, 0.0730, 0], [0.1003, -0.0161, 0]], [[0.1573, -0.0273, 0], [0.2973, -0.0273, 0]]])"
+                                                     : std::string();
+    return R"({"format_version": 1, "name": "elbow", "effects": ["gravity", "springs", "self_collisions"],
+      "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 2},
+      "collision": {"broad_phase": "bvh", "thickness": 0.004, "stiffness": 500, "response": "intersection_free",
+                    "culling": ")" +
+           culling + R"("},
+      "objects": [
+        {"name": "elbow", "generator": {"type": "tube", "radius": 0.06, "length": 0.6, "resolution": [16, 16],
+                                        "bend_deg": 90},
+         "transform": {"translate": [0, 0.6, 0]}, "mass": 0.05, "springs": {"stiffness": 40, "bend_stiffness": 0.05},
+         "angular_velocity": [0, 0, 8],
+         "pinned": {"inside": {"min": [-0.07, 0.899, -0.07], "max": [0.07, 0.901, 0.07]}})" +
+           skeleton + "}]}";
+}
+
 /// A flat sheet of cloth (16 × 16 nodes, 450 faces) dropped tilted onto the ground, where it
 /// folds onto itself. It is no closed surface, and a fan over its border closes it flat, with no
 /// inside: radial culling cuts it into clusters of at most about 32 faces, each watched from behind.
@@ -188,6 +210,18 @@ TEST(RadialCullingGl, ATwistingSleeveWithASegmentObserverIsBitIdenticalWithAndWi
     EXPECT_EQ(t.ghostFaces, 32u);
     EXPECT_GT(t.culledSubsteps, 60u);
     EXPECT_GT(t.culledCcd, 0u);
+    RecordProperty("culled_ccd", static_cast<int>(t.culledCcd));
+    RecordProperty("substeps_violated", static_cast<int>(t.substepsViolated));
+}
+
+// A bent limb watched by a skeleton: one piece per bone, each closed by fans over its cuts and its
+// opening, culled on its own; the elbow flexes and its crease folds.
+TEST(RadialCullingGl, AnElbowWithASkeletonIsBitIdenticalWithAndWithoutCulling) {
+    const Totals t = expectIdentical(elbowScene("none"), elbowScene("radial"), 40);
+    EXPECT_GT(t.ghostFaces, 32u) << "fans over the two openings and the two cuts";
+    EXPECT_GT(t.culledSubsteps, 60u);
+    EXPECT_GT(t.culledCcd, 0u);
+    EXPECT_GT(t.substepsWithNonPositive, 0u) << "the elbow must fold: some faces not positive";
     RecordProperty("culled_ccd", static_cast<int>(t.culledCcd));
     RecordProperty("substeps_violated", static_cast<int>(t.substepsViolated));
 }

@@ -162,6 +162,37 @@ TEST(GeneratorTube, CountsOrientationAndTwoOpenEnds) {
     }
 }
 
+// The elbow of scenes/elbow.json: bent by 90 degrees in its middle third. Each ring is a circle of
+// the radius around its mean, perpendicular to the axis; the top ring where the straight tube's is,
+// the last ring's centre where the arc's end plus a third of the length along +X puts it; faces
+// away from the axis; still two open ends.
+TEST(GeneratorTube, ABentTubeKeepsItsRingsRoundAndFacingOut) {
+    const int around = 16, along = 13;
+    const double radius = 0.05, length = 0.6, third = length / 3.0, arc = third / (std::numbers::pi / 2.0);
+    const Body b = generateTube(radius, length, around, along, 90.0);
+    const Body straight = generateTube(radius, length, around, along);
+    const auto ua = static_cast<std::size_t>(around);
+    std::vector<glm::dvec3> centres;
+    for (std::size_t j = 0; j < static_cast<std::size_t>(along); ++j) {
+        glm::dvec3 c(0.0);
+        for (std::size_t i = 0; i < ua; ++i) c += b.positions[j * ua + i];
+        c /= static_cast<double>(around);
+        centres.push_back(c);
+        for (std::size_t i = 0; i < ua; ++i) // 1e-12: a few roundings of coordinates below 1
+            EXPECT_NEAR(glm::length(b.positions[j * ua + i] - c), radius, 1e-12) << j << ", " << i;
+    }
+    for (std::size_t i = 0; i < ua; ++i) EXPECT_EQ(b.positions[i], straight.positions[i]); // the top ring
+    const glm::dvec3 end = glm::dvec3(arc, 0.5 * length - third - arc, 0.0) + glm::dvec3(third, 0.0, 0.0);
+    EXPECT_NEAR(glm::length(centres.back() - end), 0.0, 1e-12);
+    for (const Face& f : b.faces) {
+        const glm::dvec3 a = b.positions[f[0]], n = glm::cross(b.positions[f[1]] - a, b.positions[f[2]] - a);
+        const glm::dvec3 centre = (a + b.positions[f[1]] + b.positions[f[2]]) / 3.0;
+        const glm::dvec3 axis = 0.5 * (centres[f[0] / ua] + centres[f[2] / ua]);
+        EXPECT_GT(glm::dot(n, centre - axis), 0.0);
+    }
+    EXPECT_EQ(model::boundaryLoops(b.faces, b.positions.size()).size(), 2u);
+}
+
 TEST(GeneratorTetBox, BoundaryVolumeAndOrientation) {
     for (auto cells :
          {std::array<int, 3>{1, 1, 1}, std::array<int, 3>{3, 2, 4}, std::array<int, 3>{5, 1, 2}}) {

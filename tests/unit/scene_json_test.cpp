@@ -568,7 +568,55 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
         short_.replace(short_.find("[0.01, 0, 0]"), 12, "[[0.01, 0, 0], [0, 1]]");
         EXPECT_THAT(errorOf(scene(short_, R"("collision": {)" + radial + R"("observers": "auto"})", self)),
                     HasSubstr("/objects/0/observer/1: expected an array of 3 numbers"));
+        // A skeleton: bones, each two points moved with the transform; not with an observer.
+        const std::string radialAuto = R"("collision": {)" + radial + R"("observers": "auto"})";
+        std::string bones = ball;
+        bones.replace(bones.find(R"("observer": [0.01, 0, 0])"), 24,
+                      R"("skeleton": [[[0, 0, 0], [0.01, 0, 0]], [[0.01, 0, 0], [0.01, 0.02, 0]]])");
+        const Scene skel = parseScene(scene(bones, radialAuto, self), ".", "skeleton");
+        ASSERT_EQ(skel.bodies[0].skeleton.size(), 2u);
+        EXPECT_EQ(skel.bodies[0].skeleton[0][0], glm::dvec3(0.0, 1.0, 0.0));
+        EXPECT_EQ(skel.bodies[0].skeleton[0][1], glm::dvec3(0.02, 1.0, 0.0));
+        EXPECT_EQ(skel.bodies[0].skeleton[1][1], glm::dvec3(0.02, 1.04, 0.0));
+        EXPECT_FALSE(skel.bodies[0].observer.has_value());
+        EXPECT_TRUE(ok.bodies[0].skeleton.empty());
+        EXPECT_THAT(errorOf(scene(bones, "", self)),
+                    HasSubstr("/objects/0/skeleton: a skeleton serves radial culling only"));
+        const auto skeletonError = [&](const std::string& value) {
+            std::string b = ball;
+            b.replace(b.find(R"("observer": [0.01, 0, 0])"), 24, R"("skeleton": )" + value);
+            return errorOf(scene(b, radialAuto, self));
+        };
+        EXPECT_THAT(skeletonError("[]"), HasSubstr("/objects/0/skeleton: expected an array of bones"));
+        EXPECT_THAT(skeletonError("[[[0, 0, 0]]]"), HasSubstr("/objects/0/skeleton/0: expected a bone"));
+        EXPECT_THAT(skeletonError("[[[0, 0, 0], [0, 0, 0]]]"),
+                    HasSubstr("/objects/0/skeleton/0: a bone's two ends must differ"));
+        EXPECT_THAT(skeletonError("[[[0, 0, 0], [0, 1, 0]], [[0, 0, 0], [0, 1]]]"),
+                    HasSubstr("/objects/0/skeleton/1/1: expected an array of 3 numbers"));
+        std::string both = ball;
+        both.replace(both.find(R"("observer": [0.01, 0, 0])"), 24,
+                     R"("observer": [0.01, 0, 0], "skeleton": [[[0, 0, 0], [0.01, 0, 0]]])");
+        EXPECT_THAT(errorOf(scene(both, radialAuto, self)),
+                    HasSubstr("/objects/0/skeleton: give 'observer' or 'skeleton', not both"));
     }
+    // The tube's bend: an angle in [0, 180), and an arc wider than the tube.
+    const auto tubeError = [&](const std::string& bend, double radius) {
+        return errorOf(scene(R"({"generator": {"type": "tube", "radius": )" + std::to_string(radius) +
+                             R"(, "length": 0.6, "resolution": [8, 4], "bend_deg": )" + bend +
+                             R"(}, "mass": 1, "springs": {"stiffness": 1}})"));
+    };
+    EXPECT_THAT(tubeError("180", 0.01),
+                HasSubstr("/objects/0/generator/bend_deg: expected an angle in degrees in [0, 180)"));
+    EXPECT_THAT(tubeError("-1", 0.01), HasSubstr("/objects/0/generator/bend_deg: expected an angle"));
+    EXPECT_THAT(tubeError("90", 0.2),
+                HasSubstr("/objects/0/generator/bend_deg: the bend's arc radius (0.127324 m"));
+    EXPECT_EQ(
+        parseScene(scene(R"({"generator": {"type": "tube", "radius": 0.1, "length": 0.6, "resolution": [8, 4],
+        "bend_deg": 90}, "mass": 1, "springs": {"stiffness": 1}})"),
+                   ".", "bent")
+            .bodies[0]
+            .positions.size(),
+        32u);
     EXPECT_THAT(
         errorOf(scene(R"({"generator": {"type": "tube", "radius": 0.1, "length": 1, "resolution": [2, 4]},
         "mass": 1, "springs": {"stiffness": 1}})")),
