@@ -90,7 +90,8 @@ BoneClusters boneClusters(const std::vector<Triangle>& faces, const std::vector<
     return clusters;
 }
 
-BoneClosure closeBoneCluster(const std::vector<Triangle>& pieceFaces, const std::vector<glm::dvec3>& positions) {
+BoneClosure closeBoneCluster(const std::vector<Triangle>& pieceFaces,
+                             const std::vector<glm::dvec3>& positions) {
     BoneClosure closure;
     GhostSettings fillEvery;
     fillEvery.maxPerimeter = std::numeric_limits<double>::infinity();

@@ -48,6 +48,7 @@ struct BoneClosure {
     /// wind outward (decision 0025, "Orientation").
     double volume6 = 0.0;
 };
-BoneClosure closeBoneCluster(const std::vector<Triangle>& pieceFaces, const std::vector<glm::dvec3>& positions);
+BoneClosure closeBoneCluster(const std::vector<Triangle>& pieceFaces,
+                             const std::vector<glm::dvec3>& positions);
 
 } // namespace glcollide::model

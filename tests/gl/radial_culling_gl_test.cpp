@@ -58,10 +58,10 @@ std::string sleeveScene(const std::string& culling, double spin) {
 /// scenes/elbow.json's limb, coarser (16 × 16 nodes, 480 faces): a tube bent by 90 degrees, hung
 /// from its top ring and turned about +Z, so that the forearm swings up and the elbow flexes, then
 /// falls back; with culling, watched by a skeleton
-/// of three bones (docs/culling.md, "Skeletons").
+/// of two bones (docs/culling.md, "Skeletons").
 std::string elbowScene(const std::string& culling) {
-    const std::string skeleton = culling == "radial" ? R"(, "skeleton": [[[0, 0.27, 0], [0, 0.13, 0]],
-        [[0.0112, 0.0730, 0], [0.1003, -0.0161, 0]], [[0.1573, -0.0273, 0], [0.2973, -0.0273, 0]]])"
+    const std::string skeleton = culling == "radial" ? R"(, "skeleton": [[[0, 0.27, 0], [0, 0.1, 0]],
+        [[0.1273, -0.0273, 0], [0.2973, -0.0273, 0]]])"
                                                      : std::string();
     return R"({"format_version": 1, "name": "elbow", "effects": ["gravity", "springs", "self_collisions"],
       "time": {"dt": 0.016666666666666666, "integrator": "implicit_euler", "substeps": 2},
@@ -218,7 +218,8 @@ TEST(RadialCullingGl, ATwistingSleeveWithASegmentObserverIsBitIdenticalWithAndWi
 // opening, culled on its own; the elbow flexes and its crease folds.
 TEST(RadialCullingGl, AnElbowWithASkeletonIsBitIdenticalWithAndWithoutCulling) {
     const Totals t = expectIdentical(elbowScene("none"), elbowScene("radial"), 40);
-    EXPECT_GT(t.ghostFaces, 32u) << "fans over the two openings and the two cuts";
+    // Fans over the two openings (16 faces each) and, from both sides, over the cut (at least 16 each).
+    EXPECT_GE(t.ghostFaces, 64u);
     EXPECT_GT(t.culledSubsteps, 60u);
     EXPECT_GT(t.culledCcd, 0u);
     EXPECT_GT(t.substepsWithNonPositive, 0u) << "the elbow must fold: some faces not positive";

@@ -52,7 +52,8 @@ glm::dvec3 foot(const glm::dvec3& x, const Bone& bone) {
 }
 
 /// Faces of `faces` with every corner in front of the bone: n·(x − foot(x)) > 0.
-std::size_t facesInFront(const std::vector<Triangle>& faces, const std::vector<glm::dvec3>& x, const Bone& bone) {
+std::size_t facesInFront(const std::vector<Triangle>& faces, const std::vector<glm::dvec3>& x,
+                         const Bone& bone) {
     std::size_t count = 0;
     for (const Triangle& t : faces) {
         const glm::dvec3 n = glm::cross(x[t[1]] - x[t[0]], x[t[2]] - x[t[0]]);
@@ -119,8 +120,8 @@ TEST(BoneClusters, AnElbowIsWatchedByItsThreeBonesPieceByPiece) {
         // near them from being freed (a cut is where pieces meet, whose pairs are tested anyway).
         EXPECT_EQ(facesInFront(members[piece], x, bone), members[piece].size());
         const std::size_t ghostsInFront = facesInFront(closure.ghosts.faces, x, bone);
-        std::cout << "[elbow] piece " << piece << ": " << members[piece].size() << " faces, "
-                  << ghostsInFront << " of " << closure.ghosts.faces.size() << " ghost faces in front\n";
+        std::cout << "[elbow] piece " << piece << ": " << members[piece].size() << " faces, " << ghostsInFront
+                  << " of " << closure.ghosts.faces.size() << " ghost faces in front\n";
         EXPECT_GE(ghostsInFront, closure.ghosts.faces.size() * 3 / 4);
         EXPECT_GT(closure.volume6, 0.0); // the tube's faces wind outward
     }
@@ -163,15 +164,18 @@ TEST(BoneClusters, ABoneSplitsItsFacesIntoConnectedPieces) {
 TEST(BoneClusters, TheDistanceIsToTheSegmentsNearestPoint) {
     // Squared distances against the formula written here, at points beyond both ends and beside.
     const Bone bone{glm::dvec3(0, 0, 0), glm::dvec3(0, 2, 0)};
-    for (const glm::dvec3& p : {glm::dvec3(1, 1, 0), glm::dvec3(0, -3, 0), glm::dvec3(0, 5, 4), glm::dvec3(0.5, 0.5, 0.5)})
-        EXPECT_NEAR(model::squaredDistanceToBone(p, bone), glm::dot(p - foot(p, bone), p - foot(p, bone)), 1e-15);
+    for (const glm::dvec3& p :
+         {glm::dvec3(1, 1, 0), glm::dvec3(0, -3, 0), glm::dvec3(0, 5, 4), glm::dvec3(0.5, 0.5, 0.5)})
+        EXPECT_NEAR(model::squaredDistanceToBone(p, bone), glm::dot(p - foot(p, bone), p - foot(p, bone)),
+                    1e-15);
 }
 
 TEST(BoneClusters, BadInputThrows) {
     const std::vector<glm::dvec3> x{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     const Bone bone{glm::dvec3(0, 0, 1), glm::dvec3(1, 0, 1)};
     EXPECT_THROW(model::boneClusters({{0, 1, 2}}, x, {}), std::invalid_argument);
-    EXPECT_THROW(model::boneClusters({{0, 1, 2}}, x, {Bone{glm::dvec3(1), glm::dvec3(1)}}), std::invalid_argument);
+    EXPECT_THROW(model::boneClusters({{0, 1, 2}}, x, {Bone{glm::dvec3(1), glm::dvec3(1)}}),
+                 std::invalid_argument);
     EXPECT_THROW(model::boneClusters({{0, 1, 3}}, x, {bone}), std::out_of_range);
     // A piece whose loop cannot be filled (a pinch: two triangles touching at one node) stays open.
     const std::vector<glm::dvec3> bowtie{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
