@@ -64,9 +64,9 @@ std::size_t facesInFront(const std::vector<Triangle>& faces, const std::vector<g
     return count;
 }
 
-// The scene's elbow: radius 0.08 m, 0.5 m along the axis, bent by 90 degrees in its middle third
-// (generateTube: the top third runs down the Y axis from y = 0.25, the arc turns towards +X about
-// (r, 0.25 − L/3, 0) with r = (L/3) / (π/2), and the last third runs along +X).
+// An elbow like scenes/elbow.json's: radius 0.08 m, 0.5 m along the axis, bent by 90 degrees in its middle
+// third (generateTube: the top third runs down the Y axis from y = 0.25, the arc turns towards +X about (r,
+// 0.25 − L/3, 0) with r = (L/3) / (π/2), and the last third runs along +X).
 constexpr double kLength = 0.5, kRadius = 0.08;
 const double kThird = kLength / 3.0, kArc = kThird / (std::numbers::pi / 2.0);
 const glm::dvec3 kBendStart(0.0, 0.25 - kThird, 0.0), kBendCentre = kBendStart + glm::dvec3(kArc, 0.0, 0.0);
