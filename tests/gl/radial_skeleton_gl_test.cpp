@@ -5,7 +5,8 @@
 // bone's first end; the GPU frees what the twin frees (where the GPU evaluates the GLSL as written)
 // and most of the still elbow, where neither its centroid nor a segment between its openings frees
 // anything (neither lies inside the bent tube); folded through itself, no face it frees intersects a
-// face of its own piece at any of eight times of the substep (exact oracle).
+// face of its own piece at any of eight times of the substep (exact oracle); a bone outside its piece,
+// or poking out of it, frees nothing of that piece.
 
 #include "cpu/radial_twin.hpp"
 #include "model/flat_model.hpp"
@@ -19,7 +20,9 @@
 
 #include <glm/geometric.hpp>
 
+#include <array>
 #include <cstdio>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -144,6 +147,36 @@ TEST(RadialSkeletonGl, AnElbowFoldedThroughItselfFreesNothingThatIntersectsItsPi
     EXPECT_LT(run.freeCount, model.faceCount());
     EXPECT_GT(test::expectFreeFacesIntersectNothing(model, x0, x1, run.free, config.faceObserver), 0u)
         << "the fold must really intersect within a piece, or the test shows nothing";
+}
+
+// Built to defeat the skeleton: the forearm's bone moved 0.2 m off the limb (its piece does not wind
+// around it: the failed premise is counted and the piece frees nothing), and one that pokes out of
+// the forearm's opening (the faces it passes through meet every footprint: nothing of the piece is
+// free). The upper arm, watched by its own bone, stays free in both.
+TEST(RadialSkeletonGl, ABoneOutsideItsPieceFreesNothingOfIt) {
+    Scene scene = elbowScene(true);
+    const model::FlatModel model = model::flatten(scene);
+    const std::vector<glm::vec3> x0 = floats(model.positions);
+    std::array<glm::dvec3, 2>& forearm = scene.bodies[0].skeleton[1];
+    const std::array<glm::dvec3, 2> inside = forearm;
+    for (const auto& [bone, windsOnce] :
+         {std::pair{
+              std::array<glm::dvec3, 2>{inside[0] + glm::dvec3(0, 0, 0.2), inside[1] + glm::dvec3(0, 0, 0.2)},
+              false},
+          std::pair{std::array<glm::dvec3, 2>{inside[0], inside[1] + glm::dvec3(0.1, 0, 0)}, true}}) {
+        forearm = bone;
+        const passes::RadialCullingConfig config = skeletonConfig(model, scene);
+        ASSERT_EQ(config.surfaces.size(), 2u);
+        const test::CullingRun run = test::runCulling(model, config, x0, x0);
+        EXPECT_EQ(run.winding[0], (passes::RadialWinding{1, false}));
+        EXPECT_EQ(run.winding[1].number == 1 && !run.winding[1].undecided, windsOnce);
+        EXPECT_EQ(run.violatedStat, windsOnce ? 0u : 1u);
+        std::uint32_t upperFree = 0, forearmFree = 0;
+        for (std::size_t f = 0; f < model.faceCount(); ++f)
+            (config.faceObserver[f] == 0 ? upperFree : forearmFree) += run.free[f];
+        EXPECT_EQ(forearmFree, 0u);
+        EXPECT_GT(upperFree, 0u);
+    }
 }
 
 } // namespace
