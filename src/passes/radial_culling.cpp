@@ -206,6 +206,20 @@ std::uint32_t appendLoop(RadialGhosts& g, const model::ObjectRange& r,
     return first;
 }
 
+/// Appends the fans of model::ghostTriangles (object-local nodes) for `observer`: their faces, and a
+/// ghost node at the mean of each filled loop.
+void appendMeanFans(RadialGhosts& g, const model::ObjectRange& r, std::uint32_t observer,
+                    const model::GhostTriangles& fans) {
+    appendGhostFans(g, r, observer, fans.faces);
+    for (std::uint32_t loop : fans.ghostNodeLoop) {
+        const std::vector<std::uint32_t>& nodes = fans.loops[loop].nodes;
+        RadialGhostNode node;
+        node.loopFirst = appendLoop(g, r, nodes);
+        node.loopCount = static_cast<std::uint32_t>(nodes.size());
+        g.nodes.push_back(node);
+    }
+}
+
 /// Ties a user observer at `point` to four of object `r`'s nodes (model::observerFrame).
 void frameObserver(std::array<std::uint32_t, 4>& nodes, std::array<float, 4>& weights,
                    const model::FlatModel& model, const model::ObjectRange& r, std::size_t object,
@@ -255,14 +269,7 @@ bool observeObject(RadialCullingConfig& config, const model::FlatModel& model, c
         if (ghosts.faces.empty()) return false;
         // "auto": a closure with (almost) no inside has nowhere to put an observer; clusters serve it.
         if (settings.observers == RadialObservers::Auto && roundness < kFlatRoundness) return false;
-        appendGhostFans(config.ghosts, r, observer, ghosts.faces);
-        for (std::uint32_t loop : ghosts.ghostNodeLoop) {
-            const std::vector<std::uint32_t>& nodes = ghosts.loops[loop].nodes;
-            RadialGhostNode node;
-            node.loopFirst = appendLoop(config.ghosts, r, nodes);
-            node.loopCount = static_cast<std::uint32_t>(nodes.size());
-            config.ghosts.nodes.push_back(node);
-        }
+        appendMeanFans(config.ghosts, r, observer, ghosts);
         surface.ghostFaceCount = static_cast<std::uint32_t>(ghosts.faces.size());
     }
     for (std::uint32_t f = 0; f < r.faceCount; ++f) {
@@ -352,14 +359,7 @@ void observeBones(RadialCullingConfig& config, const model::FlatModel& model, co
         frameObserver(surface.frameNodes, surface.frameWeights, model, r, object, bone[0]);
         frameObserver(surface.segmentFrameNodes, surface.segmentFrameWeights, model, r, object, bone[1]);
         surface.framed = surface.segment = true;
-        appendGhostFans(config.ghosts, r, observer, closure.ghosts.faces);
-        for (std::uint32_t loop : closure.ghosts.ghostNodeLoop) {
-            const std::vector<std::uint32_t>& nodes = closure.ghosts.loops[loop].nodes;
-            RadialGhostNode node;
-            node.loopFirst = appendLoop(config.ghosts, r, nodes);
-            node.loopCount = static_cast<std::uint32_t>(nodes.size());
-            config.ghosts.nodes.push_back(node);
-        }
+        appendMeanFans(config.ghosts, r, observer, closure.ghosts);
         for (std::uint32_t f : members[piece]) config.faceObserver[r.firstFace + f] = observer;
         config.surfaces.push_back(std::move(surface));
         ++config.clusters;
