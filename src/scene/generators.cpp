@@ -89,10 +89,13 @@ struct AxisPoint {
     double turned = 0.0;
 };
 AxisPoint bentAxis(double length, double bendRadians, double s) {
-    const double third = length / 3.0, radius = third / bendRadians;
-    const glm::dvec3 bendStart(0.0, 0.5 * length - third, 0.0), centre = bendStart + glm::dvec3(radius, 0, 0);
+    const double third = length / 3.0;
+    const glm::dvec3 bendStart(0.0, 0.5 * length - third, 0.0);
+    // The arc of radius third / bendRadians, written without that radius: it stays finite for the
+    // smallest angle (a subnormal one gives the straight tube's points).
     const auto onArc = [&](double angle) {
-        return centre + radius * glm::dvec3(-std::cos(angle), -std::sin(angle), 0.0);
+        const double half = std::sin(0.5 * angle);
+        return bendStart + third * glm::dvec3(2.0 * half * half, -std::sin(angle), 0.0) / bendRadians;
     };
     if (s <= third) return {{0.0, 0.5 * length - s, 0.0}, 0.0};
     if (s <= 2.0 * third) {

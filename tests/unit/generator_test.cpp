@@ -191,6 +191,13 @@ TEST(GeneratorTube, ABentTubeKeepsItsRingsRoundAndFacingOut) {
         EXPECT_GT(glm::dot(n, centre - axis), 0.0);
     }
     EXPECT_EQ(model::boundaryLoops(b.faces, b.positions.size()).size(), 2u);
+    // The smallest bends (down to a subnormal angle) give the straight tube, never inf or NaN.
+    for (double degrees : {1e-12, 1e-300, 4.9e-324}) {
+        const Body nearlyStraight = generateTube(radius, length, around, along, degrees);
+        for (std::size_t k = 0; k < straight.positions.size(); ++k) // 1e-12: roundings of coordinates below 1
+            EXPECT_NEAR(glm::length(nearlyStraight.positions[k] - straight.positions[k]), 0.0, 1e-12)
+                << degrees;
+    }
 }
 
 TEST(GeneratorTetBox, BoundaryVolumeAndOrientation) {
