@@ -63,20 +63,14 @@ def variants(args):
                 scene["objects"][0]["generator"]["subdivisions"] = sub
                 scene["objects"][0]["transform"]["scale"] = [3, 1, 1]
                 out.append(("cloth_cigar", f"cigar{sub}", scene))
-        elif name == "sleeve":
-            base = load_scene(os.path.join(ROOT, "scenes", "sleeve.json"))
-            for res in args.sleeve_resolutions.split(","):
+        elif name in ("sleeve", "elbow"):  # tube generators at each resolution AROUNDxALONG
+            base = load_scene(os.path.join(ROOT, "scenes", name + ".json"))
+            resolutions = args.sleeve_resolutions if name == "sleeve" else args.elbow_resolutions
+            for res in resolutions.split(","):
                 around, along = (int(v) for v in res.split("x"))
                 scene = json.loads(json.dumps(base))
                 scene["objects"][0]["generator"]["resolution"] = [around, along]
-                out.append(("sleeve", f"sleeve{around}x{along}", scene))
-        elif name == "elbow":
-            base = load_scene(os.path.join(ROOT, "scenes", "elbow.json"))
-            for res in args.elbow_resolutions.split(","):
-                around, along = (int(v) for v in res.split("x"))
-                scene = json.loads(json.dumps(base))
-                scene["objects"][0]["generator"]["resolution"] = [around, along]
-                out.append(("elbow", f"elbow{around}x{along}", scene))
+                out.append((name, f"{name}{around}x{along}", scene))
         elif name == "mask":
             scene = load_scene(os.path.join(ROOT, "scenes", "mask_fold.json"))
             for obj in scene["objects"]:

@@ -10,6 +10,7 @@
 #include "model/bone_clusters.hpp"
 #include "model/radial_surfaces.hpp"
 #include "scene/scene_detail.hpp"
+#include "solid_angle_winding.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,22 +27,10 @@
 namespace glcollide {
 namespace {
 
+using test::windingNumber;
+
 using model::Bone;
 using model::Triangle;
-
-double windingNumber(const std::vector<Triangle>& faces, const std::vector<glm::dvec3>& x,
-                     const glm::dvec3& q) {
-    double sum = 0.0;
-    for (const Triangle& t : faces) {
-        const glm::dvec3 a = x[t[0]] - q, b = x[t[1]] - q, c = x[t[2]] - q;
-        const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
-        const double numerator = glm::dot(a, glm::cross(b, c));
-        const double denominator =
-            la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
-        sum += 2.0 * std::atan2(numerator, denominator);
-    }
-    return sum / (4.0 * std::numbers::pi);
-}
 
 /// The nearest point of segment ab to x, written here (not the model's squaredDistanceToBone).
 glm::dvec3 foot(const glm::dvec3& x, const Bone& bone) {

@@ -7,6 +7,7 @@
 
 #include "model/surface_clusters.hpp"
 #include "scene/scene_detail.hpp"
+#include "solid_angle_winding.hpp"
 
 #include <gtest/gtest.h>
 
@@ -27,28 +28,14 @@
 namespace glcollide {
 namespace {
 
+using test::windingNumber;
+
 using model::Triangle;
 
 const std::string kExternal = GLCOLLIDE_TEST_DATA_DIR "/external/";
 
 glm::dvec3 unitNormal(const Triangle& t, const std::vector<glm::dvec3>& x) {
     return glm::normalize(glm::cross(x[t[1]] - x[t[0]], x[t[2]] - x[t[0]]));
-}
-
-/// Winding number of a closed triangle surface around q: the sum of its faces' signed solid
-/// angles over 4π (Van Oosterom & Strackee 1983).
-double windingNumber(const std::vector<Triangle>& faces, const std::vector<glm::dvec3>& x,
-                     const glm::dvec3& q) {
-    double sum = 0.0;
-    for (const Triangle& t : faces) {
-        const glm::dvec3 a = x[t[0]] - q, b = x[t[1]] - q, c = x[t[2]] - q;
-        const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
-        const double numerator = glm::dot(a, glm::cross(b, c));
-        const double denominator =
-            la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
-        sum += 2.0 * std::atan2(numerator, denominator);
-    }
-    return sum / (4.0 * std::numbers::pi);
 }
 
 /// Number of edge-connected pieces of `faces` (shared undirected edges), by union-find.
