@@ -192,10 +192,13 @@ TEST(GeneratorTube, ABentTubeKeepsItsRingsRoundAndFacingOut) {
     }
     EXPECT_EQ(model::boundaryLoops(b.faces, b.positions.size()).size(), 2u);
     // The smallest bends (down to a subnormal angle) give the straight tube, never inf or NaN.
-    for (double degrees : {1e-12, 1e-300, 4.9e-324}) {
+    // 1e-310 degrees is a subnormal angle in radians (1.7e-312), whose own rounding (its unit in the
+    // last place, 4.9e-324, is 3e-12 of it) moves points by up to 3e-12 of coordinates below 1 m:
+    // 1e-11 bounds that and the roundings of the formula.
+    for (double degrees : {1e-12, 1e-300, 1e-310, 4.9e-324}) {
         const Body nearlyStraight = generateTube(radius, length, around, along, degrees);
-        for (std::size_t k = 0; k < straight.positions.size(); ++k) // 1e-12: roundings of coordinates below 1
-            EXPECT_NEAR(glm::length(nearlyStraight.positions[k] - straight.positions[k]), 0.0, 1e-12)
+        for (std::size_t k = 0; k < straight.positions.size(); ++k)
+            EXPECT_NEAR(glm::length(nearlyStraight.positions[k] - straight.positions[k]), 0.0, 1e-11)
                 << degrees;
     }
 }
