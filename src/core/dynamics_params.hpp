@@ -60,6 +60,16 @@ struct NodeUpdateParams {
     bool checkFinite = false; ///< record the first non-finite node in the health buffer (GPU only)
 };
 
+/// GroundImpact (the intersection-free response, decision 0024 "Restitution at any step"): a node that
+/// came down into the ground's band within the substep leaves with at least e times its impact speed.
+struct GroundImpactParams {
+    double bandTop = 0.0;      ///< m: the ground's height plus its band (the contact thickness)
+    double gravityY = 0.0;     ///< m/s²: gravity along the ground's normal (+y); 0 without gravity
+    double restitution = 0.0;  ///< (0, 1]: the fraction of the impact speed a node leaves with
+    double friction = 0.0;     ///< Coulomb μ (>= 0)
+    double restingSpeed = 0.0; ///< m/s: slower impacts are resting contact (NodeUpdateParams::restingSpeed)
+};
+
 /// The implicit (backward) Euler velocity update of Baraff & Witkin 1998, one linearised step:
 ///   (M − h·∂f/∂v − h²·∂f/∂x) Δv = h·(f + h·∂f/∂x·v),   v += Δv
 /// solved by block-Jacobi preconditioned conjugate gradients (docs/integration.md). Positions

@@ -20,6 +20,7 @@
 #include "passes/implicit_solver.hpp"
 #include "passes/row_layout.hpp"
 #include "passes/energy_guard.hpp"
+#include "passes/ground_impact.hpp"
 #include "passes/safe_step.hpp"
 #include "passes/untangle.hpp"
 
@@ -75,6 +76,8 @@ struct Engine::Impl {
     std::optional<passes::NodeUpdatePass> nodeUpdate;
     std::optional<passes::NodePredictPass> nodePredict;
     std::optional<passes::SafeStepPass> safeStep;
+    // With SafeStep, when the ground has a restitution (decision 0024, "Restitution at any step").
+    std::optional<passes::GroundImpactPass> groundImpact;
     std::optional<passes::EnergyGuardPass> energyGuard;
     std::optional<passes::UntanglePass> untangle;
     std::optional<passes::NewtonLineSearchPass> lineSearch;
@@ -358,6 +361,17 @@ void Engine::Impl::makePass(engine::Stage stage) {
     case Stage::SafeStep:
         safeStep.emplace(passes::SafeStepSettings{}, static_cast<std::uint32_t>(model.objects.size()),
                          plan.nodeUpdateParams.ground, plan.nodeUpdateParams.groundHeight);
+        // The ground's restitution at any step (decision 0024): impacts within the substep.
+        if (plan.nodePredictParams.ground && plan.nodePredictParams.restitution > 0.0) {
+            const NodeUpdateParams& np = plan.nodePredictParams;
+            GroundImpactParams gi;
+            gi.bandTop = np.groundHeight + np.groundBand;
+            gi.gravityY = scene.effects.has(Effect::Gravity) ? scene.gravity.y : 0.0;
+            gi.restitution = np.restitution;
+            gi.friction = np.friction;
+            gi.restingSpeed = np.restingSpeed;
+            groundImpact.emplace(buffers.nodeCount, gi);
+        }
         break;
     case Stage::EnergyGuard:
         energyGuard.emplace(plan.energyGuardParams, buffers.springCount);
@@ -501,6 +515,7 @@ void addSafeStepCounts(const passes::SafeStepCounts& counts, CollisionStats& c) 
 /// One substep: the plan's stages in the plan's order (PipelinePlan::stages states it).
 void Engine::Impl::substep(int index, bool lastOfFrame) {
     using engine::Stage;
+    if (groundImpact) groundImpact->recordStart(buffers);
     for (Stage stage : stages) {
         switch (stage) {
         case Stage::NodeForce:
@@ -628,6 +643,7 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             addSafeStepCounts(run(*safeStep, *collision, substeps.substepLength,
                                   found.ccdVertexFaceHits + found.ccdEdgeEdgeHits),
                               stats.collision);
+            if (groundImpact) run(*groundImpact);
             break;
         }
         case Stage::EnergyGuard: {

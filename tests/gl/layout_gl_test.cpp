@@ -99,6 +99,7 @@ const std::map<std::string, GLint> kExpectedBindings = {
     {"RadialFeetBuf", GLC_BIND_RADIAL_FEET},
     {"RadialNonPositiveBuf", GLC_BIND_RADIAL_NONPOSITIVE},
     {"RadialCellsBuf", GLC_BIND_RADIAL_CELLS},
+    {"GroundImpactStartBuf", GLC_BIND_GROUND_IMPACT_START},
     {"RadialFreeBuf", GLC_BIND_RADIAL_FREE},
     {"RadialMovedBuf", GLC_BIND_RADIAL_MOVED},
     {"CcdVertexFaceTestsBuf", GLC_BIND_CCD_VERTEX_FACE_TESTS},
