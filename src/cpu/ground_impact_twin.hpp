@@ -13,10 +13,10 @@
 namespace glcollide::cpu {
 
 struct GroundImpactInput {
-    std::vector<glm::vec3> start;          ///< x0 per node
-    std::vector<glm::vec3> end;            ///< x1 per node (as SafeStep left it)
-    std::vector<glm::vec3> startVelocity;  ///< v at the start of the substep
-    std::vector<float> inverseMass;        ///< per node (0: pinned)
+    std::vector<glm::vec3> start;         ///< x0 per node
+    std::vector<glm::vec3> end;           ///< x1 per node (as SafeStep left it)
+    std::vector<glm::vec3> startVelocity; ///< v at the start of the substep
+    std::vector<float> inverseMass;       ///< per node (0: pinned)
 };
 
 /// The impacts on `velocity` (v after the step, changed in place); returns how many nodes changed.

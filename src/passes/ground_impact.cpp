@@ -13,7 +13,8 @@ namespace glcollide::passes {
 
 GroundImpactPass::GroundImpactPass(std::uint32_t nodeCount, const GroundImpactParams& params)
     : m_nodeCount(nodeCount),
-      m_startVelocities(gl::makeBuffer("groundImpactStartVelocities", std::vector<float>(4 * std::size_t{nodeCount}, 0.0f))),
+      m_startVelocities(gl::makeBuffer("groundImpactStartVelocities",
+                                       std::vector<float>(4 * std::size_t{nodeCount}, 0.0f))),
       m_program("ground_impact") {
     if (!(params.restitution > 0.0 && params.restitution <= 1.0))
         throw Error("GroundImpact: restitution must be in (0, 1], got " + std::to_string(params.restitution));

@@ -48,7 +48,8 @@ TEST(GroundImpactGl, MatchesTheTwin) {
         in.start.emplace_back(coordinate(rng), y0, coordinate(rng));
         in.end.emplace_back(in.start.back().x, y1, in.start.back().z);
         const float speedKind = unit(rng);
-        const float v0y = speedKind < 0.6f ? -8.0f * unit(rng) : (speedKind < 0.8f ? -0.1f * unit(rng) : 2.0f * unit(rng));
+        const float v0y =
+            speedKind < 0.6f ? -8.0f * unit(rng) : (speedKind < 0.8f ? -0.1f * unit(rng) : 2.0f * unit(rng));
         in.startVelocity.emplace_back(coordinate(rng), v0y, coordinate(rng));
         in.inverseMass.push_back(i % 41 == 0 ? 0.0f : 3.0f);
         velocity[i] = glm::vec3(2.0f * coordinate(rng), 0.3f * coordinate(rng), 2.0f * coordinate(rng));
@@ -80,13 +81,15 @@ TEST(GroundImpactGl, MatchesTheTwin) {
     // missed or mis-scaled differs by the restitution's or friction's share of its speed (> 0.01 m/s).
     const float tolerance = std::ldexp(1.0f, -16);
     for (std::uint32_t i = 0; i < nodes; ++i)
-        for (int k = 0; k < 3; ++k) EXPECT_NEAR(gpu[i][k], velocity[i][k], tolerance) << "node " << i << " axis " << k;
+        for (int k = 0; k < 3; ++k)
+            EXPECT_NEAR(gpu[i][k], velocity[i][k], tolerance) << "node " << i << " axis " << k;
 }
 
 // A flat cloth `height` above the ground's band, with a horizontal velocity, dropped onto the ground.
 std::string flatClothDrop(const char* integrator, int substeps, double restitution, double friction,
                           double sideways, double height = 1.0) {
-    return std::string(R"({"format_version": 1, "name": "flat cloth drop", "effects": ["gravity", "springs", "ground", "self_collisions"],
+    return std::string(
+               R"({"format_version": 1, "name": "flat cloth drop", "effects": ["gravity", "springs", "ground", "self_collisions"],
       "time": {"dt": 0.016666666666666666, "integrator": ")") +
            integrator + R"(", "substeps": )" + std::to_string(substeps) + R"(},
       "ground": {"height": 0.0, "restitution": )" +
@@ -191,8 +194,8 @@ TEST(GroundImpactGl, AFlatClothBouncesAsHighAsItsRestitutionSaysAtAnyStep) {
 
 // Coulomb friction at the impact: the tangential speed drops by μ·(1 + e)·vImp in the impact's
 // substep. 1 m/s sideways, μ = 0.1, e = 0.5, vImp ≈ 4.4 m/s: 0.35 m/s left. (In the substeps after,
-// the band's response takes more while the ground penalty still pushes.) Tolerance: the float rounding of the impact
-// speed and the velocities (~10⁻⁵ m/s), far below the 0.66 m/s friction takes.
+// the band's response takes more while the ground penalty still pushes.) Tolerance: the float rounding of the
+// impact speed and the velocities (~10⁻⁵ m/s), far below the 0.66 m/s friction takes.
 TEST(GroundImpactGl, FrictionAtTheImpactTakesItsShareOfTheImpulse) {
     const double e = 0.5, mu = 0.1, sideways = 1.0;
     const Observed o = dropFlatCloth(flatClothDrop("implicit_euler", 1, e, mu, sideways), 45);
