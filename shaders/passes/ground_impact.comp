@@ -42,7 +42,8 @@ void main() {
     vec3 v = g_velocities[i].xyz;
     float leaving = u_restitution * impactSpeed;
     if (!(v.y < leaving)) return;
-    float change = leaving + impactSpeed; // the impact's whole normal change, as the band's response
+    // The impact's whole normal change, as the band's response takes it.
+    float change = leaving + impactSpeed;
     v.y = leaving;
     float tangentialSpeed = length(v.xz);
     if (tangentialSpeed > 0.0) v.xz *= max(0.0, 1.0 - u_friction * change / tangentialSpeed);

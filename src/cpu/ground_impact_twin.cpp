@@ -27,8 +27,8 @@ std::size_t groundImpact(const GroundImpactParams& params, const GroundImpactInp
         glm::vec3& v = velocity[i];
         const float leaving = restitution * impactSpeed;
         if (!(v.y < leaving)) continue;
-        const float change =
-            leaving + impactSpeed; // the impact's whole normal change, as the band's response
+        // The impact's whole normal change, as the band's response takes it.
+        const float change = leaving + impactSpeed;
         v.y = leaving;
         const float tangentialSpeed = std::sqrt(v.x * v.x + v.z * v.z);
         if (tangentialSpeed > 0.0f) {
