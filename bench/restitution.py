@@ -87,8 +87,10 @@ def run(binary, scene, frames, work, name):
     return mean_heights(out), stats
 
 
-def bounce(heights, landed_at):
-    landing = next(i for i, y in enumerate(heights) if y <= landed_at)
+def bounce(heights):
+    """The frame of the first impact (the first frame-end height lower than the next, after the
+    fall) and the highest frame-end height after it."""
+    landing = next(i for i in range(1, len(heights) - 1) if heights[i] < heights[i - 1] and heights[i + 1] > heights[i])
     return landing, max(heights[landing + 1:])
 
 
@@ -119,7 +121,7 @@ def main():
         for integrator, substeps, e in runs:
             name = f"cloth_{integrator}_{substeps}_{e}"
             heights, stats = run(args.binary, cloth_scene(integrator, substeps, e, 1.0), 60, work, name)
-            landing, apex = bounce(heights, TOP + 0.001)
+            landing, apex = bounce(heights)
             expected = oracle_apex(1.0 + TOP, e, stats["substeps"])
             rows.append({"body": "flat cloth", "integrator": integrator, "restitution": e, "landing_frame": landing,
                          "apex_m": apex, "oracle_apex_m": expected, "error_m": apex - expected, **summary(stats)})
@@ -128,7 +130,7 @@ def main():
             name = f"box_{substeps}"
             heights, stats = run(args.binary, box_scene(substeps, 0.8), 90, work, name)
             rest = heights[-1]
-            landing = next(i for i, y in enumerate(heights) if y <= rest + 0.002)
+            landing, _ = bounce(heights)
             rows.append({"body": "stiff tet box", "integrator": "implicit_euler", "restitution": 0.8,
                          "landing_frame": landing, "rebound_m": max(heights[landing:]) - rest,
                          "rigid_rebound_m": 0.8 ** 2 * (1.35 - rest), **summary(stats)})
