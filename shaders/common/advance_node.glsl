@@ -21,22 +21,10 @@ vec3 advancedPosition(vec3 x, vec3 v) {
 }
 
 #ifdef GLC_GROUND
-// The ground's velocity response: an approaching velocity is reflected with the restitution e and
-// its tangential part reduced by Coulomb friction.
-void groundResponse(inout vec3 v, float e) {
-    if (!(v.y < 0.0)) return;
-    float normalSpeed = -v.y;
-    v.y = e * normalSpeed;
-    float tangentialSpeed = length(v.xz);
-    if (tangentialSpeed > 0.0) {
-        // Coulomb: the normal impulse (1+e)|vn| bounds the tangential change.
-        float scale = max(0.0, 1.0 - u_friction * (1.0 + e) * normalSpeed / tangentialSpeed);
-        v.xz *= scale;
-    }
-}
+#include "common/ground_response.glsl"
 
 void groundResponse(inout vec3 v) {
-    groundResponse(v, u_restitution);
+    groundResponse(v, u_restitution, u_friction);
 }
 
 // The ground plane: a node below it is put on it, with the velocity response.

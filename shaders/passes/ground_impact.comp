@@ -5,16 +5,18 @@
 // (x1 as cut) came down onto the ground within the substep; the solve (or the cut) stopped it
 // there, and with it the impact's velocity. Its impact speed is its free fall from x0 to the band's
 // top: vImp² = v0y² − 2·a_y·(y0 − top), v0 its velocity at the start of the substep and a_y the
-// scene's gravity. An impact faster than u_restingSpeed leaves with at least e·vImp upwards
-// (restitution e), and Coulomb friction takes μ·(1 + e)·vImp, the impact's whole normal change,
-// off its tangential speed (the solve's ground penalty that stopped it has no friction). The positions are not changed (the CCD's check stands), and the
-// energy guard that follows sees the new velocities: the node's normal kinetic energy e²·½m·vImp²
-// is at most what its fall to the band released.
+// scene's gravity. An impact faster than u_restingSpeed gets the ground's velocity response at that
+// speed (common/ground_response.glsl): it leaves with e·vImp upwards, unless it already leaves
+// faster, and Coulomb friction takes up to μ·(1 + e)·vImp, the impact's whole normal change, off its
+// tangential speed (the solve's ground penalty that stopped it has no friction). The positions are
+// not changed (the CCD's check stands), and the energy guard that follows sees the new velocities:
+// the node's normal kinetic energy e²·½m·vImp² is at most what its fall to the band released.
 // Twin: cpu::groundImpact.
 #include "common/layout.glsl"
 
 layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 #include "common/index.glsl" // after local_size: it reads gl_WorkGroupSize
+#include "common/ground_response.glsl"
 
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
 layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) readonly buffer PredictedPositionsBuf { vec4 g_predicted[]; };
@@ -40,12 +42,8 @@ void main() {
     float impactSpeed = sqrt(max(v0y * v0y - 2.0 * u_gravityY * (y0 - u_bandTop), 0.0));
     if (!(impactSpeed > u_restingSpeed)) return;
     vec3 v = g_velocities[i].xyz;
-    float leaving = u_restitution * impactSpeed;
-    if (!(v.y < leaving)) return;
-    // The impact's whole normal change, as the band's response takes it.
-    float change = leaving + impactSpeed;
-    v.y = leaving;
-    float tangentialSpeed = length(v.xz);
-    if (tangentialSpeed > 0.0) v.xz *= max(0.0, 1.0 - u_friction * change / tangentialSpeed);
+    if (!(v.y < u_restitution * impactSpeed)) return; // already leaving faster
+    v.y = -impactSpeed; // the velocity it hit the ground with, before the solve or the cut stopped it
+    groundResponse(v, u_restitution, u_friction);
     g_velocities[i] = vec4(v, 0.0);
 }

@@ -25,14 +25,13 @@ std::size_t groundImpact(const GroundImpactParams& params, const GroundImpactInp
         const float impactSpeed = std::sqrt(std::max(v0y * v0y - 2.0f * gravityY * (y0 - bandTop), 0.0f));
         if (!(impactSpeed > restingSpeed)) continue;
         glm::vec3& v = velocity[i];
-        const float leaving = restitution * impactSpeed;
-        if (!(v.y < leaving)) continue;
-        // The impact's whole normal change, as the band's response takes it.
-        const float change = leaving + impactSpeed;
-        v.y = leaving;
+        if (!(v.y < restitution * impactSpeed)) continue; // already leaving faster
+        // The ground's response (common/ground_response.glsl) to the velocity it hit the ground with.
+        v.y = restitution * impactSpeed;
         const float tangentialSpeed = std::sqrt(v.x * v.x + v.z * v.z);
         if (tangentialSpeed > 0.0f) {
-            const float scale = std::max(0.0f, 1.0f - friction * change / tangentialSpeed);
+            const float scale =
+                std::max(0.0f, 1.0f - friction * (1.0f + restitution) * impactSpeed / tangentialSpeed);
             v.x *= scale;
             v.z *= scale;
         }

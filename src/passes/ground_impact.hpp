@@ -5,10 +5,11 @@
 // velocity response, which acts on nodes already in its band at the start of a substep, never
 // sees it moving: at one substep per frame a ground of restitution 0.8 bounced nothing. This pass
 // runs after SafeStep and before the energy guard: every node that started above the band and ends
-// in it leaves with at least e times its impact speed (its free fall from x0 to the band, from its
-// start velocity, which recordStart() keeps), with Coulomb friction bounded by the impact's normal change (1
-// + e)·vImp. The intersection-free response only; built when the ground has a restitution above 0. Timed as
-// part of SafeStep. CPU twin: cpu::groundImpact.
+// in it gets the ground's velocity response (common/ground_response.glsl) at its impact speed, its
+// free fall from x0 to the band from its start velocity, which recordStart() keeps: it leaves with e
+// times that speed, and Coulomb friction is bounded by (1 + e) times it. The intersection-free
+// response only; built when the ground has a restitution above 0. Timed as part of SafeStep. CPU
+// twin: cpu::groundImpact.
 
 #include "core/dynamics_params.hpp"
 #include "gl/program.hpp"
