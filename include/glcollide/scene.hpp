@@ -166,6 +166,14 @@ struct CollisionSettings {
     /// >= 0: Coulomb coefficient μ of the vertex-face and edge-edge contacts (the tangential force
     /// is at most μ times the normal one, and at most what stops the sliding); 0: frictionless
     double friction = 0.0;
+    /// 0 … 1, intersection_free only: the fraction of a vertex-face or edge-edge impact's normal
+    /// speed the pair leaves with (ContactImpact, decision 0024 "Restitution between bodies");
+    /// approaches slower than what gravity adds in two substeps are resting contact. 0: inelastic.
+    double restitution = 0.0;
+    /// 1 … 64, with restitution > 0: ContactImpact's rounds of projected Jacobi over the impact pairs;
+    /// more rounds bring every pair nearer its target where several pairs share nodes (the accuracy
+    /// and its cost: docs/benchmarks.md, "Restitution between bodies").
+    int restitutionIterations = 16;
     /// s, > 0: Bridson's response (bridson, and intersection_free where it pushes: under symplectic
     /// Euler and while recovering from intersecting input) separates a pair within the thickness
     /// at no more than depth / max(10·substep, relaxationTime). A time of the scene's own: the same

@@ -47,6 +47,8 @@ uniform uint u_repulsion;        // 0: the filter before an implicit solve (belo
 uniform uint u_countPass;    // 1: count acting contacts per node into .w; 0: add the forces
 uniform uint u_previousSides; // 1: sides of open surfaces from x − dt·v; 0: from x (intersection-free response)
 uniform float u_friction;    // Coulomb μ between bodies (0: none)
+uniform float u_leavingStep;  // s: ContactParams::leavingStep (0: none leaves the solve)
+uniform float u_leavingSpeed; // m/s: ContactParams::leavingSpeed
 
 // Position at the start of the substep: symplectic Euler's last step was x += dt·v with this v
 // (up to rounding, and except for nodes the ground plane clamped), so x − dt·v is where it was.
@@ -119,7 +121,9 @@ uint respond(uvec4 n, vec4 a, vec3 u, float depth) {
     // (GLC_PREDICTED_FORCES: a sticking contact does not creep).
     bool beforeSolve = bridson && u_repulsion == 0u;
     float target = bridson && !beforeSolve ? depth / max(10.0 * u_substep, u_relaxationTime) : 0.0;
-    float penalty = min(u_stiffness * max(depth, 0.0), u_forceCap);
+    // A bounce leaving the thickness gets no penalty from the solve (ContactParams::leavingStep).
+    bool leaving = u_leavingStep > 0.0 && vn > u_leavingSpeed && vn * u_leavingStep >= depth;
+    float penalty = leaving ? 0.0 : min(u_stiffness * max(depth, 0.0), u_forceCap);
     bool acting = beforeSolve ? vn < 0.0 || (friction && penalty > 0.0) : bridson && vn < target;
     float f = normalForce(depth, vn);
     // What the count pass counts: Bridson's acting contacts; with the penalty and friction, the

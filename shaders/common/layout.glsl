@@ -149,8 +149,10 @@
                                            // observer, or a cone of every direction)
 #define GLC_BIND_RADIAL_CELLS 77           // uint[GLC_RADIAL_CELL_WORDS * observers]: the footprint cells marked by
                                            // faces not proven positive (common/radial_cells.glsl)
-// The ground's restitution at any step (GroundImpact, decision 0024 "Restitution at any step").
-#define GLC_BIND_GROUND_IMPACT_START 78    // vec4[nodes]: every node's velocity at the start of the substep
+// Restitution at any step (GroundImpact, ContactImpact; decision 0024 "Restitution at any step").
+#define GLC_BIND_START_VELOCITIES 78       // vec4[nodes]: every node's velocity at the start of the substep
+#define GLC_BIND_IMPACT_IMPULSES 79        // float[vertex-face + edge-edge list slots]: ContactImpact's
+                                           // accumulated normal impulse of each pair (N over the substep)
 #define GLC_RADIAL_CELL_GRID 16            // fine cells per axis of direction space [-1, 1]^3 (a multiple of 4)
 #define GLC_RADIAL_COARSE_GRID 4           // coarse cells per axis (a multiple of 4), for wide footprints
 #define GLC_RADIAL_FOOT_BINS 8             // bins of a segment's feet [0, 1]: a byte per cell
@@ -161,7 +163,7 @@
 // host-state guard saves and restores exactly those, and start-up refuses a device with fewer
 // GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS. tests/gl/layout_gl_test.cpp checks that every block of
 // every kernel lies below it. Add a binding above, then raise this.
-#define GLC_BINDING_COUNT 79
+#define GLC_BINDING_COUNT 80
 
 // Bits of GpuFaceInfo.owned: the face that "owns" a vertex or an edge (the lowest-indexed face
 // containing it) is the only one that generates its vertex-face and edge-edge contacts, so a

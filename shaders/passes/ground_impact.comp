@@ -21,7 +21,7 @@ layout(local_size_x = GLC_WORKGROUP_SIZE) in;
 layout(std430, binding = GLC_BIND_NODE_POSITIONS) readonly buffer NodePositionsBuf { vec4 g_positions[]; };
 layout(std430, binding = GLC_BIND_PREDICTED_POSITIONS) readonly buffer PredictedPositionsBuf { vec4 g_predicted[]; };
 layout(std430, binding = GLC_BIND_NODE_VELOCITIES) buffer NodeVelocitiesBuf { vec4 g_velocities[]; };
-layout(std430, binding = GLC_BIND_GROUND_IMPACT_START) readonly buffer GroundImpactStartBuf { vec4 g_startVelocities[]; };
+layout(std430, binding = GLC_BIND_START_VELOCITIES) readonly buffer StartVelocitiesBuf { vec4 g_startVelocities[]; };
 
 uniform uint u_nodeCount;
 uniform float u_bandTop;      // m: the ground's height plus its band

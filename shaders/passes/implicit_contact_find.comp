@@ -8,7 +8,10 @@
 // approaches (its relative normal velocity below −GLC_APPROACH_SLACK of its scale) gets force 0 and
 // the stiffness k — the tangent quadratic bound of its penalty ½k·max(0, h − d)² at its distance
 // now, which the step cannot pass without resistance (decision 0024, "Approaching pairs in the
-// solve"; the engine gives the first solve a margin, its Newton steps none). A record (an atomic
+// solve"; the engine gives the first solve a margin, its Newton steps none). With a restitution
+// between bodies (ContactParams::leavingStep > 0), a pair within the thickness that bounces out of it
+// within the step gets no record: its linearised penalty, two-sided, would hold it (decision 0024,
+// "Restitution between bodies"). A record (an atomic
 // count: exact even when the capacity is exceeded, and then the host grows the records and runs
 // this again; nothing is dropped) with the penalty
 // force k·depth and its pair's list slot (edge-edge: u_edgeEdgeBase + i); every node row the
@@ -38,6 +41,8 @@ uniform float u_substep;      // s: the side rule's x − dt·v, as the penalty 
 uniform uint u_edgeEdge;      // 0: the vertex-face list, 1: the edge-edge list
 uniform uint u_edgeEdgeBase;  // the first list slot of the edge-edge list: the vertex-face capacity
 uniform uint u_recordCapacity; // records the buffer holds
+uniform float u_leavingStep;  // s: ContactParams::leavingStep (0: every pair within the thickness)
+uniform float u_leavingSpeed; // m/s: ContactParams::leavingSpeed
 
 vec3 previousPosition(uint n) { return g_positions[n].xyz - u_substep * g_velocities[n].xyz; }
 
@@ -57,6 +62,13 @@ ContactPair contactOf(uint i) {
     uvec3 a = faceNodes(item.x / 3u), b = faceNodes(item.y / 3u);
     uint e = item.x % 3u, g = item.y % 3u;
     return edgeEdgeContact(a[e], a[(e + 1u) % 3u], b[g], b[(g + 1u) % 3u]);
+}
+
+// The pair's relative normal velocity at the velocities the solve is linearised at.
+float normalSpeed(ContactPair pair) {
+    vec3 relative = vec3(0.0);
+    for (uint k = 0u; k < 4u; ++k) relative += pair.weights[k] * g_velocities[pair.nodes[k]].xyz;
+    return dot(pair.normal, relative);
 }
 
 // Whether the pair closes at the velocities the solve is linearised at (GLC_APPROACH_SLACK).
@@ -80,6 +92,9 @@ void main() {
     if (!(pair.depth > 0.0)) {
         if (!approaching(pair)) return;
         pair.depth = 0.0; // within the margin: stiffness, no force
+    } else if (u_leavingStep > 0.0) {
+        float vn = normalSpeed(pair);
+        if (vn > u_leavingSpeed && vn * u_leavingStep >= pair.depth) return; // a bounce leaving the thickness
     }
     uint r = atomicAdd(g_contactData[u_contactCount], 1u);
     if (r >= u_recordCapacity) return; // counted: the host grows the records and runs this again

@@ -54,6 +54,17 @@ struct ContactParams {
     /// engine's Newton steps set 0 (held at x1, a landing body hovered out of its friction's
     /// reach); the responses ignore it.
     double solveMargin = 0.0;
+    /// s: the implicit solve leaves out a pair within the thickness that leaves it: its relative
+    /// normal velocity vn (at the velocities the solve is linearised at) carries it out of the
+    /// thickness within this time, vn·leavingStep ≥ depth, and is a bounce, vn > leavingSpeed. Its
+    /// linearised penalty is two-sided — it would pull the leaving pair back and hold it, which the
+    /// one-sided penalty never does — so a bounce left the band at a fraction of its speed (decision
+    /// 0024, "Restitution between bodies"). Set by the engine to the substep h when contacts between
+    /// bodies have a restitution; 0: every pair within the thickness (the responses ignore it).
+    double leavingStep = 0.0;
+    /// m/s: slower separations stay in the solve (resting contact: what gravity adds in two substeps,
+    /// NodeUpdateParams::restingSpeed; left out, a pair resting on the band's edge came and went).
+    double leavingSpeed = 0.0;
 };
 
 /// Contacts that may add to one node in one substep before its int32 fixed-point sum could

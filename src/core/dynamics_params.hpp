@@ -70,6 +70,17 @@ struct GroundImpactParams {
     double restingSpeed = 0.0; ///< m/s: slower impacts are resting contact (NodeUpdateParams::restingSpeed)
 };
 
+/// ContactImpact (the intersection-free response, decision 0024 "Restitution between bodies"): a
+/// vertex-face or edge-edge pair that ends the substep in contact after an impact within it leaves
+/// with at least e times its impact's normal speed. The contacts' own settings (thickness, friction,
+/// fixed-point scale and cap, substep) are the response's ContactParams.
+struct ContactImpactParams {
+    double restitution = 0.0;  ///< (0, 1]: the fraction of the impact's normal speed the pair leaves with
+    double restingSpeed = 0.0; ///< m/s: slower impacts are resting contact (NodeUpdateParams::restingSpeed)
+    glm::dvec3 gravity{0.0};   ///< m/s²: the scene's gravity (0 without the effect)
+    int iterations = 4;        ///< Jacobi rounds over the pairs (each: count, impulses, apply)
+};
+
 /// The implicit (backward) Euler velocity update of Baraff & Witkin 1998, one linearised step:
 ///   (M − h·∂f/∂v − h²·∂f/∂x) Δv = h·(f + h·∂f/∂x·v),   v += Δv
 /// solved by block-Jacobi preconditioned conjugate gradients (docs/integration.md). Positions

@@ -230,7 +230,9 @@ struct Solver {
         const bool beforeSolve = bridson && !p.repulsion; // before an implicit solve (contact_force.glsl)
         const double target =
             bridson && !beforeSolve ? depth / std::max(10.0 * p.substep, p.relaxationTime) : 0.0;
-        const double penalty = std::min(p.stiffness * std::max(depth, 0.0), p.forceCap);
+        // A bounce leaving the thickness gets no penalty from the solve (ContactParams::leavingStep).
+        const bool leaving = p.leavingStep > 0.0 && vn > p.leavingSpeed && vn * p.leavingStep >= depth;
+        const double penalty = leaving ? 0.0 : std::min(p.stiffness * std::max(depth, 0.0), p.forceCap);
         const bool active = beforeSolve ? vn < 0.0 || (friction && penalty > 0.0) : bridson && vn < target;
         double f = normalForce(depth, vn);
         // Bridson's acting contacts; with the penalty and friction, the pushing ones.

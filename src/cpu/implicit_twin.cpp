@@ -55,6 +55,13 @@ glm::dvec3 weightedSum(const ContactGeometry& c, const std::vector<glm::dvec3>& 
     return sum;
 }
 
+/// The pair's relative normal velocity u·Σ a_j v_j at `velocities`.
+double normalSpeed(const ContactGeometry& c, const std::vector<glm::dvec3>& velocities) {
+    glm::dvec3 relative(0.0);
+    for (std::size_t k = 0; k < 4; ++k) relative += c.weights[k] * velocities[c.nodes[k]];
+    return glm::dot(c.normal, relative);
+}
+
 /// Whether the pair closes at `velocities`: u·Σ a_j v_j below −GLC_APPROACH_SLACK·Σ |a_j||v_j|
 /// (implicit_contact_find.comp's approaching).
 bool approaching(const ContactGeometry& c, const std::vector<glm::dvec3>& velocities) {
@@ -169,6 +176,10 @@ ImplicitContactSet implicitContacts(const ContactParams& params, const ContactIn
         if (!(c.depth > 0.0)) {
             if (!approaching(c, *in.velocities)) continue;
             c.depth = 0.0; // within the margin: stiffness, no force
+        } else if (const double vn = normalSpeed(c, *in.velocities); params.leavingStep > 0.0 &&
+                                                                     vn > params.leavingSpeed &&
+                                                                     vn * params.leavingStep >= c.depth) {
+            continue; // leaving: its own motion takes it out of the thickness within the step
         }
         set.contacts.push_back(c);
     }

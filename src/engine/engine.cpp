@@ -20,7 +20,9 @@
 #include "passes/implicit_solver.hpp"
 #include "passes/row_layout.hpp"
 #include "passes/energy_guard.hpp"
+#include "passes/contact_impact.hpp"
 #include "passes/ground_impact.hpp"
+#include "passes/start_velocities.hpp"
 #include "passes/safe_step.hpp"
 #include "passes/untangle.hpp"
 
@@ -78,6 +80,11 @@ struct Engine::Impl {
     std::optional<passes::SafeStepPass> safeStep;
     // With SafeStep, when the ground has a restitution (decision 0024, "Restitution at any step").
     std::optional<passes::GroundImpactPass> groundImpact;
+    // With SafeStep, when contacts between bodies have a restitution (decision 0024, "Restitution
+    // between bodies").
+    std::optional<passes::ContactImpactPass> contactImpact;
+    // The velocities at the start of the substep, for either impact pass.
+    std::optional<passes::StartVelocities> startVelocities;
     std::optional<passes::EnergyGuardPass> energyGuard;
     std::optional<passes::UntanglePass> untangle;
     std::optional<passes::NewtonLineSearchPass> lineSearch;
@@ -212,6 +219,11 @@ void Engine::Impl::chooseSubsteps() {
     plan.contactApplyParams.restingSpeed = restingSpeed;
     plan.implicitParams.h = substeps.substepLength;
     plan.contact.substep = substeps.substepLength;
+    // Restitution between bodies: a bounce leaves the solve's contacts (ContactParams::leavingStep).
+    if (plan.implicitContacts && scene.collision.restitution > 0.0) {
+        plan.contact.leavingStep = substeps.substepLength;
+        plan.contact.leavingSpeed = restingSpeed;
+    }
 }
 
 /// The initial contents of the engine's buffer `id` (PipelinePlan::bufferIds decides which exist).
@@ -372,6 +384,15 @@ void Engine::Impl::makePass(engine::Stage stage) {
             gi.restingSpeed = np.restingSpeed;
             groundImpact.emplace(buffers.nodeCount, gi);
         }
+        if (scene.collision.restitution > 0.0) {
+            ContactImpactParams ci;
+            ci.restitution = scene.collision.restitution;
+            ci.restingSpeed = plan.contactApplyParams.restingSpeed;
+            ci.gravity = scene.effects.has(Effect::Gravity) ? glm::dvec3(scene.gravity) : glm::dvec3(0.0);
+            ci.iterations = scene.collision.restitutionIterations;
+            contactImpact.emplace(buffers.nodeCount, ci, plan.contact);
+        }
+        if (groundImpact || contactImpact) startVelocities.emplace(buffers.nodeCount);
         break;
     case Stage::EnergyGuard:
         energyGuard.emplace(plan.energyGuardParams, buffers.springCount);
@@ -515,7 +536,7 @@ void addSafeStepCounts(const passes::SafeStepCounts& counts, CollisionStats& c) 
 /// One substep: the plan's stages in the plan's order (PipelinePlan::stages states it).
 void Engine::Impl::substep(int index, bool lastOfFrame) {
     using engine::Stage;
-    if (groundImpact) groundImpact->recordStart(buffers);
+    if (startVelocities) startVelocities->record(buffers);
     for (Stage stage : stages) {
         switch (stage) {
         case Stage::NodeForce:
@@ -643,7 +664,8 @@ void Engine::Impl::substep(int index, bool lastOfFrame) {
             addSafeStepCounts(run(*safeStep, *collision, substeps.substepLength,
                                   found.ccdVertexFaceHits + found.ccdEdgeEdgeHits),
                               stats.collision);
-            if (groundImpact) run(*groundImpact);
+            if (groundImpact) run(*groundImpact, startVelocities->buffer());
+            if (contactImpact) run(*contactImpact, contactInputs(), startVelocities->buffer());
             break;
         }
         case Stage::EnergyGuard: {

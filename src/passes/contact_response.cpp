@@ -53,6 +53,8 @@ void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& 
         p->set("u_previousSides", params.sidesFromPrevious ? 1u : 0u);
         if (p == &m_edgeEdge) bindTangled(*p, in, b.nodeCount);
         p->set("u_friction", static_cast<float>(params.friction));
+        p->set("u_leavingStep", static_cast<float>(params.leavingStep));
+        p->set("u_leavingSpeed", static_cast<float>(params.leavingSpeed));
     }
     // Sized on the GPU from each list's count; each dispatch ends with a storage barrier. First
     // both kernels count the acting contacts per node (Bridson's; with the penalty and friction,

@@ -7,15 +7,11 @@
 #include <epoxy/gl.h>
 
 #include <string>
-#include <vector>
 
 namespace glcollide::passes {
 
 GroundImpactPass::GroundImpactPass(std::uint32_t nodeCount, const GroundImpactParams& params)
-    : m_nodeCount(nodeCount),
-      m_startVelocities(gl::makeBuffer("groundImpactStartVelocities",
-                                       std::vector<float>(4 * std::size_t{nodeCount}, 0.0f))),
-      m_program("ground_impact") {
+    : m_nodeCount(nodeCount), m_program("ground_impact") {
     if (!(params.restitution > 0.0 && params.restitution <= 1.0))
         throw Error("GroundImpact: restitution must be in (0, 1], got " + std::to_string(params.restitution));
     if (!(params.friction >= 0.0) || !(params.restingSpeed >= 0.0))
@@ -28,18 +24,12 @@ GroundImpactPass::GroundImpactPass(std::uint32_t nodeCount, const GroundImpactPa
     m_program.set("u_restingSpeed", static_cast<float>(params.restingSpeed));
 }
 
-void GroundImpactPass::recordStart(const DeviceBuffers& b) const {
-    if (m_nodeCount == 0) return;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT); // after the last substep's shader writes of v
-    gl::copyBufferData(b.velocities, m_startVelocities, m_startVelocities.bytes());
-}
-
-void GroundImpactPass::dispatch(const DeviceBuffers& b) const {
+void GroundImpactPass::dispatch(const DeviceBuffers& b, const gl::Buffer& start) const {
     if (m_nodeCount == 0) return;
     bindRequired(b.positions, GLC_BIND_NODE_POSITIONS, kName, "positions");
     bindRequired(b.predictedPositions, GLC_BIND_PREDICTED_POSITIONS, kName, "predictedPositions");
     bindRequired(b.velocities, GLC_BIND_NODE_VELOCITIES, kName, "velocities");
-    m_startVelocities.bindStorage(GLC_BIND_GROUND_IMPACT_START);
+    bindRequired(start, GLC_BIND_START_VELOCITIES, kName, "startVelocities");
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     m_program.use();
     m_program.dispatch1D(m_nodeCount, GLC_WORKGROUP_SIZE);

@@ -6,7 +6,7 @@
 // sees it moving: at one substep per frame a ground of restitution 0.8 bounced nothing. This pass
 // runs after SafeStep and before the energy guard: every node that started above the band and ends
 // in it gets the ground's velocity response (common/ground_response.glsl) at its impact speed, its
-// free fall from x0 to the band from its start velocity, which recordStart() keeps: it leaves with e
+// free fall from x0 to the band from its start velocity (StartVelocities): it leaves with e
 // times that speed, and Coulomb friction is bounded by (1 + e) times it. The intersection-free
 // response only; built when the ground has a restitution above 0. Timed as part of SafeStep. CPU
 // twin: cpu::groundImpact.
@@ -26,16 +26,12 @@ class GroundImpactPass {
     static constexpr const char* kName = "GroundImpact";
 
     GroundImpactPass(std::uint32_t nodeCount, const GroundImpactParams& params);
-    /// Keeps every node's velocity at the start of the substep (a copy; before the substep's first
-    /// stage changes it).
-    void recordStart(const DeviceBuffers& buffers) const;
-    /// The impacts of the step x0 → x1 (positions → predictedPositions) on the velocities.
-    void dispatch(const DeviceBuffers& buffers) const;
-    [[nodiscard]] const gl::Buffer& startVelocities() const { return m_startVelocities; }
+    /// The impacts of the step x0 → x1 (positions → predictedPositions) on the velocities; `start`
+    /// holds the velocities at the start of the substep (StartVelocities::buffer).
+    void dispatch(const DeviceBuffers& buffers, const gl::Buffer& start) const;
 
   private:
     std::uint32_t m_nodeCount;
-    gl::Buffer m_startVelocities; ///< vec4 per node: v at the start of the substep
     gl::ComputeProgram m_program;
 };
 

@@ -139,6 +139,8 @@ void ImplicitSolverPass::buildContactRows(const DeviceBuffers& b, const Implicit
                       static_cast<float>(contacts.params.thickness + contacts.params.solveMargin));
     m_contactFind.set("u_margin", static_cast<float>(contacts.params.solveMargin));
     m_contactFind.set("u_substep", static_cast<float>(contacts.params.substep));
+    m_contactFind.set("u_leavingStep", static_cast<float>(contacts.params.leavingStep));
+    m_contactFind.set("u_leavingSpeed", static_cast<float>(contacts.params.leavingSpeed));
     m_contactFind.set("u_contactStiffness", static_cast<float>(contacts.params.stiffness));
     bindTangled(m_contactFind, contacts.inputs, b.nodeCount);
     for (const gl::ComputeProgram* p : {&m_contactFind, &m_contactSort})

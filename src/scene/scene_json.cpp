@@ -599,6 +599,8 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
                  "stiffness",
                  "damping",
                  "friction",
+                 "restitution",
+                 "restitution_iterations",
                  "relaxation_time",
                  "initial_capacity",
                  "bvh",
@@ -734,6 +736,19 @@ CollisionSettings parseCollision(const Ctx& c, const json& j, const Ptr& p) {
     }
     if (const json* v = find(j, "damping")) s.damping = nonNegative(c, *v, p / "damping");
     if (const json* v = find(j, "friction")) s.friction = nonNegative(c, *v, p / "friction");
+    if (const json* v = find(j, "restitution")) {
+        if (s.response != ContactResponse::IntersectionFree)
+            c.fail(p / "restitution",
+                   "only the \"intersection_free\" response has a restitution between bodies");
+        s.restitution = number(c, *v, p / "restitution", "a number in [0, 1]");
+        if (!(s.restitution >= 0.0 && s.restitution <= 1.0))
+            c.fail(p / "restitution", "expected a number in [0, 1], got " + shown(*v));
+    }
+    if (const json* v = find(j, "restitution_iterations")) {
+        if (!(s.restitution > 0.0))
+            c.fail(p / "restitution_iterations", "only a restitution above 0 has iterations");
+        s.restitutionIterations = integer(c, *v, p / "restitution_iterations", 1, 64);
+    }
     if (const json* v = find(j, "relaxation_time")) {
         if (s.response == ContactResponse::Penalty)
             c.fail(

@@ -48,6 +48,13 @@ void validateScene(const Scene& scene) {
         fail("collision.damping must be finite and >= 0");
     if (!(col.friction >= 0.0) || !std::isfinite(col.friction))
         fail("collision.friction must be finite and >= 0");
+    if (!(col.restitution >= 0.0 && col.restitution <= 1.0))
+        fail("collision.restitution must be in [0, 1], got " + std::to_string(col.restitution));
+    if (col.restitutionIterations < 1 || col.restitutionIterations > 64)
+        fail("collision.restitution_iterations must be 1 … 64, got " +
+             std::to_string(col.restitutionIterations));
+    if (col.restitution > 0.0 && col.response != ContactResponse::IntersectionFree)
+        fail("collision.restitution needs collision.response intersection_free");
     if (!(col.relaxationTime > 0.0) || !std::isfinite(col.relaxationTime))
         fail("collision.relaxation_time must be finite and > 0");
     if (col.initialCapacity < 1) fail("collision.initial_capacity must be >= 1");

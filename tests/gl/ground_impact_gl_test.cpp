@@ -11,6 +11,8 @@
 #include "gl/handles.hpp"
 #include "passes/device_buffers.hpp"
 #include "passes/ground_impact.hpp"
+#include "passes/start_velocities.hpp"
+#include "support/bounce_oracle.hpp"
 
 #include <glcollide/engine.hpp>
 #include <glcollide/scene.hpp>
@@ -26,6 +28,9 @@
 
 namespace glcollide {
 namespace {
+
+using test::Bounce;
+using test::oracleBounce;
 
 TEST(GroundImpactGl, MatchesTheTwin) {
     GroundImpactParams params;
@@ -65,11 +70,12 @@ TEST(GroundImpactGl, MatchesTheTwin) {
     }
     b.positions = gl::makeBuffer("positions", x0);
     b.predictedPositions = gl::makeBuffer("predictedPositions", x1);
-    b.velocities = gl::makeBuffer("velocities", start); // recordStart copies these
+    b.velocities = gl::makeBuffer("velocities", start); // StartVelocities::record copies these
     passes::GroundImpactPass pass(nodes, params);
-    pass.recordStart(b);
+    const passes::StartVelocities startVelocities(nodes);
+    startVelocities.record(b);
     b.velocities.upload(0, nodes * sizeof(glm::vec4), v.data());
-    pass.dispatch(b);
+    pass.dispatch(b, startVelocities.buffer());
 
     const std::size_t changed = cpu::groundImpact(params, in, velocity);
     EXPECT_GT(changed, 100u) << "the case must exercise the rule";
@@ -100,35 +106,6 @@ std::string flatClothDrop(const char* integrator, int substeps, double restituti
          "transform": {"translate": [0, )" +
            std::to_string(height + 0.01) + R"(, 0], "rotate_deg": [90, 0, 0]}, "velocity": [)" +
            std::to_string(sideways) + R"(, 0, 0], "mass": 0.1, "springs": {"stiffness": 1000}}]})";
-}
-
-/// The oracle: one node's free flight under both integrators' shared recurrence (v += h·g, then
-/// y += h·v), from y0 at rest, until the substep whose end reaches the band's top; its impact speed
-/// is the free fall from that substep's start to the top; it then leaves the top at e times that
-/// speed. Returns the highest height after the impact and the impact speed.
-struct Bounce {
-    double apex = 0.0;
-    double impactSpeed = 0.0;
-};
-Bounce oracleBounce(double y0, double top, double e, double g, double h) {
-    double y = y0, v = 0.0;
-    for (;;) {
-        const double vNext = v - h * g, yNext = y + h * vNext;
-        if (yNext <= top) break;
-        y = yNext;
-        v = vNext;
-    }
-    Bounce b;
-    b.impactSpeed = std::sqrt(v * v + 2.0 * g * (y - top));
-    y = top;
-    v = e * b.impactSpeed;
-    b.apex = y;
-    while (v > 0.0) {
-        v -= h * g;
-        y += h * v;
-        b.apex = std::max(b.apex, y);
-    }
-    return b;
 }
 
 struct Observed {

@@ -484,6 +484,26 @@ TEST(SceneJson, ValueErrorsNameFileAndPointer) {
                 HasSubstr("/collision/friction: expected a number >= 0, got -0.1"));
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"friction": "high"})", collide)),
                 HasSubstr("/collision/friction: expected a number >= 0"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"restitution": 1.5})", collide)),
+                HasSubstr("/collision/restitution: expected a number in [0, 1], got 1.5"));
+    EXPECT_THAT(
+        errorOf(scene(kCloth,
+                      R"("collision": {"response": "bridson", "detection": "discrete", "restitution": 0.5})",
+                      collide)),
+        HasSubstr("/collision/restitution: only the \"intersection_free\" response has a restitution between "
+                  "bodies"));
+    EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"restitution_iterations": 8})", collide)),
+                HasSubstr("/collision/restitution_iterations: only a restitution above 0 has iterations"));
+    EXPECT_THAT(
+        errorOf(scene(kCloth, R"("collision": {"restitution": 0.5, "restitution_iterations": 65})", collide)),
+        HasSubstr("/collision/restitution_iterations: expected an integer in [1, 64], got 65"));
+    {
+        const Scene s = parse(
+            scene(kCloth, R"("collision": {"restitution": 0.5, "restitution_iterations": 8})", collide));
+        EXPECT_EQ(s.collision.restitution, 0.5);
+        EXPECT_EQ(s.collision.restitutionIterations, 8);
+        EXPECT_EQ(parse(scene(kCloth, "", collide)).collision.restitution, 0.0);
+    }
     EXPECT_THAT(errorOf(scene(kCloth, R"("collision": {"relaxation_time": 0})", collide)),
                 HasSubstr("/collision/relaxation_time: expected a positive number of seconds, got 0"));
     EXPECT_THAT(

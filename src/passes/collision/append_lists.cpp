@@ -181,6 +181,14 @@ void AppendLists::dispatchOver(const gl::ComputeProgram& program, std::uint32_t 
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
+void AppendLists::dispatchAgainOver(const gl::ComputeProgram& program, std::uint32_t list) const {
+    program.use();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, m_dispatchArgs.name());
+    gl::ComputeProgram::dispatchIndirect(static_cast<std::intptr_t>(list * kArgsPerList));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
 std::vector<const gl::Buffer*> AppendLists::buffers() const {
     std::vector<const gl::Buffer*> b;
     for (const List& l : m_lists)

@@ -90,6 +90,10 @@ class AppendLists {
     /// `itemsPerGroup` entries, `zGroups` in z) and dispatches `program` with them.
     void dispatchOver(const gl::ComputeProgram& program, std::uint32_t list, std::uint32_t itemsPerGroup,
                       std::uint32_t zGroups = 1) const;
+    /// Dispatches `program` with the indirect arguments the last dispatchOver() of `list` wrote: for
+    /// a pass that runs several kernels over a list whose count has not changed since (ContactImpact's
+    /// rounds), one dispatch instead of two.
+    void dispatchAgainOver(const gl::ComputeProgram& program, std::uint32_t list) const;
 
     /// The buffers allocated here, for Engine::allocatedBuffers().
     [[nodiscard]] std::vector<const gl::Buffer*> buffers() const;
