@@ -74,7 +74,7 @@ def mean_heights(folder, first_object_nodes=None):
     return heights
 
 
-def run(binary, scene, frames, work, name):
+def run(binary, scene, frames, work, name, first_object_nodes=None):
     scene_path = os.path.join(work, name + ".json")
     with open(scene_path, "w") as f:
         json.dump(scene, f)
@@ -84,7 +84,7 @@ def run(binary, scene, frames, work, name):
                     "--export", out, "--every", "1"], check=True, stdout=subprocess.DEVNULL)
     with open(stats_path) as f:
         stats = json.load(f)
-    return mean_heights(out), stats
+    return mean_heights(out, first_object_nodes), stats
 
 
 def bounce(heights):

@@ -460,7 +460,7 @@ TEST(HostContextGl, GuardCost) {
     // The worst case: every indexed binding holds a buffer (two more queries each).
     std::array<GLuint, kBindings> buffers{};
     glGenBuffers(static_cast<GLsizei>(kBindings), buffers.data());
-    for (GLuint i = 0; i < kBindings; ++i) {
+    for (GLuint i = 0; i < hostBindings(); ++i) {
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[i]);
         glBufferData(GL_SHADER_STORAGE_BUFFER, 256, nullptr, GL_DYNAMIC_DRAW);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
