@@ -47,13 +47,7 @@ void ContactImpactPass::dispatch(const DeviceBuffers& b, const ContactInputs& in
     bindRequired(b.faces, GLC_BIND_FACES, kName, "faces");
     bindRequired(b.contactForces, GLC_BIND_CONTACT_FORCES, kName, "contactForces");
     bindRequired(start, GLC_BIND_START_VELOCITIES, kName, "startVelocities");
-    if (!in.lists || !in.faceInfo || !in.objects)
-        throw Error(std::string(kName) + ": collision buffers missing");
-    if (!in.lists->declared(GLC_LIST_VERTEX_FACE) || !in.lists->declared(GLC_LIST_EDGE_EDGE))
-        throw Error(std::string(kName) + ": the vertex-face and edge-edge lists are not declared");
-    bindRequired(*in.faceInfo, GLC_BIND_FACE_INFO, kName, "faceInfo");
-    bindRequired(*in.objects, GLC_BIND_OBJECTS, kName, "objects");
-    in.lists->bind();
+    bindContactInputs(in, kName);
     // Two words per list slot (the edge-edge slots after the vertex-face capacity) after a header.
     const std::uint32_t edgeEdgeBase = in.lists->capacity(GLC_LIST_VERTEX_FACE);
     const std::size_t words =

@@ -15,6 +15,16 @@ void bindTangled(const gl::ComputeProgram& program, const ContactInputs& inputs,
     }
 }
 
+void bindContactInputs(const ContactInputs& in, const char* pass) {
+    if (!in.lists || !in.faceInfo || !in.objects)
+        throw Error(std::string(pass) + ": collision buffers missing");
+    if (!in.lists->declared(GLC_LIST_VERTEX_FACE) || !in.lists->declared(GLC_LIST_EDGE_EDGE))
+        throw Error(std::string(pass) + ": the vertex-face and edge-edge lists are not declared");
+    bindRequired(*in.faceInfo, GLC_BIND_FACE_INFO, pass, "faceInfo");
+    bindRequired(*in.objects, GLC_BIND_OBJECTS, pass, "objects");
+    in.lists->bind(); // the counters, the dispatch arguments and every list
+}
+
 namespace {
 std::vector<std::string> contactDefines(const ContactParams& config) {
     if (config.predictedForces) return {"GLC_PREDICTED_FORCES"};
@@ -33,13 +43,7 @@ void ContactResponsePass::dispatch(const DeviceBuffers& b, const ContactInputs& 
     bindRequired(b.faces, GLC_BIND_FACES, kName, "faces");
     bindRequired(b.contactForces, GLC_BIND_CONTACT_FORCES, kName, "contactForces");
     if (m_config.predictedForces) bindRequired(b.forces, GLC_BIND_NODE_FORCES, kName, "forces");
-    if (!in.lists || !in.faceInfo || !in.objects)
-        throw Error(std::string(kName) + ": collision buffers missing");
-    if (!in.lists->declared(GLC_LIST_VERTEX_FACE) || !in.lists->declared(GLC_LIST_EDGE_EDGE))
-        throw Error(std::string(kName) + ": the vertex-face and edge-edge lists are not declared");
-    bindRequired(*in.faceInfo, GLC_BIND_FACE_INFO, kName, "faceInfo");
-    bindRequired(*in.objects, GLC_BIND_OBJECTS, kName, "objects");
-    in.lists->bind(); // the counters, the dispatch arguments and every list
+    bindContactInputs(in, kName);
     for (const gl::ComputeProgram* p : {&m_vertexFace, &m_edgeEdge}) {
         p->set("u_thickness", static_cast<float>(params.thickness));
         p->set("u_stiffness", static_cast<float>(params.stiffness));

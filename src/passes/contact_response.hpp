@@ -25,6 +25,10 @@ struct ContactInputs {
     const gl::Buffer* tangled = nullptr;
 };
 
+/// Checks and binds what the contact kernels read of `inputs` (the face info, the objects, the lists
+/// and their counters); throws glcollide::Error naming `pass` when something is missing.
+void bindContactInputs(const ContactInputs& inputs, const char* pass);
+
 /// Binds `inputs.tangled` for tangled.glsl, or tells the program there are no marks.
 void bindTangled(const gl::ComputeProgram& program, const ContactInputs& inputs, std::uint32_t nodeCount);
 

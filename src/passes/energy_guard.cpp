@@ -48,12 +48,9 @@ std::uint64_t bindPotentialInputs(const DeviceBuffers& b, const ContactInputs* c
     if (springCount > 0) bindRequired(b.springs, GLC_BIND_SPRINGS, pass, "springs");
     std::uint64_t terms = std::uint64_t{b.nodeCount} + springCount;
     if (!params.contacts) return terms;
-    if (!contacts || !contacts->lists || !contacts->faceInfo || !contacts->objects)
-        throw Error(std::string(pass) + ": collision buffers missing");
+    if (!contacts) throw Error(std::string(pass) + ": collision buffers missing");
     bindRequired(b.faces, GLC_BIND_FACES, pass, "faces");
-    bindRequired(*contacts->faceInfo, GLC_BIND_FACE_INFO, pass, "faceInfo");
-    bindRequired(*contacts->objects, GLC_BIND_OBJECTS, pass, "objects");
-    contacts->lists->bind();
+    bindContactInputs(*contacts, pass);
     return terms + contacts->lists->capacity(GLC_LIST_VERTEX_FACE) +
            contacts->lists->capacity(GLC_LIST_EDGE_EDGE);
 }

@@ -13,6 +13,7 @@
 #include "passes/contact_impact.hpp"
 #include "passes/start_velocities.hpp"
 #include "support/bounce_oracle.hpp"
+#include "support/append_list_access.hpp"
 #include "support/contact_objects.hpp"
 
 #include <glcollide/engine.hpp>
@@ -35,6 +36,9 @@
 
 namespace glcollide {
 namespace {
+
+using test::poke;
+using test::readList;
 
 using test::Bounce;
 using test::oracleBounce;
@@ -101,20 +105,6 @@ std::vector<glm::vec4> pack(const std::vector<glm::dvec3>& v, const std::vector<
     for (std::size_t i = 0; i < v.size(); ++i)
         out.emplace_back(glm::vec3(v[i]), w ? static_cast<float>((*w)[i]) : 0.0f);
     return out;
-}
-
-void poke(const gl::Buffer& buffer, std::size_t offset, std::size_t bytes, const void* data) {
-    glBindBuffer(GL_COPY_WRITE_BUFFER, buffer.name());
-    glBufferSubData(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
-                    data);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-}
-
-std::vector<std::array<std::uint32_t, 2>> readList(const passes::AppendLists& lists, std::uint32_t list) {
-    std::vector<std::array<std::uint32_t, 2>> pairs(lists.storedCount(list));
-    lists.storage(list).download(0, pairs.size() * sizeof pairs[0], pairs.data());
-    std::sort(pairs.begin(), pairs.end());
-    return pairs;
 }
 
 ContactParams impactContactParams(double friction) {
@@ -233,7 +223,7 @@ TEST(ContactImpactGl, MatchesTheTwin) {
     }
 }
 
-constexpr std::size_t kSheetNodes = 64; // the pinned sheet's 8 × 8 nodes come first
+constexpr std::size_t kSheetNodes = 49; // the pinned sheet's 7 × 7 nodes come first
 
 // A flat cloth `height` above a pinned sheet's band, with a horizontal velocity, dropped onto it.
 std::string clothOntoSheet(const char* integrator, int substeps, double restitution, double friction,
@@ -299,9 +289,8 @@ Observed dropOntoSheet(const std::string& json, int frames) {
 // rounds). Tolerance: the solve leaves a node somewhere within the band after its impact (thickness
 // 0.01 m), where the oracle puts it on the band's top; float rounding of ~100 substeps of positions
 // near 1 m is below 10⁻⁵ m. The rounds leave the cloth's mean speed within 1 % of the target
-// (measured 0.2 – 1.2 %, 16 rounds; the test below): up to 7 mm of a 0.34 m apex, which the band's
-// tolerance holds only because the two errors are of opposite sign — measured apexes are within
-// 4 mm of the oracle. Without the pass the apex is the band itself (≈ 0.01 m).
+// (16 rounds; the test below): up to 7 mm of a 0.34 m apex. Measured: 0.9 – 3.1 mm below the oracle
+// from 1 m, 7.6 mm from 5 m. Without the pass the apex is the band itself (≈ 0.01 m).
 TEST(ContactImpactGl, AFlatClothBouncesOffAPinnedSheetAsHighAsItsRestitutionSays) {
     struct Run {
         int substeps;
@@ -322,14 +311,15 @@ TEST(ContactImpactGl, AFlatClothBouncesOffAPinnedSheetAsHighAsItsRestitutionSays
 
 // Coulomb friction at the impact, as the ground's: the tangential speed drops by μ·(1 + e)·vImp in
 // the impact's substep. 1 m/s sideways, μ = 0.1, e = 0.5, vImp ≈ 4.4 m/s: 0.35 m/s left. Tolerance:
-// friction is μ times the normal change, of which the rounds leave up to 1.5 % undone on the cloth's
-// mean (16 rounds; measured 1.2 % here, the test above): 0.01 m/s of the 0.65 m/s it takes.
+// friction is μ times each pair's normal change, which the 16 rounds leave unevenly spread over the
+// pairs (the test below), so the cloth's friction is off by a few % of its share (measured +2 %):
+// 3 %, 0.02 m/s of the 0.65 m/s it takes.
 TEST(ContactImpactGl, FrictionAtTheImpactTakesItsShareOfTheImpulse) {
     const double e = 0.5, mu = 0.1, sideways = 1.0;
     const Observed o = dropOntoSheet(clothOntoSheet("implicit_euler", 1, e, mu, sideways), 45);
     const Bounce expected = oracleBounce(1.01, 0.01, e, 9.81, 1.0 / 60.0);
     EXPECT_NEAR(o.apex, expected.apex, 0.01);
-    EXPECT_NEAR(o.sideways, sideways - mu * (1.0 + e) * expected.impactSpeed, 0.01);
+    EXPECT_NEAR(o.sideways, sideways - mu * (1.0 + e) * expected.impactSpeed, 0.02);
 }
 
 // The rounds converge to every pair's target. Each cloth node has its own vertex-face pair with the

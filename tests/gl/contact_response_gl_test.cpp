@@ -10,6 +10,7 @@
 #include "model/features.hpp"
 #include "passes/collision/feature_pairs.hpp"
 #include "passes/contact_response.hpp"
+#include "support/append_list_access.hpp"
 #include "support/contact_objects.hpp"
 
 #include <gtest/gtest.h>
@@ -29,6 +30,9 @@
 
 namespace glcollide {
 namespace {
+
+using test::poke;
+using test::readList;
 
 constexpr std::uint32_t kOwnAll =
     GLC_OWN_VERTEX0 | GLC_OWN_VERTEX1 | GLC_OWN_VERTEX2 | GLC_OWN_EDGE01 | GLC_OWN_EDGE12 | GLC_OWN_EDGE20;
@@ -58,22 +62,6 @@ struct GpuResult {
     cpu::FeaturePairList pairs; // the expansion's lists, sorted
     std::uint32_t reruns = 0;   // stage-chain reruns (a feature-pair list overflowed)
 };
-
-// Writes `bytes` at `offset` of a buffer the test only holds by const reference (the list storage
-// and the counters belong to AppendLists).
-void poke(const gl::Buffer& buffer, std::size_t offset, std::size_t bytes, const void* data) {
-    glBindBuffer(GL_COPY_WRITE_BUFFER, buffer.name());
-    glBufferSubData(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
-                    data);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-}
-
-std::vector<std::array<std::uint32_t, 2>> readList(const passes::AppendLists& lists, std::uint32_t list) {
-    std::vector<std::array<std::uint32_t, 2>> pairs(lists.storedCount(list));
-    lists.storage(list).download(0, pairs.size() * sizeof pairs[0], pairs.data());
-    std::sort(pairs.begin(), pairs.end());
-    return pairs;
-}
 
 // `ccdComplete`: the expansion of continuous detection (GLC_CCD_COMPLETE), which adds the orphan
 // feature pairs.
