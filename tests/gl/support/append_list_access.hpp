@@ -20,12 +20,14 @@ namespace glcollide::test {
 /// Writes `bytes` at `offset` of `buffer`.
 inline void poke(const gl::Buffer& buffer, std::size_t offset, std::size_t bytes, const void* data) {
     glBindBuffer(GL_COPY_WRITE_BUFFER, buffer.name());
-    glBufferSubData(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
+    glBufferSubData(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
+                    data);
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 }
 
 /// The stored entries of `list`, sorted.
-inline std::vector<std::array<std::uint32_t, 2>> readList(const passes::AppendLists& lists, std::uint32_t list) {
+inline std::vector<std::array<std::uint32_t, 2>> readList(const passes::AppendLists& lists,
+                                                          std::uint32_t list) {
     std::vector<std::array<std::uint32_t, 2>> pairs(lists.storedCount(list));
     lists.storage(list).download(0, pairs.size() * sizeof pairs[0], pairs.data());
     std::sort(pairs.begin(), pairs.end());
