@@ -37,7 +37,6 @@
 namespace glcollide {
 namespace {
 
-using test::poke;
 using test::readList;
 
 using test::Bounce;
@@ -153,13 +152,7 @@ ImpactRun runImpact(const Landing& l, const ContactParams& contact, const Contac
     const gl::Buffer orphans = gl::makeBuffer("featureOrphans", model::orphanTable(l.faces, l.end.size()));
     orphans.bindStorage(GLC_BIND_FEATURE_ORPHANS);
     expansion.addStages(chain, lists, 1u << 14, 1u << 14);
-    poke(lists.storage(GLC_LIST_CANDIDATES), 0, pairs.size() * sizeof(glm::uvec2), pairs.data());
-    poke(lists.counters(),
-         offsetof(gpu::GpuCollisionCounters, lists) + GLC_LIST_CANDIDATES * sizeof(gpu::GpuListCounter) +
-             offsetof(gpu::GpuListCounter, count),
-         sizeof count, &count);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    lists.readCounters();
+    test::fillCandidates(lists, pairs);
     b.faces.bindStorage(GLC_BIND_FACES);
     faceInfo.bindStorage(GLC_BIND_FACE_INFO);
     chain.run(lists, nullptr);

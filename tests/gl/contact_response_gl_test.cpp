@@ -31,7 +31,6 @@
 namespace glcollide {
 namespace {
 
-using test::poke;
 using test::readList;
 
 constexpr std::uint32_t kOwnAll =
@@ -91,14 +90,7 @@ GpuResult runGpu(const Soup& s, const ContactParams& params, std::uint32_t listC
     const gl::Buffer orphans = upload("featureOrphans", model::orphanTable(s.faces, s.positions.size()));
     orphans.bindStorage(GLC_BIND_FEATURE_ORPHANS);
     expansion.addStages(chain, lists, listCapacity, listCapacity);
-    if (count != 0)
-        poke(lists.storage(GLC_LIST_CANDIDATES), 0, pairs.size() * sizeof(glm::uvec2), pairs.data());
-    poke(lists.counters(),
-         offsetof(gpu::GpuCollisionCounters, lists) + GLC_LIST_CANDIDATES * sizeof(gpu::GpuListCounter) +
-             offsetof(gpu::GpuListCounter, count),
-         sizeof count, &count);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    lists.readCounters(); // the host's copy of the candidate count, kept by the chain's resets
+    test::fillCandidates(lists, pairs);
     b.faces.bindStorage(GLC_BIND_FACES);
     faceInfo.bindStorage(GLC_BIND_FACE_INFO);
     GpuResult r;
